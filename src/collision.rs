@@ -1,0 +1,142 @@
+//! One collision to resolve: balls, contact, effects and the incoming centre-of-mass state,
+//! with the quantities every method derives from them (impulse, slip, reference scales).
+
+use crate::effects::Effects;
+use crate::error::Error;
+use crate::params::{Ball, Contact, Friction};
+use crate::state::CmState;
+use nalgebra::Vector2;
+
+/// Natural scales of a collision (CONTRACTS.md): errors are reported relative to them and
+/// the integrator works in the variables they make dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// Reference speed v_ref = max(|U(0)|, S(0), |U(0)| (vector), r |Omega^A(0)|,
+    /// r |Omega^B(0)|) (m/s); 0 only for balls at rest.
+    pub speed: f64,
+    /// Reference spin v_ref / r (rad/s).
+    pub spin: f64,
+    /// Reference impulse m v_ref (N s).
+    pub impulse: f64,
+    /// Reference energy m v_ref^2 (J).
+    pub energy: f64,
+    /// Reference angular momentum m v_ref r (kg m^2 / s).
+    pub angular_momentum: f64,
+}
+
+/// A validated collision problem in the centre-of-mass frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Collision {
+    /// The two (identical) balls.
+    pub ball: Ball,
+    /// Friction and the impulse rule.
+    pub contact: Contact,
+    /// Simulated effects.
+    pub effects: Effects,
+    /// Incoming state (before contact).
+    pub incoming: CmState,
+    /// Impulse P of the collision (N s); 0 when the balls do not approach.
+    pub impulse: f64,
+    /// Sliding speed S(0) (m/s).
+    pub s0: f64,
+    /// Initial sliding direction e0 = (cos theta, sin theta); `None` when S(0) = 0.
+    pub direction: Option<Vector2<f64>>,
+    /// Reference scales.
+    pub scales: Scales,
+}
+
+impl Collision {
+    /// Validates the incoming state (finite) and fixes the impulse P from the contact's
+    /// rule (an explicit impulse needs approaching balls and m U(0) <= P <= 2 m U(0)).
+    ///
+    /// ```
+    /// use billiard_contact::{Ball, Collision, CmState, Contact, Friction, ImpulseRule};
+    /// use billiard_contact::effects::Effects;
+    /// use nalgebra::Vector3;
+    /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+    /// let contact = Contact { friction: Friction::constant(0.06).unwrap(),
+    ///                         impulse: ImpulseRule::restitution(1.0).unwrap() };
+    /// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
+    /// let c = Collision::new(ball, contact, Effects::default(), s).unwrap();
+    /// assert_eq!(c.impulse, 2.0 * 0.17 * 0.5); // eq 52
+    /// assert_eq!(c.s0, 0.5); // 2 V
+    /// ```
+    pub fn new(
+        ball: Ball,
+        contact: Contact,
+        effects: Effects,
+        incoming: CmState,
+    ) -> Result<Self, Error> {
+        for (name, v) in [
+            ("u", incoming.u_cm),
+            ("omega_a", incoming.omega_a),
+            ("omega_b", incoming.omega_b),
+        ] {
+            for (i, x) in v.iter().enumerate() {
+                if !x.is_finite() {
+                    return Err(Error::invalid(
+                        format!("incoming.cm.{name}[{i}]"),
+                        x,
+                        "a finite number",
+                    ));
+                }
+            }
+        }
+        let u0 = incoming.u_cm.x;
+        let impulse = contact.impulse.impulse(ball.mass, u0)?;
+        let slip = incoming.slip(ball.radius);
+        let s0 = slip.x.hypot(slip.y);
+        let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
+        let r = ball.radius;
+        let speed = u0
+            .abs()
+            .max(s0)
+            .max(incoming.u_cm.norm())
+            .max(r * incoming.omega_a.norm())
+            .max(r * incoming.omega_b.norm());
+        if !speed.is_finite() {
+            return Err(Error::invalid(
+                "incoming",
+                speed,
+                "speeds and spins whose magnitudes are finite in m/s",
+            ));
+        }
+        let m = ball.mass;
+        Ok(Collision {
+            ball,
+            contact,
+            effects,
+            incoming,
+            impulse,
+            s0,
+            direction,
+            scales: Scales {
+                speed,
+                spin: speed / r,
+                impulse: m * speed,
+                energy: m * speed * speed,
+                angular_momentum: m * speed * r,
+            },
+        })
+    }
+
+    /// True when the balls approach (U(0) > 0) and an impulse acts.
+    pub fn collides(&self) -> bool {
+        self.impulse > 0.0
+    }
+
+    /// The friction model actually acting: `None` when friction is off (effect) or zero.
+    pub fn active_friction(&self) -> Option<Friction> {
+        let f = self.contact.friction;
+        if self.effects.friction && !f.is_zero() {
+            Some(f)
+        } else {
+            None
+        }
+    }
+
+    /// Sliding direction theta (rad) in (-pi, pi]; `None` when S(0) = 0.
+    pub fn theta(&self) -> Option<f64> {
+        self.incoming.theta(self.ball.radius)
+    }
+}

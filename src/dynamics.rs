@@ -1,0 +1,256 @@
+//! Equations 14-19 as `ode_solvers` systems, in scaled, autonomous form.
+//!
+//! Scaled variables (CONTRACTS.md scales): time s = t / tau, velocities over v_ref, spins
+//! times r / v_ref, heat over m v_ref^2, and pi = P / (m v_ref). With phi the normalised
+//! profile ([`crate::profile`]), n = pi phi(s) and mu from the current sliding speed,
+//! eqs 14-19 and 20-21, 47 read
+//!
+//! ```text
+//! dU/ds  = -n                        (14)
+//! dV/ds  = -mu n cos(theta)          (15)
+//! dW/ds  = -mu n sin(theta)          (16)
+//! dOmega_y/ds = (2 mu n / alpha) sin(theta)   (18)   (Omega = Omega^A + Omega^B)
+//! dOmega_z/ds = -(2 mu n / alpha) cos(theta)  (19)
+//! d slip/ds   = -2 mu n (1 + 1/alpha) e       (20-21)
+//! dH_sfr/ds   = mu n (slip . e)               (47, signed)
+//! ```
+//!
+//! Eq 17 (Omega_x constant) needs no integration. The velocity and spin components are
+//! carried as changes from the incoming state, so the outgoing spins of the two balls are
+//! Omega^{A,B}(0) + Delta Omega / 2 (eq 11) without cancellation. The slip
+//! (2V + r Omega_z, 2W - r Omega_y) is carried as well (eqs 20-21): it is the difference of
+//! nearly equal terms when S is small, and carrying it keeps S(t) to full relative
+//! precision, which the stick event needs; that it stays equal to the combination of the
+//! other components is checked. Time is a state (ds/ds = 1) so that the right-hand side
+//! is autonomous: `ode_solvers`' Dop853 has wrong nodes c12, c13 for right-hand sides that
+//! read the time argument.
+//!
+//! The friction direction e comes from the current slip at every evaluation (eqs 5-8),
+//! `sign(slip . e0) slip / |slip|`: before sliding stops this is slip / |slip|; past the
+//! stop (only inside the step that crosses it) it continues the paper's formula, so that
+//! the step that crosses is smooth and the event function slip . e0 changes sign there.
+
+use crate::params::Friction;
+use crate::profile::ForceProfile;
+use nalgebra::{SVector, Vector2};
+
+/// Number of components of the sliding state.
+pub const SLIDING_DIM: usize = 9;
+/// Number of components of the normal-only state.
+pub const NORMAL_DIM: usize = 2;
+
+/// A right-hand side in scaled, autonomous form (component 0 is the scaled time).
+pub trait ScaledRhs<const N: usize> {
+    /// Writes dy/ds at `y`.
+    fn derivative(&self, y: &SVector<f64, N>, dy: &mut SVector<f64, N>);
+}
+
+/// The sliding state: s, changes of U, V, W, Omega_y, Omega_z, the slip, and H_sfr, all
+/// scaled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlidingState(pub SVector<f64, SLIDING_DIM>);
+
+impl SlidingState {
+    const T: usize = 0;
+    const DU: usize = 1;
+    const DV: usize = 2;
+    const DW: usize = 3;
+    const DOY: usize = 4;
+    const DOZ: usize = 5;
+    const SY: usize = 6;
+    const SZ: usize = 7;
+    const H: usize = 8;
+
+    /// The state at the start of contact: scaled slip `slip0`, all changes 0.
+    pub fn initial(slip0: Vector2<f64>) -> Self {
+        let mut y = SVector::zeros();
+        y[Self::SY] = slip0.x;
+        y[Self::SZ] = slip0.y;
+        SlidingState(y)
+    }
+
+    /// Scaled time s.
+    pub fn time(&self) -> f64 {
+        self.0[Self::T]
+    }
+    /// Sets the scaled time.
+    pub fn set_time(&mut self, s: f64) {
+        self.0[Self::T] = s;
+    }
+    /// Scaled change of (U, V, W).
+    pub fn delta_u(&self) -> [f64; 3] {
+        [self.0[Self::DU], self.0[Self::DV], self.0[Self::DW]]
+    }
+    /// Scaled change of (Omega_y, Omega_z) of Omega = Omega^A + Omega^B.
+    pub fn delta_omega_yz(&self) -> [f64; 2] {
+        [self.0[Self::DOY], self.0[Self::DOZ]]
+    }
+    /// Scaled slip (S cos theta, S sin theta).
+    pub fn slip(&self) -> Vector2<f64> {
+        Vector2::new(self.0[Self::SY], self.0[Self::SZ])
+    }
+    /// Sets the scaled slip (to zero when the surfaces stick).
+    pub fn set_slip(&mut self, slip: Vector2<f64>) {
+        self.0[Self::SY] = slip.x;
+        self.0[Self::SZ] = slip.y;
+    }
+    /// Scaled sliding heat H_sfr.
+    pub fn heat(&self) -> f64 {
+        self.0[Self::H]
+    }
+    /// Scaled change of U.
+    pub fn set_delta_u_normal(&mut self, du: f64) {
+        self.0[Self::DU] = du;
+    }
+}
+
+/// The normal-only state: s and the scaled change of U.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalState(pub SVector<f64, NORMAL_DIM>);
+
+impl NormalState {
+    /// At scaled time `s` with scaled change of U `du`.
+    pub fn new(s: f64, du: f64) -> Self {
+        NormalState(SVector::from([s, du]))
+    }
+    /// Scaled time s.
+    pub fn time(&self) -> f64 {
+        self.0[0]
+    }
+    /// Scaled change of U.
+    pub fn delta_u(&self) -> f64 {
+        self.0[1]
+    }
+}
+
+/// The scaled time a stage evaluates the force at, kept inside the contact [0, 1]: the
+/// last stage of the last step can land a rounding error beyond s = 1, where a profile
+/// that does not vanish at its end (rectangle, tables) would read 0.
+#[inline]
+fn clamp_time(s: f64) -> f64 {
+    s.clamp(0.0, 1.0)
+}
+
+/// How the sliding right-hand side takes the friction direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Direction {
+    /// From the current slip (eqs 5-8), continued smoothly past a stop.
+    CurrentSlip,
+    /// Frozen along the initial direction e0: the paper's formulas literally, used after
+    /// sliding stops with the effect `stick = false`.
+    Frozen,
+}
+
+/// Eqs 14-19 (with 20-21 and 47) while the balls slide.
+#[derive(Debug, Clone, Copy)]
+pub struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
+    /// Normal-force profile.
+    pub profile: &'a P,
+    /// pi = P / (m v_ref).
+    pub impulse: f64,
+    /// Friction law (mu of the sliding speed in m/s).
+    pub friction: Friction,
+    /// v_ref (m/s), to evaluate a speed-dependent mu.
+    pub speed_scale: f64,
+    /// 1 / alpha.
+    pub inv_alpha: f64,
+    /// Initial sliding direction e0 (unit).
+    pub e0: Vector2<f64>,
+    /// Direction rule.
+    pub direction: Direction,
+}
+
+impl<P: ForceProfile + ?Sized> SlidingRhs<'_, P> {
+    /// The event function g = slip . e0 (scaled): positive while sliding, changes sign
+    /// where sliding stops (S itself never does).
+    #[inline]
+    pub fn event(&self, y: &SlidingState) -> f64 {
+        y.slip().dot(&self.e0)
+    }
+}
+
+impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
+    #[inline]
+    fn derivative(&self, y: &SVector<f64, SLIDING_DIM>, dy: &mut SVector<f64, SLIDING_DIM>) {
+        let st = SlidingState(*y);
+        let n = self.impulse * self.profile.shape(clamp_time(st.time()));
+        let slip = st.slip();
+        let speed = slip.x.hypot(slip.y);
+        let e = match self.direction {
+            Direction::CurrentSlip if speed > 0.0 => {
+                if slip.dot(&self.e0) < 0.0 {
+                    -slip / speed
+                } else {
+                    slip / speed
+                }
+            }
+            _ => self.e0,
+        };
+        let fr = self.friction.mu(speed * self.speed_scale) * n;
+        let spin = 2.0 * fr * self.inv_alpha;
+        let slip_rate = 2.0 * fr * (1.0 + self.inv_alpha);
+        *dy = SVector::from([
+            1.0,
+            -n,
+            -fr * e.x,
+            -fr * e.y,
+            spin * e.y,
+            -spin * e.x,
+            -slip_rate * e.x,
+            -slip_rate * e.y,
+            fr * slip.dot(&e),
+        ]);
+    }
+}
+
+/// Eq 14 alone: the balls do not slide (friction off, or stuck).
+#[derive(Debug, Clone, Copy)]
+pub struct NormalRhs<'a, P: ForceProfile + ?Sized> {
+    /// Normal-force profile.
+    pub profile: &'a P,
+    /// pi = P / (m v_ref).
+    pub impulse: f64,
+}
+
+impl<P: ForceProfile + ?Sized> ScaledRhs<NORMAL_DIM> for NormalRhs<'_, P> {
+    #[inline]
+    fn derivative(&self, y: &SVector<f64, NORMAL_DIM>, dy: &mut SVector<f64, NORMAL_DIM>) {
+        *dy = SVector::from([1.0, -self.impulse * self.profile.shape(clamp_time(y[0]))]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::profile::Rectangle;
+
+    /// Eqs 20-21 follow from 15-16 and 18-19: the carried slip's derivative equals the
+    /// derivative of (2V + Omega_z, 2W - Omega_y) (scaled, r = 1).
+    #[test]
+    fn slip_rate_is_consistent_with_15_19() {
+        let profile = Rectangle::new(1.0);
+        let rhs = SlidingRhs {
+            profile: &profile,
+            impulse: 1.3,
+            friction: Friction::Constant(0.2),
+            speed_scale: 1.0,
+            inv_alpha: 2.5,
+            e0: Vector2::new(0.6, 0.8),
+            direction: Direction::CurrentSlip,
+        };
+        let y = SlidingState::initial(Vector2::new(0.3, 0.4));
+        let mut dy = SVector::zeros();
+        rhs.derivative(&y.0, &mut dy);
+        let d = SlidingState(dy);
+        let [_, dv, dw] = d.delta_u();
+        let [doy, doz] = d.delta_omega_yz();
+        let ds = d.slip();
+        assert!((ds.x - (2.0 * dv + doz)).abs() < 1e-15);
+        assert!((ds.y - (2.0 * dw - doy)).abs() < 1e-15);
+        // eq 22: dS/ds = -2 mu n (1 + 1/alpha), along -e
+        assert!((ds.norm() - 2.0 * 0.2 * 1.3 * 3.5).abs() < 1e-14);
+        assert!((ds.normalize() + Vector2::new(0.6, 0.8)).norm() < 1e-15);
+        // Heat rate mu n S
+        assert!((d.heat() - 0.2 * 1.3 * 0.5).abs() < 1e-15);
+    }
+}

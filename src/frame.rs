@@ -1,0 +1,201 @@
+//! The lab frame and the centre-of-mass frame of the paper.
+//!
+//! Basis: e_x = (p_B - p_A)/|p_B - p_A| (line of centres), e_z = `up` with its e_x part
+//! removed, normalised (any perpendicular when `up` is parallel to e_x), e_y = e_z x e_x.
+//! The centre-of-mass frame translates with V_cm = (v_A + v_B)/2 and its axes are the basis;
+//! spins are the same in both frames (the frames do not rotate relative to each other).
+
+use crate::error::Error;
+use crate::state::{CmState, LabBall, LabMotion};
+use nalgebra::{Matrix3, Vector3};
+
+/// Relative tolerance on |p_B - p_A| = 2r.
+pub const TOUCH_TOLERANCE: f64 = 1e-9;
+
+/// Both balls in the lab frame, with the direction `up` (away from the table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LabScene {
+    /// Ball A (the paper's ball at x = -r).
+    pub a: LabBall,
+    /// Ball B (at x = +r).
+    pub b: LabBall,
+    /// Direction away from the table (need not be normalised), default +z.
+    pub up: Vector3<f64>,
+}
+
+/// The change of frame between a lab scene and the paper's centre-of-mass frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// Columns e_x, e_y, e_z of the centre-of-mass basis, in lab coordinates.
+    pub basis: Matrix3<f64>,
+    /// Velocity of the centre of mass (m/s), lab frame.
+    pub v_cm: Vector3<f64>,
+    /// Unit `up` (lab coordinates).
+    pub up: Vector3<f64>,
+}
+
+impl Frame {
+    /// The frame of a lab scene whose balls touch: |p_B - p_A| = 2r within
+    /// [`TOUCH_TOLERANCE`] relative; `up` must be a non-zero finite vector.
+    pub fn new(scene: &LabScene, radius: f64) -> Result<Self, Error> {
+        let d = scene.b.position - scene.a.position;
+        let dist = d.norm();
+        let touching = (dist - 2.0 * radius).abs() <= TOUCH_TOLERANCE * 2.0 * radius;
+        if !touching {
+            return Err(Error::invalid(
+                "incoming.lab.b.position",
+                format!(
+                    "[{}, {}, {}] (|p_B - p_A| = {dist} m)",
+                    scene.b.position.x, scene.b.position.y, scene.b.position.z
+                ),
+                format!(
+                    "the balls must touch: |p_B - p_A| = 2r = {} m within a relative {TOUCH_TOLERANCE:e}",
+                    2.0 * radius
+                ),
+            ));
+        }
+        let up_norm = scene.up.norm();
+        if !(up_norm > 0.0 && up_norm.is_finite()) {
+            return Err(Error::invalid(
+                "incoming.lab.up",
+                format!("[{}, {}, {}]", scene.up.x, scene.up.y, scene.up.z),
+                "a non-zero direction",
+            ));
+        }
+        let up = scene.up / up_norm;
+        let ex = d / dist;
+        let mut ez = up - ex * up.dot(&ex);
+        if ez.norm() < 1e-12 {
+            // `up` along the line of centres: any perpendicular will do (the result does
+            // not depend on it); take the lab axis least aligned with e_x.
+            let i = ex.iamin();
+            let mut axis = Vector3::zeros();
+            axis[i] = 1.0;
+            ez = axis - ex * axis.dot(&ex);
+        }
+        let ez = ez.normalize();
+        let ey = ez.cross(&ex);
+        Ok(Frame {
+            basis: Matrix3::from_columns(&[ex, ey, ez]),
+            v_cm: 0.5 * (scene.a.velocity + scene.b.velocity),
+            up,
+        })
+    }
+
+    /// The centre-of-mass state of a lab scene.
+    pub fn to_cm(&self, scene: &LabScene) -> CmState {
+        let rt = self.basis.transpose();
+        CmState {
+            u_cm: rt * (0.5 * (scene.a.velocity - scene.b.velocity)),
+            omega_a: rt * scene.a.spin,
+            omega_b: rt * scene.b.spin,
+        }
+    }
+
+    /// Lab-frame motions of A and B for a centre-of-mass state.
+    pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
+        let u = self.basis * cm.u_cm;
+        (
+            LabMotion {
+                velocity: self.v_cm + u,
+                spin: self.basis * cm.omega_a,
+            },
+            LabMotion {
+                velocity: self.v_cm - u,
+                spin: self.basis * cm.omega_b,
+            },
+        )
+    }
+
+    /// The throw angle (degrees): the signed angle, counter-clockwise about `up`, from the
+    /// horizontal line of centres to the horizontal part of B's velocity change
+    /// `delta_v_b` (lab frame). `None` when the line of centres is vertical or the
+    /// horizontal velocity change vanishes.
+    pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
+        let ex = self.basis.column(0).into_owned();
+        let line = ex - self.up * ex.dot(&self.up);
+        let dv = delta_v_b - self.up * delta_v_b.dot(&self.up);
+        if line.norm() < 1e-12 || dv.norm() <= 1e-12 * delta_v_b.norm() || dv.norm() == 0.0 {
+            return None;
+        }
+        let sin = line.cross(&dv).dot(&self.up);
+        let cos = line.dot(&dv);
+        Some(sin.atan2(cos).to_degrees())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ball(p: [f64; 3], v: [f64; 3], w: [f64; 3]) -> LabBall {
+        LabBall {
+            position: Vector3::from(p),
+            velocity: Vector3::from(v),
+            spin: Vector3::from(w),
+        }
+    }
+
+    #[test]
+    fn round_trip_is_identity() {
+        let r = 0.03;
+        let scene = LabScene {
+            a: ball([0.1, 0.2, 0.03], [1.0, 0.4, -0.1], [3.0, -2.0, 1.0]),
+            b: ball(
+                [0.1 + 0.036, 0.2 + 0.048, 0.03],
+                [0.2, -0.3, 0.0],
+                [0.5, 0.0, 7.0],
+            ),
+            up: Vector3::new(0.0, 0.0, 2.0),
+        };
+        let f = Frame::new(&scene, r).unwrap();
+        // Orthonormal, right-handed.
+        let q = f.basis.transpose() * f.basis;
+        assert!((q - Matrix3::identity()).norm() < 1e-15);
+        assert!((f.basis.determinant() - 1.0).abs() < 1e-15);
+        let cm = f.to_cm(&scene);
+        let (a, b) = f.to_lab(&cm);
+        assert!((a.velocity - scene.a.velocity).norm() < 1e-15);
+        assert!((b.velocity - scene.b.velocity).norm() < 1e-15);
+        assert!((a.spin - scene.a.spin).norm() < 1e-14);
+        assert!((b.spin - scene.b.spin).norm() < 1e-14);
+    }
+
+    #[test]
+    fn rejects_balls_apart() {
+        let scene = LabScene {
+            a: ball([0.0; 3], [1.0, 0.0, 0.0], [0.0; 3]),
+            b: ball([0.07, 0.0, 0.0], [0.0; 3], [0.0; 3]),
+            up: Vector3::z(),
+        };
+        let e = Frame::new(&scene, 0.03).unwrap_err().to_string();
+        assert!(e.contains("must touch"), "{e}");
+    }
+
+    #[test]
+    fn up_along_line_of_centres_still_gives_a_basis() {
+        let scene = LabScene {
+            a: ball([0.0; 3], [0.0, 0.0, -1.0], [0.0; 3]),
+            b: ball([0.0, 0.0, -0.06], [0.0; 3], [0.0; 3]),
+            up: Vector3::z(),
+        };
+        let f = Frame::new(&scene, 0.03).unwrap();
+        let q = f.basis.transpose() * f.basis;
+        assert!((q - Matrix3::identity()).norm() < 1e-15);
+        assert_eq!(f.throw_angle_deg(&Vector3::new(0.0, 0.0, -1.0)), None);
+    }
+
+    #[test]
+    fn throw_angle_sign_is_counter_clockwise_about_up() {
+        let scene = LabScene {
+            a: ball([-0.03, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0; 3]),
+            b: ball([0.03, 0.0, 0.0], [0.0; 3], [0.0; 3]),
+            up: Vector3::z(),
+        };
+        let f = Frame::new(&scene, 0.03).unwrap();
+        let a = f.throw_angle_deg(&Vector3::new(1.0, 1.0, -0.3)).unwrap();
+        assert!((a - 45.0).abs() < 1e-12);
+        let a = f.throw_angle_deg(&Vector3::new(1.0, -1.0, 0.0)).unwrap();
+        assert!((a + 45.0).abs() < 1e-12);
+    }
+}

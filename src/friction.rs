@@ -1,0 +1,224 @@
+//! Sliding between the balls as a function of the accumulated normal impulse p.
+//!
+//! While sliding, theta is constant and (eq 22, with mu = mu(S))
+//!
+//! ```text
+//! dS/dp = -k mu(S),   k = 2 (1 + 1/alpha) / m,   dJ/dp = mu(S),
+//! ```
+//!
+//! so S falls linearly in p for constant mu (eq 48) and, in general, with
+//! G(S) = integral_0^S dS' / mu(S'), sliding stops at p_stick = G(S(0)) / k. The tangential
+//! impulse is J = (S(0) - S) / k and the sliding heat H_sfr = integral mu S dp =
+//! J (S(0) + S) / 2 (eq 49 for constant mu). For mu(S) = a + b exp(-c S):
+//!
+//! ```text
+//! G(S)      = S / a + (ln(a + b e^(-c S)) - ln(a + b)) / (a c)        (a > 0)
+//! G^-1(g)   = a g + ln(1 + (b/a) (1 - e^(-a c g))) / c
+//! G(S)      = (e^(c S) - 1) / (b c),   G^-1(g) = ln(1 + b c g) / c      (a = 0)
+//! ```
+//!
+//! Once S reaches 0 the surfaces stick (ERRATA.md, gap 2): in this geometry zero
+//! tangential force keeps the slip at zero, so the rest of the impulse is purely normal.
+//! With the effect `stick = false` friction keeps acting along the initial direction
+//! (the paper's formulas literally) and the signed slip goes negative, with mu(|S|).
+
+use crate::params::Friction;
+
+/// The state of sliding after a normal impulse p.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sliding {
+    /// Tangential impulse J (N s) accumulated so far, >= 0.
+    pub tangential_impulse: f64,
+    /// Signed sliding speed along the initial direction (m/s): >= 0 with sticking.
+    pub slip: f64,
+    /// Heat of sliding friction H_sfr (J).
+    pub heat: f64,
+}
+
+/// Sliding of one collision: friction law, S(0), k, and whether sliding can stop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlidingLaw {
+    friction: Friction,
+    s0: f64,
+    k: f64,
+    stick: bool,
+    /// p_stick (N s); infinite when sliding cannot stop.
+    p_stick: f64,
+}
+
+impl SlidingLaw {
+    /// The law for friction `friction`, initial sliding speed `s0` >= 0 (m/s), slip rate
+    /// `k` = 2 (1 + 1/alpha) / m (1/kg), and the `stick` effect.
+    pub fn new(friction: Friction, s0: f64, k: f64, stick: bool) -> Self {
+        let p_stick = if s0 == 0.0 {
+            0.0
+        } else {
+            friction.slide_potential(s0) / k
+        };
+        SlidingLaw {
+            friction,
+            s0,
+            k,
+            stick,
+            p_stick,
+        }
+    }
+
+    /// The impulse p_stick (N s) at which sliding stops; `None` when it never would
+    /// (mu = 0, or a speed-dependent law whose p_stick overflows).
+    pub fn stick_impulse(&self) -> Option<f64> {
+        self.p_stick.is_finite().then_some(self.p_stick)
+    }
+
+    /// Sliding after normal impulse `p` (N s).
+    pub fn at(&self, p: f64) -> Sliding {
+        let (s0, k) = (self.s0, self.k);
+        if s0 == 0.0 {
+            return Sliding {
+                tangential_impulse: 0.0,
+                slip: 0.0,
+                heat: 0.0,
+            };
+        }
+        let past = p >= self.p_stick;
+        let (j, slip) = match self.friction {
+            Friction::Constant(mu) => {
+                if past && self.stick {
+                    (s0 / k, 0.0)
+                } else {
+                    // The literal formula of eq 48 (signed beyond p_stick without sticking).
+                    (mu * p, s0 - k * mu * p)
+                }
+            }
+            f @ Friction::SpeedDependent { .. } => {
+                let g0 = f.slide_potential(s0);
+                if past && self.stick {
+                    (s0 / k, 0.0)
+                } else if past {
+                    let s = -f.slide_speed((k * p - g0).max(0.0));
+                    ((s0 - s) / k, s)
+                } else {
+                    let s = f.slide_speed((g0 - k * p).max(0.0));
+                    ((s0 - s) / k, s)
+                }
+            }
+        };
+        Sliding {
+            tangential_impulse: j,
+            slip,
+            heat: 0.5 * j * (s0 + slip),
+        }
+    }
+}
+
+impl Friction {
+    /// G(S) = integral_0^S dS'/mu(S') (s); infinite when mu = 0.
+    pub fn slide_potential(&self, s: f64) -> f64 {
+        match *self {
+            Friction::Constant(mu) => s / mu,
+            Friction::SpeedDependent { a, b, c } => {
+                if c == 0.0 || b == 0.0 {
+                    s / (a + b)
+                } else if a == 0.0 {
+                    (c * s).exp_m1() / (b * c)
+                } else {
+                    s / a + ((-c * s).exp() * b / (a + b) + a / (a + b)).ln() / (a * c)
+                }
+            }
+        }
+    }
+
+    /// The inverse of [`Friction::slide_potential`]: the speed S >= 0 with G(S) = g >= 0.
+    pub fn slide_speed(&self, g: f64) -> f64 {
+        match *self {
+            Friction::Constant(mu) => mu * g,
+            Friction::SpeedDependent { a, b, c } => {
+                if c == 0.0 || b == 0.0 {
+                    (a + b) * g
+                } else if a == 0.0 {
+                    (b * c * g).ln_1p() / c
+                } else {
+                    a * g + ((b / a) * -(-a * c * g).exp_m1()).ln_1p() / c
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_mu_is_eq_48_and_49() {
+        let (mu, s0, k) = (0.06, 1.3, 2.0 * 3.5 / 0.17);
+        let law = SlidingLaw::new(Friction::Constant(mu), s0, k, true);
+        let p_stick = s0 / (k * mu);
+        assert!((law.stick_impulse().unwrap() - p_stick).abs() < 1e-15 * p_stick);
+        let p = 0.4 * p_stick;
+        let sl = law.at(p);
+        assert!((sl.slip - (s0 - k * mu * p)).abs() < 1e-15);
+        // eq 49 with J = mu p: H_sfr = mu S0 P - mu^2 (1 + 1/alpha) P^2 / m
+        let h = mu * s0 * p - mu * mu * (k / 2.0) * p * p;
+        assert!((sl.heat - h).abs() < 1e-15 * h);
+        let after = law.at(2.0 * p_stick);
+        assert_eq!(after.slip, 0.0);
+        assert!((after.tangential_impulse - s0 / k).abs() < 1e-16);
+        let literal = SlidingLaw::new(Friction::Constant(mu), s0, k, false).at(2.0 * p_stick);
+        assert!((literal.slip + s0).abs() < 1e-14);
+    }
+
+    /// The speed-dependent law against a fine RK4 integration of dS/dp = -k mu(S).
+    #[test]
+    fn speed_dependent_matches_direct_integration() {
+        for (a, b, c) in [(9.951e-3, 0.108, 1.088), (0.0, 0.2, 2.0), (0.05, 0.0, 1.0)] {
+            let f = Friction::SpeedDependent { a, b, c };
+            let (s0, k) = (2.0, 40.0);
+            let law = SlidingLaw::new(f, s0, k, true);
+            let rhs = |s: f64| -k * f.mu(s);
+            let p_end = 0.9 * law.stick_impulse().unwrap();
+            let n = 20_000;
+            let h = p_end / n as f64;
+            let (mut s, mut j) = (s0, 0.0);
+            for _ in 0..n {
+                let k1 = rhs(s);
+                let k2 = rhs(s + 0.5 * h * k1);
+                let k3 = rhs(s + 0.5 * h * k2);
+                let k4 = rhs(s + h * k3);
+                let m1 = f.mu(s);
+                let m2 = f.mu(s + 0.5 * h * k1);
+                let m3 = f.mu(s + 0.5 * h * k2);
+                let m4 = f.mu(s + h * k3);
+                s += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+                j += h / 6.0 * (m1 + 2.0 * m2 + 2.0 * m3 + m4);
+            }
+            let sl = law.at(p_end);
+            assert!(
+                (sl.slip - s).abs() < 1e-12,
+                "{a} {b} {c}: {} vs {s}",
+                sl.slip
+            );
+            assert!((sl.tangential_impulse - j).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn b_zero_reduces_to_constant_mu() {
+        let sd = SlidingLaw::new(
+            Friction::SpeedDependent {
+                a: 0.07,
+                b: 0.0,
+                c: 3.0,
+            },
+            1.0,
+            30.0,
+            true,
+        );
+        let cm = SlidingLaw::new(Friction::Constant(0.07), 1.0, 30.0, true);
+        for p in [0.0, 0.1, 0.3, 0.47, 0.6] {
+            let (x, y) = (sd.at(p), cm.at(p));
+            assert!((x.slip - y.slip).abs() < 1e-15);
+            assert!((x.tangential_impulse - y.tangential_impulse).abs() < 1e-15);
+        }
+    }
+}

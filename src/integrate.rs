@@ -1,0 +1,784 @@
+//! Time stepping of the contact: method choice, tolerances, segments between breakpoints
+//! and samples, location of the stick event, statistics.
+//!
+//! The integration runs in the scaled variables of [`crate::dynamics`]. It proceeds in
+//! segments ending at the profile's breakpoints (kinks or jumps of f: the integrators step
+//! exactly to them) and, with `--samples N`, at the sample times i/N. While the balls slide,
+//! every accepted step evaluates the event function g = slip . e0; the step that makes it
+//! non-positive has crossed the stop. The stop is then located inside that step by
+//! re-integrating from the step's start, with the same method, to trial times chosen by
+//! regula falsi (Illinois) in the impulse fraction q = Phi(s): g is affine in q while mu is
+//! constant, so the iteration converges in one or two trials, and the located state is the
+//! integrator's own. After the stop the rest of the pulse is integrated with the normal
+//! equation alone (sticking), or with friction frozen along e0 (effect `stick = false`).
+
+use crate::collision::Collision;
+use crate::dynamics::{
+    Direction, NormalRhs, NormalState, ScaledRhs, SlidingRhs, SlidingState, NORMAL_DIM, SLIDING_DIM,
+};
+use crate::error::Error;
+use crate::profile::ForceProfile;
+use crate::state::CmState;
+use crate::trace::{TraceRow, TraceSink};
+use nalgebra::{SVector, Vector2, Vector3};
+use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};
+use serde::{Deserialize, Serialize};
+use std::cell::Cell;
+use std::str::FromStr;
+
+/// Integration methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// The exact solution (eqs 24-35 with the stick rule); no time stepping.
+    ClosedForm,
+    /// Classical Runge-Kutta, order 4, fixed step count (`ode_solvers::Rk4`).
+    Rk4,
+    /// Dormand-Prince 5(4), adaptive (`ode_solvers::Dopri5`; Hairer, Norsett, Wanner,
+    /// Solving ODEs I, II.4-5).
+    Dopri5,
+    /// Dormand-Prince 8(5,3), adaptive (`ode_solvers::Dop853`, integrated in autonomous
+    /// form because its nodes c12, c13 are wrong for time-dependent right-hand sides).
+    Dop853,
+}
+
+impl Method {
+    /// All methods, in the order of the tables.
+    pub const ALL: [Method; 4] = [
+        Method::ClosedForm,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Dop853,
+    ];
+
+    /// The name used in scene files and on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::ClosedForm => "closed-form",
+            Method::Rk4 => "rk4",
+            Method::Dopri5 => "dopri5",
+            Method::Dop853 => "dop853",
+        }
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                Error::invalid(
+                    "solver.method",
+                    format!("\"{s}\""),
+                    "one of closed-form, rk4, dopri5, dop853",
+                )
+            })
+    }
+}
+
+/// Default relative tolerance.
+pub const DEFAULT_RTOL: f64 = 1e-10;
+/// Default number of RK4 steps over the contact.
+pub const DEFAULT_STEPS: u32 = 1000;
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Method.
+    pub method: Method,
+    /// Relative tolerance (adaptive methods).
+    pub rtol: f64,
+    /// Absolute tolerance on the scaled variables (velocities over v_ref, spins times
+    /// r / v_ref, heat over m v_ref^2): physical scales drop out.
+    pub atol: f64,
+    /// Steps over the whole contact (rk4).
+    pub steps: u32,
+    /// Step exactly to the profile's breakpoints (default true).
+    pub breakpoints: bool,
+}
+
+impl Default for SolverSettings {
+    /// dop853, rtol 1e-10, atol = rtol, 1000 rk4 steps, breakpoints on.
+    fn default() -> Self {
+        SolverSettings {
+            method: Method::Dop853,
+            rtol: DEFAULT_RTOL,
+            atol: DEFAULT_RTOL,
+            steps: DEFAULT_STEPS,
+            breakpoints: true,
+        }
+    }
+}
+
+impl SolverSettings {
+    /// Validated settings: rtol in [1e-15, 0.1], atol in (0, 0.1], steps in [1, 1e9].
+    pub fn new(method: Method, rtol: f64, atol: f64, steps: u32) -> Result<Self, Error> {
+        if !(rtol.is_finite() && (1e-15..=0.1).contains(&rtol)) {
+            return Err(Error::invalid(
+                "solver.rtol",
+                rtol,
+                "in [1e-15, 0.1] (double precision ends near 1e-15)",
+            ));
+        }
+        if !(atol.is_finite() && atol > 0.0 && atol <= 0.1) {
+            return Err(Error::invalid(
+                "solver.atol",
+                atol,
+                "in (0, 0.1], on the scaled variables (speeds over v_ref)",
+            ));
+        }
+        if !(1..=1_000_000_000).contains(&steps) {
+            return Err(Error::invalid("solver.steps", steps, "in [1, 1e9]"));
+        }
+        Ok(SolverSettings {
+            method,
+            rtol,
+            atol,
+            steps,
+            breakpoints: true,
+        })
+    }
+}
+
+/// Work done by an integration.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct Stats {
+    /// Right-hand-side evaluations, including those of event location.
+    pub rhs_evaluations: u64,
+    /// Accepted steps.
+    pub accepted_steps: u64,
+    /// Rejected steps (adaptive methods).
+    pub rejected_steps: u64,
+}
+
+/// The result of a time-stepping run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Integrated {
+    /// Outgoing centre-of-mass state.
+    pub out: CmState,
+    /// Integrated sliding heat H_sfr (J).
+    pub heat_sliding: f64,
+    /// Signed outgoing sliding speed along e0 (m/s); 0 after sticking.
+    pub s_out: f64,
+    /// Whether sliding stopped during the contact.
+    pub sticks: bool,
+    /// Time (s) at which sliding stopped.
+    pub stick_time: Option<f64>,
+    /// Impulse p(t_stick) (N s) at which sliding stopped.
+    pub stick_impulse: Option<f64>,
+    /// Largest |slip x e0| / v_ref over accepted steps while sliding.
+    pub theta_drift: f64,
+    /// Largest |slip - (2V + r Omega_z, 2W - r Omega_y)| / v_ref over accepted steps: the
+    /// carried slip against the one recomputed from velocities and spins.
+    pub slip_consistency: f64,
+    /// Work done.
+    pub stats: Stats,
+}
+
+/// Which rows a trace receives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sampling {
+    /// One row per accepted step (and the stick event).
+    Steps,
+    /// Rows at t = i duration / N, i = 0..=N (and the stick event).
+    Uniform(u64),
+}
+
+/// The integrator as configured for one segment.
+#[derive(Debug, Clone, Copy)]
+struct Stepper {
+    method: Method,
+    rtol: f64,
+    atol: f64,
+    steps_per_unit: f64,
+}
+
+/// Adapts a [`ScaledRhs`] and an observer of accepted steps to `ode_solvers::System`.
+struct Adapter<'a, const N: usize, R, O> {
+    rhs: &'a R,
+    observer: &'a mut O,
+    evals: Cell<u64>,
+    last: SVector<f64, N>,
+    before_last: SVector<f64, N>,
+    step_limit: u64,
+    steps: u64,
+    stopped: bool,
+}
+
+impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
+    System<f64, SVector<f64, N>> for Adapter<'_, N, R, O>
+{
+    #[inline]
+    fn system(&self, _x: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
+        self.evals.set(self.evals.get() + 1);
+        self.rhs.derivative(y, dy);
+    }
+
+    fn solout(&mut self, _x: f64, y: &SVector<f64, N>, _dy: &SVector<f64, N>) -> bool {
+        self.before_last = self.last;
+        self.last = *y;
+        self.steps += 1;
+        if (self.observer)(y) {
+            self.stopped = true;
+            return true;
+        }
+        self.steps >= self.step_limit
+    }
+}
+
+/// End of one call to the integrator.
+struct Advanced<const N: usize> {
+    y: SVector<f64, N>,
+    h_last: f64,
+}
+
+/// Integrates from `(a, y0)` to `b`, calling `observer` after each accepted step (it
+/// returns true to stop). The time component of the result is snapped to `b`.
+#[allow(clippy::too_many_arguments)]
+fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
+    rhs: &R,
+    stepper: &Stepper,
+    a: f64,
+    y0: SVector<f64, N>,
+    b: f64,
+    h_init: f64,
+    observer: &mut O,
+    stats: &mut Stats,
+) -> Result<Advanced<N>, Error> {
+    if b <= a {
+        return Ok(Advanced {
+            y: y0,
+            h_last: h_init,
+        });
+    }
+    let span = b - a;
+    let rk4_steps = ((span * stepper.steps_per_unit - 1e-9).ceil()).max(1.0);
+    let mut adapter = Adapter {
+        rhs,
+        observer,
+        evals: Cell::new(0),
+        last: y0,
+        before_last: y0,
+        step_limit: if stepper.method == Method::Rk4 {
+            rk4_steps as u64
+        } else {
+            u64::MAX
+        },
+        steps: 0,
+        stopped: false,
+    };
+    let h0 = if h_init > 0.0 { h_init.min(span) } else { 0.0 };
+    let fail = |source| Error::Integration {
+        method: stepper.method.name(),
+        scaled_time: a,
+        source,
+    };
+    let st = match stepper.method {
+        Method::Rk4 => {
+            let mut s = Rk4::new(&mut adapter, a, y0, b, span / rk4_steps);
+            s.integrate().map_err(fail)?
+        }
+        Method::Dopri5 => {
+            let mut s = Dopri5::from_param(
+                &mut adapter,
+                a,
+                b,
+                0.0,
+                y0,
+                stepper.rtol,
+                stepper.atol,
+                0.9,
+                0.04,
+                0.2,
+                10.0,
+                span,
+                h0,
+                100_000,
+                1000,
+                OutputType::Sparse,
+            );
+            s.integrate().map_err(fail)?
+        }
+        Method::Dop853 => {
+            let mut s = Dop853::from_param(
+                &mut adapter,
+                a,
+                b,
+                0.0,
+                y0,
+                stepper.rtol,
+                stepper.atol,
+                0.9,
+                0.0,
+                0.333,
+                6.0,
+                span,
+                h0,
+                100_000,
+                1000,
+                OutputType::Sparse,
+            );
+            s.integrate().map_err(fail)?
+        }
+        Method::ClosedForm => unreachable!("the closed form does not step"),
+    };
+    stats.rhs_evaluations += adapter.evals.get();
+    stats.accepted_steps += u64::from(st.accepted_steps);
+    stats.rejected_steps += u64::from(st.rejected_steps);
+    let mut y = adapter.last;
+    let h_last = adapter.last[0] - adapter.before_last[0];
+    if !adapter.stopped {
+        y[0] = b;
+    }
+    Ok(Advanced { y, h_last })
+}
+
+/// `System` for `&mut Adapter`, so the adapter (and the observer's findings) outlive the
+/// solver, which takes its system by value.
+impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
+    System<f64, SVector<f64, N>> for &mut Adapter<'_, N, R, O>
+{
+    #[inline]
+    fn system(&self, x: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
+        (**self).system(x, y, dy)
+    }
+    fn solout(&mut self, x: f64, y: &SVector<f64, N>, dy: &SVector<f64, N>) -> bool {
+        (**self).solout(x, y, dy)
+    }
+}
+
+/// Converts scaled states to physical ones.
+struct Units<'a, P: ForceProfile + ?Sized> {
+    c: &'a Collision,
+    profile: &'a P,
+    v: f64,
+    w: f64,
+    e: f64,
+}
+
+impl<P: ForceProfile + ?Sized> Units<'_, P> {
+    fn state(&self, y: &SlidingState) -> CmState {
+        let mut s = self.c.incoming;
+        let [du, dv, dw] = y.delta_u();
+        let [doy, doz] = y.delta_omega_yz();
+        s.u_cm += Vector3::new(du, dv, dw) * self.v;
+        // Eq 11: both balls' spins change by half the change of Omega.
+        let half = Vector3::new(0.0, doy, doz) * (0.5 * self.w);
+        s.omega_a += half;
+        s.omega_b += half;
+        s
+    }
+
+    fn row(
+        &self,
+        y: &SlidingState,
+        time: Option<f64>,
+        theta: Option<f64>,
+        e0: Vector2<f64>,
+    ) -> TraceRow {
+        let s = y.time();
+        let tau = self.profile.duration();
+        let p = self.c.impulse;
+        let slip = y.slip();
+        let sign = if slip.dot(&e0) < 0.0 { -1.0 } else { 1.0 };
+        TraceRow {
+            t: time.unwrap_or(s * tau),
+            force: p / tau * self.profile.shape(s),
+            impulse: p * self.profile.cumulative(s),
+            state: self.state(y),
+            slip_speed: sign * slip.x.hypot(slip.y) * self.v,
+            theta,
+            heat_sliding: y.heat() * self.e,
+        }
+    }
+}
+
+/// The phase of the contact.
+#[derive(Debug, Clone, Copy)]
+enum Phase {
+    /// Sliding with the direction from the current slip, watching for the stop.
+    Sliding,
+    /// Sliding with friction frozen along e0 (after the stop, `stick = false`).
+    Frozen,
+    /// Normal force only; the tangential part of the state is frozen at `base`.
+    Normal,
+}
+
+/// Mutable bookkeeping of a run.
+struct Run<'a> {
+    sink: Option<&'a mut dyn TraceSink>,
+    steps_mode: bool,
+    last_row_time: f64,
+    error: Option<Error>,
+    theta_drift: f64,
+    slip_consistency: f64,
+    theta_last: Option<f64>,
+}
+
+impl Run<'_> {
+    fn emit<P: ForceProfile + ?Sized>(
+        &mut self,
+        units: &Units<'_, P>,
+        y: &SlidingState,
+        time: Option<f64>,
+        e0: Vector2<f64>,
+    ) {
+        if self.error.is_some() || y.time() <= self.last_row_time {
+            return;
+        }
+        if let Some(sink) = self.sink.as_deref_mut() {
+            let row = units.row(y, time, self.theta_last, e0);
+            if let Err(e) = sink.row(&row) {
+                self.error = Some(e);
+            }
+        }
+        self.last_row_time = y.time();
+    }
+}
+
+/// Integrates a collision that happens (U(0) > 0) with the given settings (not
+/// `closed-form`), optionally writing a trace.
+pub fn integrate<P: ForceProfile + ?Sized>(
+    c: &Collision,
+    profile: &P,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<Integrated, Error> {
+    assert!(c.collides(), "integrate needs a collision");
+    assert!(settings.method != Method::ClosedForm);
+    let stepper = Stepper {
+        method: settings.method,
+        rtol: settings.rtol,
+        atol: settings.atol,
+        steps_per_unit: f64::from(settings.steps),
+    };
+    let sc = c.scales;
+    let units = Units {
+        c,
+        profile,
+        v: sc.speed,
+        w: sc.spin,
+        e: sc.energy,
+    };
+    let pi = c.impulse / sc.impulse;
+    let e0 = c.direction.unwrap_or_else(Vector2::zeros);
+    let slip0 = c.incoming.slip(c.ball.radius) / sc.speed;
+    let sliding_rhs = |direction| SlidingRhs {
+        profile,
+        impulse: pi,
+        friction: c.contact.friction,
+        speed_scale: sc.speed,
+        inv_alpha: 1.0 / c.ball.alpha,
+        e0,
+        direction,
+    };
+    let normal_rhs = NormalRhs {
+        profile,
+        impulse: pi,
+    };
+    let (sink, sampling) = match trace {
+        Some((s, m)) => (Some(s), m),
+        None => (None, Sampling::Steps),
+    };
+    let mut run = Run {
+        sink,
+        steps_mode: sampling == Sampling::Steps,
+        last_row_time: -1.0,
+        error: None,
+        theta_drift: 0.0,
+        slip_consistency: 0.0,
+        theta_last: c.theta(),
+    };
+    let mut stats = Stats::default();
+    let mut h = 0.0;
+
+    let mut y = SlidingState::initial(slip0);
+    let mut sticks = false;
+    let mut stick_time = None;
+    let mut stick_impulse = None;
+    let mut phase = match c.active_friction() {
+        Some(_) if c.s0 > 0.0 => Phase::Sliding,
+        Some(_) => {
+            // S(0) = 0: the surfaces do not slide at all (ERRATA.md, gap 1).
+            sticks = true;
+            stick_time = Some(0.0);
+            stick_impulse = Some(0.0);
+            Phase::Normal
+        }
+        None => Phase::Normal,
+    };
+    run.emit(&units, &y, Some(0.0), e0);
+
+    let breakpoints: &[f64] = if settings.breakpoints {
+        profile.breakpoints()
+    } else {
+        &[]
+    };
+    let samples = match sampling {
+        Sampling::Uniform(n) => n.max(1),
+        Sampling::Steps => 0,
+    };
+    let (mut next_bp, mut next_sample) = (0usize, 1u64);
+    let mut s = 0.0;
+    while s < 1.0 {
+        while next_bp < breakpoints.len() && breakpoints[next_bp] <= s {
+            next_bp += 1;
+        }
+        let mut stop = 1.0_f64;
+        if next_bp < breakpoints.len() {
+            stop = stop.min(breakpoints[next_bp]);
+        }
+        let sample_time = (samples > 0).then(|| next_sample as f64 / samples as f64);
+        if let Some(ts) = sample_time {
+            stop = stop.min(ts);
+        }
+        // Integrate [s, stop], switching phase at the stick event.
+        while y.time() < stop {
+            match phase {
+                Phase::Sliding => {
+                    let rhs = sliding_rhs(Direction::CurrentSlip);
+                    let mut prev = y;
+                    let mut crossed = None;
+                    let mut observer = |v: &SVector<f64, SLIDING_DIM>| -> bool {
+                        let st = SlidingState(*v);
+                        if !v.iter().all(|x| x.is_finite()) {
+                            run.error = Some(non_finite("state", v));
+                            return true;
+                        }
+                        if rhs.event(&st) <= 0.0 {
+                            crossed = Some(st);
+                            return true;
+                        }
+                        let slip = st.slip();
+                        run.theta_drift =
+                            run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
+                        run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
+                        run.theta_last = Some(slip.y.atan2(slip.x));
+                        if run.steps_mode {
+                            run.emit(&units, &st, None, e0);
+                        }
+                        prev = st;
+                        run.error.is_some()
+                    };
+                    let adv = advance(
+                        &rhs,
+                        &stepper,
+                        y.time(),
+                        y.0,
+                        stop,
+                        h,
+                        &mut observer,
+                        &mut stats,
+                    )?;
+                    if let Some(e) = run.error.take() {
+                        return Err(e);
+                    }
+                    h = adv.h_last;
+                    match crossed {
+                        None => y = SlidingState(adv.y),
+                        Some(cross) => {
+                            let mut at =
+                                locate_stop(&rhs, &stepper, profile, &prev, &cross, &mut stats)?;
+                            let q = profile.cumulative(at.time());
+                            stick_time = Some(at.time() * profile.duration());
+                            stick_impulse = Some(q * c.impulse);
+                            if c.effects.stick {
+                                sticks = true;
+                                at.set_slip(Vector2::zeros());
+                                phase = Phase::Normal;
+                            } else {
+                                phase = Phase::Frozen;
+                            }
+                            run.emit(&units, &at, None, e0);
+                            y = at;
+                        }
+                    }
+                }
+                Phase::Frozen => {
+                    let rhs = sliding_rhs(Direction::Frozen);
+                    let mut observer = |v: &SVector<f64, SLIDING_DIM>| -> bool {
+                        if !v.iter().all(|x| x.is_finite()) {
+                            run.error = Some(non_finite("state", v));
+                            return true;
+                        }
+                        if run.steps_mode {
+                            run.emit(&units, &SlidingState(*v), None, e0);
+                        }
+                        run.error.is_some()
+                    };
+                    let adv = advance(
+                        &rhs,
+                        &stepper,
+                        y.time(),
+                        y.0,
+                        stop,
+                        h,
+                        &mut observer,
+                        &mut stats,
+                    )?;
+                    if let Some(e) = run.error.take() {
+                        return Err(e);
+                    }
+                    h = adv.h_last;
+                    y = SlidingState(adv.y);
+                }
+                Phase::Normal => {
+                    let base = y;
+                    let full = |v: &SVector<f64, NORMAL_DIM>| {
+                        let n = NormalState(*v);
+                        let mut st = base;
+                        st.set_time(n.time());
+                        st.set_delta_u_normal(n.delta_u());
+                        st
+                    };
+                    let mut observer = |v: &SVector<f64, NORMAL_DIM>| -> bool {
+                        if !v.iter().all(|x| x.is_finite()) {
+                            run.error = Some(non_finite("state", v));
+                            return true;
+                        }
+                        if run.steps_mode {
+                            run.emit(&units, &full(v), None, e0);
+                        }
+                        run.error.is_some()
+                    };
+                    let y0 = NormalState::new(y.time(), base.delta_u()[0]);
+                    let adv = advance(
+                        &normal_rhs,
+                        &stepper,
+                        y.time(),
+                        y0.0,
+                        stop,
+                        h,
+                        &mut observer,
+                        &mut stats,
+                    )?;
+                    if let Some(e) = run.error.take() {
+                        return Err(e);
+                    }
+                    h = adv.h_last;
+                    y = full(&adv.y);
+                }
+            }
+        }
+        s = stop;
+        if sample_time == Some(stop) {
+            let t = next_sample as f64 * profile.duration() / samples as f64;
+            run.emit(&units, &y, Some(t), e0);
+            next_sample += 1;
+        }
+    }
+    if let Some(e) = run.error.take() {
+        return Err(e);
+    }
+    let slip = y.slip();
+    let s_out = if sticks {
+        0.0
+    } else {
+        slip.dot(&e0) * sc.speed
+    };
+    let s_out = if c.active_friction().is_none() {
+        c.s0
+    } else {
+        s_out
+    };
+    Ok(Integrated {
+        out: units.state(&y),
+        heat_sliding: y.heat() * sc.energy,
+        s_out,
+        sticks,
+        stick_time,
+        stick_impulse,
+        theta_drift: run.theta_drift,
+        slip_consistency: run.slip_consistency,
+        stats,
+    })
+}
+
+/// |carried slip - (2 dV + dOmega_z, 2 dW - dOmega_y) - slip0|, scaled.
+fn consistency(st: &SlidingState, slip0: &Vector2<f64>) -> f64 {
+    let [_, dv, dw] = st.delta_u();
+    let [doy, doz] = st.delta_omega_yz();
+    let recomputed = slip0 + Vector2::new(2.0 * dv + doz, 2.0 * dw - doy);
+    (st.slip() - recomputed).amax()
+}
+
+fn non_finite<const N: usize>(what: &str, v: &SVector<f64, N>) -> Error {
+    let bad = v
+        .iter()
+        .copied()
+        .find(|x| !x.is_finite())
+        .unwrap_or(f64::NAN);
+    Error::NonFinite {
+        field: what.to_string(),
+        value: bad,
+    }
+}
+
+/// Locates the stop of sliding inside the step from `prev` (g > 0) to `cross` (g <= 0):
+/// regula falsi (Illinois) in q = Phi(s), each trial re-integrated from `prev`.
+fn locate_stop<P: ForceProfile + ?Sized>(
+    rhs: &SlidingRhs<'_, P>,
+    stepper: &Stepper,
+    profile: &P,
+    prev: &SlidingState,
+    cross: &SlidingState,
+    stats: &mut Stats,
+) -> Result<SlidingState, Error> {
+    /// Bracket width in q (fraction of P) at which the location is done.
+    const Q_TOL: f64 = 1e-14;
+    let (s_lo0, s_hi0) = (prev.time(), cross.time());
+    let (mut q_lo, mut g_lo) = (profile.cumulative(s_lo0), rhs.event(prev));
+    let (mut q_hi, mut g_hi) = (profile.cumulative(s_hi0), rhs.event(cross));
+    let g_tol = 1e-14 * (g_lo - g_hi);
+    let mut best = *cross;
+    let mut best_g = g_hi.abs();
+    let mut side = 0i8;
+    let mut no_stop = |_: &SVector<f64, SLIDING_DIM>| false;
+    for _ in 0..100 {
+        if best_g <= g_tol || q_hi - q_lo <= Q_TOL {
+            break;
+        }
+        let q = q_lo + (q_hi - q_lo) * (g_lo / (g_lo - g_hi));
+        let s = profile.time_at_cumulative(q).clamp(s_lo0, s_hi0);
+        let adv = advance(
+            rhs,
+            stepper,
+            s_lo0,
+            prev.0,
+            s,
+            s - s_lo0,
+            &mut no_stop,
+            stats,
+        )?;
+        let st = SlidingState(adv.y);
+        let g = rhs.event(&st);
+        if g.abs() < best_g || (g <= 0.0 && g.abs() <= best_g) {
+            best = st;
+            best_g = g.abs();
+        }
+        if g > 0.0 {
+            q_lo = q;
+            g_lo = g;
+            if side == 1 {
+                g_hi *= 0.5;
+            }
+            side = 1;
+        } else {
+            q_hi = q;
+            g_hi = g;
+            if side == -1 {
+                g_lo *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    Ok(best)
+}

@@ -1,0 +1,31 @@
+#![doc = "billiard-contact: the contact phase of billiard-ball collisions (Peskin 2020)."]
+#![warn(missing_docs)]
+
+pub mod check;
+pub mod closed_form;
+pub mod collision;
+pub mod dynamics;
+pub mod effects;
+pub mod error;
+pub mod frame;
+pub mod friction;
+pub mod integrate;
+pub mod outcome;
+pub mod output;
+pub mod params;
+pub mod profile;
+pub mod state;
+pub mod trace;
+
+pub use closed_form::ClosedForm;
+pub use collision::Collision;
+pub use effects::Effects;
+pub use error::Error;
+pub use integrate::{Method, Sampling, SolverSettings, Stats};
+pub use outcome::{solve, Outcome};
+pub use params::{Ball, Contact, Friction, ImpulseRule};
+pub use profile::{ForceProfile, Profile};
+pub use state::{CmState, LabBall, LabMotion};
+pub mod report;
+pub mod runner;
+pub mod scene;

@@ -1,0 +1,202 @@
+//! Resolving one collision with a chosen method: the outcome and its verification.
+
+use crate::check::{checks, Checks};
+use crate::closed_form::ClosedForm;
+use crate::collision::Collision;
+use crate::error::Error;
+use crate::integrate::{integrate, Method, Sampling, SolverSettings, Stats};
+use crate::profile::ForceProfile;
+use crate::state::CmState;
+use crate::trace::{TraceRow, TraceSink};
+use nalgebra::Vector2;
+
+/// The outcome of a collision, with its checks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outcome {
+    /// Method that produced it.
+    pub method: Method,
+    /// Whether the balls approached (U(0) > 0) and collided.
+    pub collision: bool,
+    /// Impulse P (N s).
+    pub impulse: f64,
+    /// Incoming sliding speed S(0) (m/s).
+    pub s0: f64,
+    /// Sliding direction theta (rad); `None` when S(0) = 0.
+    pub theta: Option<f64>,
+    /// Outgoing sliding speed, signed along e0 (m/s).
+    pub s_out: f64,
+    /// Whether sliding stopped during contact.
+    pub sticks: bool,
+    /// Time (s) at which sliding stopped.
+    pub stick_time: Option<f64>,
+    /// Impulse (N s) at which sliding stopped, or would stop (CONTRACTS.md).
+    pub stick_impulse: Option<f64>,
+    /// Tangential impulse J >= 0 (N s): along -e on A, +e on B.
+    pub tangential_impulse: f64,
+    /// Total heat H (J).
+    pub heat: f64,
+    /// Sliding heat H_sfr (J).
+    pub heat_sliding: f64,
+    /// Outgoing centre-of-mass state.
+    pub out: CmState,
+    /// Verification.
+    pub check: Checks,
+    /// Work done.
+    pub stats: Stats,
+    /// Warnings (e.g. eq 57 violated with `stick = false`).
+    pub warnings: Vec<String>,
+    /// The closed form of the same collision (the reference).
+    pub exact: ClosedForm,
+}
+
+/// Default number of trace rows of the closed-form method without `--samples`.
+pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
+
+/// Resolves a collision with `settings.method`, optionally streaming a trace.
+///
+/// ```
+/// # use billiard_contact::*; use billiard_contact::effects::Effects;
+/// # use billiard_contact::profile::HalfSine; use nalgebra::Vector3;
+/// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+/// let contact = Contact { friction: Friction::constant(0.06).unwrap(),
+///                         impulse: ImpulseRule::restitution(1.0).unwrap() };
+/// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
+/// let c = Collision::new(ball, contact, Effects::default(), s).unwrap();
+/// let settings = SolverSettings { rtol: 1e-12, atol: 1e-12, ..Default::default() };
+/// let o = solve(&c, &HalfSine::new(2.5e-4), &settings, None).unwrap();
+/// assert!(o.check.closed_form_error < 1e-10);
+/// assert!((o.out.u_cm.x + 0.5).abs() < 1e-10); // eq 24 with P = 2 m U(0)
+/// ```
+pub fn solve<P: ForceProfile + ?Sized>(
+    c: &Collision,
+    profile: &P,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<Outcome, Error> {
+    let exact = ClosedForm::new(c);
+    let mut warnings = Vec::new();
+    let mut outcome = Outcome {
+        method: settings.method,
+        collision: c.collides(),
+        impulse: c.impulse,
+        s0: c.s0,
+        theta: c.theta(),
+        s_out: exact.s_out,
+        sticks: exact.sticks,
+        stick_time: None,
+        stick_impulse: exact.stick_impulse,
+        tangential_impulse: exact.tangential_impulse,
+        heat: exact.heat,
+        heat_sliding: exact.heat_sliding,
+        out: exact.out,
+        check: Checks::default(),
+        stats: Stats::default(),
+        warnings: Vec::new(),
+        exact,
+    };
+    if !c.collides() {
+        outcome.stick_impulse = None;
+        if let Some((sink, _)) = trace {
+            closed_form_trace(c, &exact, profile, sink, 1)?;
+        }
+        return Ok(outcome);
+    }
+    if exact.sticks {
+        outcome.stick_time = Some(
+            profile.duration()
+                * profile.time_at_cumulative(exact.stick_impulse.unwrap_or(0.0) / c.impulse),
+        );
+    }
+    if exact.violates_eq57() {
+        let p_stick = exact.stick_impulse.unwrap_or(f64::INFINITY);
+        warnings.push(format!(
+            "eq 57 fails: sliding would stop at p = {p_stick:e} N s < P = {:e} N s; with stick = \
+             false friction kept acting and the slip reversed (S_out = {:e} m/s)",
+            c.impulse, exact.s_out
+        ));
+    }
+    match settings.method {
+        Method::ClosedForm => {
+            outcome.check = checks(
+                c,
+                &exact,
+                &exact.out,
+                exact.tangential_impulse,
+                exact.heat_sliding,
+            );
+            if let Some((sink, sampling)) = trace {
+                let n = match sampling {
+                    Sampling::Uniform(n) => n,
+                    Sampling::Steps => CLOSED_FORM_TRACE_SAMPLES,
+                };
+                closed_form_trace(c, &exact, profile, sink, n)?;
+            }
+        }
+        _ => {
+            let run = integrate(c, profile, settings, trace)?;
+            let m = c.ball.mass;
+            let e = c.direction.unwrap_or_else(Vector2::zeros);
+            let du = run.out.u_cm - c.incoming.u_cm;
+            let j = -m * (du.y * e.x + du.z * e.y);
+            outcome.s_out = run.s_out;
+            outcome.sticks = run.sticks;
+            if c.effects.stick {
+                outcome.stick_time = run.stick_time;
+                if run.sticks {
+                    outcome.stick_impulse = run.stick_impulse;
+                }
+            }
+            outcome.tangential_impulse = j.max(0.0);
+            outcome.heat_sliding = run.heat_sliding;
+            outcome.heat = c.incoming.kinetic_energy(&c.ball) - run.out.kinetic_energy(&c.ball);
+            outcome.out = run.out;
+            outcome.stats = run.stats;
+            outcome.check = checks(c, &exact, &run.out, j, run.heat_sliding);
+            outcome.check.theta_drift = run.theta_drift;
+            outcome.check.slip_consistency = run.slip_consistency;
+        }
+    }
+    outcome.warnings = warnings;
+    Ok(outcome)
+}
+
+/// The exact trace: the closed form at p(t) for t = i tau / n, i = 0..=n, plus the stop of
+/// sliding (ERRATA.md, gap 3).
+fn closed_form_trace<P: ForceProfile + ?Sized>(
+    c: &Collision,
+    exact: &ClosedForm,
+    profile: &P,
+    sink: &mut dyn TraceSink,
+    n: u64,
+) -> Result<(), Error> {
+    let tau = profile.duration();
+    let stick_s = (exact.sticks && c.collides())
+        .then(|| profile.time_at_cumulative(exact.stick_impulse.unwrap_or(0.0) / c.impulse));
+    let theta = c.theta();
+    let row = |s: f64, t: f64| {
+        let p = c.impulse * profile.cumulative(s);
+        let part = exact.at_impulse(p);
+        TraceRow {
+            t,
+            force: c.impulse / tau * profile.shape(s),
+            impulse: p,
+            state: part.state,
+            slip_speed: part.sliding.slip,
+            theta,
+            heat_sliding: part.sliding.heat,
+        }
+    };
+    let mut last = -1.0;
+    let n = n.max(1);
+    for i in 0..=n {
+        let s = i as f64 / n as f64;
+        if let Some(ss) = stick_s {
+            if ss > last && ss < s {
+                sink.row(&row(ss, ss * tau))?;
+            }
+        }
+        sink.row(&row(s, i as f64 * tau / n as f64))?;
+        last = s;
+    }
+    Ok(())
+}

@@ -1,0 +1,207 @@
+//! Ball and contact parameters, validated on construction.
+
+use crate::error::{finite, Error};
+use serde::{Deserialize, Serialize};
+
+/// Largest `alpha` of a sphere: a thin spherical shell has I = (2/3) m r^2, and no
+/// radial mass distribution puts more of the mass farther out.
+pub const ALPHA_MAX: f64 = 2.0 / 3.0;
+
+/// Moment-of-inertia factor of a solid uniform ball, I = (2/5) m r^2.
+pub const ALPHA_SOLID: f64 = 0.4;
+
+/// Two identical balls: mass m, radius r, moment of inertia alpha m r^2.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ball {
+    /// Mass m (kg), > 0.
+    pub mass: f64,
+    /// Radius r (m), > 0.
+    pub radius: f64,
+    /// Moment-of-inertia factor alpha (dimensionless), in (0, 2/3].
+    pub alpha: f64,
+}
+
+impl Ball {
+    /// A validated ball.
+    ///
+    /// `mass` (kg) and `radius` (m) must be finite and positive; `alpha` in
+    /// (0, 2/3] (0.4 for a solid ball, [`ALPHA_SOLID`]).
+    ///
+    /// ```
+    /// let ball = billiard_contact::Ball::new(0.17, 0.028575, 0.4).unwrap();
+    /// assert_eq!(ball.inertia(), 0.4 * 0.17 * 0.028575 * 0.028575);
+    /// assert!(billiard_contact::Ball::new(0.17, 0.028575, 0.7).is_err());
+    /// ```
+    pub fn new(mass: f64, radius: f64, alpha: f64) -> Result<Self, Error> {
+        positive("balls.mass", mass, "kg")?;
+        positive("balls.radius", radius, "m")?;
+        finite("balls.alpha", alpha)?;
+        if !(alpha > 0.0 && alpha <= ALPHA_MAX) {
+            return Err(Error::invalid(
+                "balls.alpha",
+                alpha,
+                "in (0, 2/3]: I = alpha m r^2, and a sphere cannot exceed the thin shell's 2/3",
+            ));
+        }
+        Ok(Ball {
+            mass,
+            radius,
+            alpha,
+        })
+    }
+
+    /// Moment of inertia alpha m r^2 (kg m^2).
+    pub fn inertia(&self) -> f64 {
+        self.alpha * self.mass * self.radius * self.radius
+    }
+
+    /// The factor k = 2 (1 + 1/alpha) / m (1/kg) of eq 22: dS/dt = -mu f k.
+    pub fn slip_rate_per_friction_impulse(&self) -> f64 {
+        2.0 * (1.0 + 1.0 / self.alpha) / self.mass
+    }
+}
+
+/// Coefficient of sliding friction between the balls.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Friction {
+    /// Coulomb friction with a constant coefficient mu >= 0.
+    Constant(f64),
+    /// mu(S) = a + b exp(-c S), S the sliding speed in m/s (the fit used in the
+    /// billiards literature for ball-ball friction), applied at every instant.
+    SpeedDependent {
+        /// Speed-independent part a >= 0.
+        a: f64,
+        /// Amplitude b >= 0 of the speed-dependent part.
+        b: f64,
+        /// Decay rate c >= 0 (s/m).
+        c: f64,
+    },
+}
+
+impl Friction {
+    /// Constant Coulomb friction, validated (finite, >= 0).
+    pub fn constant(mu: f64) -> Result<Self, Error> {
+        finite("contact.mu", mu)?;
+        if mu < 0.0 {
+            return Err(Error::invalid("contact.mu", mu, "mu >= 0"));
+        }
+        Ok(Friction::Constant(mu))
+    }
+
+    /// Speed-dependent friction mu(S) = a + b exp(-c S), validated (all finite, >= 0).
+    pub fn speed_dependent(a: f64, b: f64, c: f64) -> Result<Self, Error> {
+        for (name, v) in [
+            ("contact.mu.a", a),
+            ("contact.mu.b", b),
+            ("contact.mu.c", c),
+        ] {
+            finite(name, v)?;
+            if v < 0.0 {
+                return Err(Error::invalid(name, v, ">= 0"));
+            }
+        }
+        Ok(Friction::SpeedDependent { a, b, c })
+    }
+
+    /// The coefficient at sliding speed `s` (m/s).
+    #[inline]
+    pub fn mu(&self, s: f64) -> f64 {
+        match *self {
+            Friction::Constant(mu) => mu,
+            Friction::SpeedDependent { a, b, c } => a + b * (-c * s).exp(),
+        }
+    }
+
+    /// True when no friction can act at any speed.
+    pub fn is_zero(&self) -> bool {
+        match *self {
+            Friction::Constant(mu) => mu == 0.0,
+            Friction::SpeedDependent { a, b, .. } => a == 0.0 && b == 0.0,
+        }
+    }
+}
+
+/// How the impulse P of the collision is set.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum ImpulseRule {
+    /// P = (1 + e) m U(0), e in [0, 1] (eq 52 for e = 1, the family of eq 56 below).
+    Restitution(f64),
+    /// An explicit impulse P (N s) with m U(0) <= P <= 2 m U(0) (eq 56).
+    Explicit(f64),
+}
+
+impl ImpulseRule {
+    /// A validated restitution rule (e finite, in [0, 1]).
+    pub fn restitution(e: f64) -> Result<Self, Error> {
+        finite("contact.restitution", e)?;
+        if !(0.0..=1.0).contains(&e) {
+            return Err(Error::invalid(
+                "contact.restitution",
+                e,
+                "in [0, 1] (0: perfectly inelastic, 1: only sliding friction dissipates)",
+            ));
+        }
+        Ok(ImpulseRule::Restitution(e))
+    }
+
+    /// A validated explicit impulse (finite, > 0); its range against m U(0) is
+    /// checked by [`ImpulseRule::impulse`].
+    pub fn explicit(p: f64) -> Result<Self, Error> {
+        positive("contact.impulse", p, "N s")?;
+        Ok(ImpulseRule::Explicit(p))
+    }
+
+    /// The impulse P (N s) for normal approach speed `u0` (m/s) and mass `m` (kg).
+    ///
+    /// Returns 0 for balls that do not approach (u0 <= 0) under a restitution rule;
+    /// an explicit impulse requires u0 > 0 and m u0 <= P <= 2 m u0 (eq 56), with a
+    /// relative slack of 1e-12 for round-off in the caller's arithmetic.
+    pub fn impulse(&self, mass: f64, u0: f64) -> Result<f64, Error> {
+        match *self {
+            ImpulseRule::Restitution(e) => Ok(if u0 > 0.0 { (1.0 + e) * mass * u0 } else { 0.0 }),
+            ImpulseRule::Explicit(p) => {
+                if u0 <= 0.0 {
+                    return Err(Error::invalid(
+                        "contact.impulse",
+                        p,
+                        format!(
+                            "no impulse: the balls do not approach (normal speed U(0) = {u0} m/s <= 0)"
+                        ),
+                    ));
+                }
+                let lo = mass * u0;
+                let hi = 2.0 * mass * u0;
+                let slack = 1e-12 * hi;
+                if p < lo - slack || p > hi + slack {
+                    return Err(Error::invalid(
+                        "contact.impulse",
+                        p,
+                        format!(
+                            "between m U(0) = {lo} and 2 m U(0) = {hi} N s (eq 56: below, the balls pass \
+                             through each other; above, the collision creates energy)"
+                        ),
+                    ));
+                }
+                Ok(p)
+            }
+        }
+    }
+}
+
+/// Contact parameters: friction and the impulse rule.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Contact {
+    /// Ball-ball sliding friction.
+    pub friction: Friction,
+    /// How the impulse P is fixed.
+    pub impulse: ImpulseRule,
+}
+
+pub(crate) fn positive(field: &str, value: f64, unit: &str) -> Result<f64, Error> {
+    finite(field, value)?;
+    if value <= 0.0 {
+        return Err(Error::invalid(field, value, format!("> 0 {unit}")));
+    }
+    Ok(value)
+}

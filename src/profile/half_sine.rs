@@ -1,0 +1,77 @@
+//! Half-sine pulse f(t) = (pi P / (2 tau)) sin(pi t / tau).
+
+use super::ForceProfile;
+use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
+
+/// Half-sine pulse: phi(s) = (pi/2) sin(pi s), Phi(s) = sin^2(pi s / 2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfSine {
+    duration: f64,
+}
+
+impl HalfSine {
+    /// A half-sine pulse of `duration` tau (s), validated by the caller.
+    ///
+    /// ```
+    /// use billiard_contact::profile::{ForceProfile, HalfSine};
+    /// let p = HalfSine::new(2.5e-4);
+    /// // peak force pi P / (2 tau) at mid-contact
+    /// assert!((p.force(1.25e-4, 0.17) - std::f64::consts::PI * 0.17 / 5e-4).abs() < 1e-9);
+    /// ```
+    pub fn new(duration: f64) -> Self {
+        HalfSine { duration }
+    }
+}
+
+impl ForceProfile for HalfSine {
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    #[inline]
+    fn shape(&self, s: f64) -> f64 {
+        if !(0.0..=1.0).contains(&s) {
+            return 0.0;
+        }
+        // sin(pi s) from the nearer end keeps full relative accuracy at both ends.
+        FRAC_PI_2 * (PI * s.min(1.0 - s)).sin()
+    }
+
+    fn cumulative(&self, s: f64) -> f64 {
+        if s <= 0.0 {
+            0.0
+        } else if s >= 1.0 {
+            1.0
+        } else if s <= 0.5 {
+            let h = (FRAC_PI_2 * s).sin();
+            h * h
+        } else {
+            let h = (FRAC_PI_2 * (1.0 - s)).sin();
+            1.0 - h * h
+        }
+    }
+
+    /// s = (2/pi) asin(sqrt(q)), from the nearer end (ERRATA.md: the arccos form loses
+    /// digits for small q).
+    fn time_at_cumulative(&self, q: f64) -> f64 {
+        if q <= 0.0 {
+            0.0
+        } else if q >= 1.0 {
+            1.0
+        } else if q <= 0.5 {
+            FRAC_2_PI * q.sqrt().asin()
+        } else {
+            1.0 - FRAC_2_PI * (1.0 - q).sqrt().asin()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contract() {
+        crate::profile::tests::check_profile(&HalfSine::new(1e-3), 1e-13);
+    }
+}

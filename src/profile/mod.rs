@@ -1,0 +1,310 @@
+//! Prescribed normal-force profiles f(t) over the contact (0, tau).
+//!
+//! Every profile is stored normalised: with s = t / tau,
+//!
+//! ```text
+//! f(t) = (P / tau) phi(s),      p(t) = integral_0^t f = P Phi(s),      Phi(1) = 1,
+//! ```
+//!
+//! so a profile delivers exactly the impulse P whatever its shape, and the integrator
+//! works in the scaled time s. `Phi` is exact (analytic, or tabulated to round-off): it is
+//! what the exact time-resolved solution needs (ERRATA.md, gap 3: while sliding, the state
+//! at time t is the closed form at impulse p(t)).
+//!
+//! | shape | phi(s) | Phi(s) |
+//! |---|---|---|
+//! | `half-sine` | (pi/2) sin(pi s) | sin^2(pi s / 2) |
+//! | `sine-power` (exponent n) | sin^n(pi s) pi / B((n+1)/2, 1/2) | I_{sin^2(pi s)}((n+1)/2, 1/2) / 2 for s <= 1/2 |
+//! | `hertz` | elastic Hertz impact, f ~ delta^(3/2) | (1 - delta'(t)/delta'(0)) / 2 |
+//! | `rectangle` | 1 | s |
+//! | `tabulated` | linear between (time, force) points | exact trapezoids |
+
+pub mod beta;
+mod half_sine;
+mod hertz;
+mod rectangle;
+mod sine_power;
+mod tabulated;
+
+pub use half_sine::HalfSine;
+pub use hertz::Hertz;
+pub use rectangle::Rectangle;
+pub use sine_power::SinePower;
+pub use tabulated::Tabulated;
+
+use crate::error::Error;
+use crate::params::positive;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A normal-force profile over the contact, normalised as in the module docs.
+pub trait ForceProfile {
+    /// Contact duration tau (s).
+    fn duration(&self) -> f64;
+
+    /// Normalised force phi(s) = f(s tau) tau / P (dimensionless) for s in [0, 1], the
+    /// limit from inside at the ends; 0 outside [0, 1]. Integrates to 1 over [0, 1].
+    fn shape(&self, s: f64) -> f64;
+
+    /// Normalised cumulative impulse Phi(s) = p(s tau) / P in [0, 1]: 0 for s <= 0, 1 for
+    /// s >= 1, non-decreasing.
+    fn cumulative(&self, s: f64) -> f64;
+
+    /// The smallest s in [0, 1] with Phi(s) = q, q in [0, 1]: the time (scaled) at which
+    /// the impulse reaches q P. The default is a safeguarded Newton iteration on `cumulative`.
+    fn time_at_cumulative(&self, q: f64) -> f64 {
+        invert_cumulative(self, q)
+    }
+
+    /// Scaled times in (0, 1), sorted, where phi is not smooth (kinks, jumps): the
+    /// integrators step exactly to them.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
+    }
+
+    /// Force f(t) (N) for a total impulse `impulse` P (N s).
+    fn force(&self, t: f64, impulse: f64) -> f64 {
+        impulse / self.duration() * self.shape(t / self.duration())
+    }
+
+    /// Cumulative impulse p(t) (N s) for a total impulse `impulse` P (N s).
+    fn impulse_until(&self, t: f64, impulse: f64) -> f64 {
+        impulse * self.cumulative(t / self.duration())
+    }
+}
+
+/// Safeguarded Newton iteration (bisection fallback) for Phi(s) = q on [0, 1].
+pub fn invert_cumulative<P: ForceProfile + ?Sized>(profile: &P, q: f64) -> f64 {
+    if q <= 0.0 {
+        return 0.0;
+    }
+    if q >= 1.0 {
+        return 1.0;
+    }
+    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+    let mut s = q; // exact for a rectangle, a fair start for the rest
+    for _ in 0..200 {
+        let r = profile.cumulative(s) - q;
+        if r == 0.0 {
+            break;
+        }
+        if r < 0.0 {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        if hi - lo <= 4.0 * f64::EPSILON * hi {
+            break;
+        }
+        let d = profile.shape(s);
+        let newton = s - r / d;
+        s = if d > 0.0 && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+    }
+    // The smallest time: a zero-force plateau at level q resolves to its start.
+    if profile.cumulative(lo) >= q {
+        lo
+    } else {
+        s
+    }
+}
+
+/// The built-in profiles, selected by name in scene files.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Profile {
+    /// f ~ sin(pi t / tau).
+    HalfSine(HalfSine),
+    /// Elastic Hertz impact, f ~ delta^(3/2).
+    Hertz(Hertz),
+    /// f ~ sin^n(pi t / tau).
+    SinePower(SinePower),
+    /// Constant force.
+    Rectangle(Rectangle),
+    /// Linear interpolation of a (time, force) table.
+    Tabulated(Tabulated),
+}
+
+macro_rules! delegate {
+    ($self:ident, $p:ident => $e:expr) => {
+        match $self {
+            Profile::HalfSine($p) => $e,
+            Profile::Hertz($p) => $e,
+            Profile::SinePower($p) => $e,
+            Profile::Rectangle($p) => $e,
+            Profile::Tabulated($p) => $e,
+        }
+    };
+}
+
+impl ForceProfile for Profile {
+    fn duration(&self) -> f64 {
+        delegate!(self, p => p.duration())
+    }
+    #[inline]
+    fn shape(&self, s: f64) -> f64 {
+        delegate!(self, p => p.shape(s))
+    }
+    fn cumulative(&self, s: f64) -> f64 {
+        delegate!(self, p => p.cumulative(s))
+    }
+    fn time_at_cumulative(&self, q: f64) -> f64 {
+        delegate!(self, p => p.time_at_cumulative(q))
+    }
+    fn breakpoints(&self) -> &[f64] {
+        delegate!(self, p => p.breakpoints())
+    }
+}
+
+impl Profile {
+    /// The profile's name as written in scene files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Profile::HalfSine(_) => "half-sine",
+            Profile::Hertz(_) => "hertz",
+            Profile::SinePower(_) => "sine-power",
+            Profile::Rectangle(_) => "rectangle",
+            Profile::Tabulated(_) => "tabulated",
+        }
+    }
+}
+
+/// Default exponent of `sine-power` (sin^1.5, the common approximation of a Hertz pulse).
+pub const DEFAULT_SINE_POWER_EXPONENT: f64 = 1.5;
+
+/// A profile as written in a scene file (`[contact.profile]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "shape", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ProfileSpec {
+    /// `shape = "half-sine"`.
+    HalfSine {
+        /// Contact duration (s).
+        duration: f64,
+    },
+    /// `shape = "hertz"`.
+    Hertz {
+        /// Contact duration (s).
+        duration: f64,
+    },
+    /// `shape = "sine-power"`, `exponent` (default 1.5).
+    SinePower {
+        /// Contact duration (s).
+        duration: f64,
+        /// Exponent n > 0 of sin^n.
+        #[serde(default)]
+        exponent: Option<f64>,
+    },
+    /// `shape = "rectangle"`.
+    Rectangle {
+        /// Contact duration (s).
+        duration: f64,
+    },
+    /// `shape = "tabulated"`, `file` relative to the scene; `duration` stretches the
+    /// table's time axis (default: the table's own span).
+    Tabulated {
+        /// CSV file with header `time,force`.
+        file: PathBuf,
+        /// Contact duration (s); default the table's span.
+        #[serde(default)]
+        duration: Option<f64>,
+    },
+}
+
+impl ProfileSpec {
+    /// Builds the profile; `base` is the directory relative file names are resolved in.
+    pub fn build(&self, base: &Path) -> Result<Profile, Error> {
+        const D: &str = "contact.profile.duration";
+        Ok(match self {
+            ProfileSpec::HalfSine { duration } => {
+                Profile::HalfSine(HalfSine::new(positive(D, *duration, "s")?))
+            }
+            ProfileSpec::Hertz { duration } => {
+                Profile::Hertz(Hertz::new(positive(D, *duration, "s")?))
+            }
+            ProfileSpec::SinePower { duration, exponent } => Profile::SinePower(SinePower::new(
+                positive(D, *duration, "s")?,
+                exponent.unwrap_or(DEFAULT_SINE_POWER_EXPONENT),
+            )?),
+            ProfileSpec::Rectangle { duration } => {
+                Profile::Rectangle(Rectangle::new(positive(D, *duration, "s")?))
+            }
+            ProfileSpec::Tabulated { file, duration } => {
+                let duration = match duration {
+                    Some(d) => Some(positive(D, *d, "s")?),
+                    None => None,
+                };
+                Profile::Tabulated(Tabulated::from_csv_file(&base.join(file), duration)?)
+            }
+        })
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// Composite Gauss-Legendre quadrature of phi over [a, b] (independent of `cumulative`),
+    /// split at the profile's breakpoints, with compensated summation.
+    pub fn integrate_shape(p: &dyn ForceProfile, a: f64, b: f64, panels: usize) -> f64 {
+        let mut cuts = vec![a];
+        cuts.extend(p.breakpoints().iter().copied().filter(|&x| x > a && x < b));
+        cuts.push(b);
+        let nodes = [
+            (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+            (-0.538_469_310_105_683, 0.478_628_670_499_366_5),
+            (0.0, 0.568_888_888_888_888_9),
+            (0.538_469_310_105_683, 0.478_628_670_499_366_5),
+            (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+        ];
+        let (mut sum, mut carry) = (0.0_f64, 0.0_f64);
+        for w in cuts.windows(2) {
+            let h = (w[1] - w[0]) / panels as f64;
+            for i in 0..panels {
+                let lo = w[0] + h * i as f64;
+                for (z, wt) in nodes {
+                    let term = 0.5 * h * wt * p.shape(lo + 0.5 * h * (1.0 + z));
+                    let t = sum + term;
+                    carry += if sum.abs() >= term.abs() {
+                        (sum - t) + term
+                    } else {
+                        (term - t) + sum
+                    };
+                    sum = t;
+                }
+            }
+        }
+        sum + carry
+    }
+
+    /// Checks the contract of a profile: Phi(0) = 0, Phi(1) = 1, Phi(s) agrees with the
+    /// quadrature of phi, the inverse round-trips.
+    pub fn check_profile(p: &dyn ForceProfile, tol: f64) {
+        assert_eq!(p.cumulative(0.0), 0.0);
+        assert!((p.cumulative(1.0) - 1.0).abs() <= 1e-15);
+        assert_eq!(p.shape(-0.1), 0.0);
+        assert_eq!(p.shape(1.1), 0.0);
+        let mut last = 0.0;
+        let mut prev_phi = 0.0;
+        for i in 1..=40 {
+            let s = i as f64 / 40.0;
+            let want = integrate_shape(p, 0.0, s, 2000);
+            let got = p.cumulative(s);
+            assert!(
+                (got - want).abs() < tol,
+                "Phi({s}) = {got}, quadrature {want}"
+            );
+            assert!(got >= last, "Phi not monotone at {s}");
+            last = got;
+            let q = prev_phi + 0.37 * (got - prev_phi);
+            let back = p.time_at_cumulative(q);
+            assert!(
+                (p.cumulative(back) - q).abs() < 1e-14,
+                "inverse at q = {q}: s = {back}, Phi = {}",
+                p.cumulative(back)
+            );
+            prev_phi = got;
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! Sine-power pulse f(t) = c sin^n(pi t / tau).
+
+use super::beta::{beta, inc_beta};
+use super::ForceProfile;
+use crate::error::{finite, Error};
+use std::f64::consts::PI;
+
+/// Sine-power pulse, phi(s) = sin^n(pi s) pi / B((n+1)/2, 1/2).
+///
+/// With u = sin^2(pi s), integral_0^s sin^n(pi s') ds' = B(u; (n+1)/2, 1/2) / (2 pi), so
+/// Phi(s) = I_u((n+1)/2, 1/2) / 2 for s <= 1/2 and 1 - Phi(1 - s) after (ERRATA.md, with
+/// c = pi P / (tau B(5/4, 1/2)) ~= 1.7972104 P / tau for n = 1.5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SinePower {
+    duration: f64,
+    exponent: f64,
+    /// a = (n + 1)/2 of the incomplete Beta function.
+    a: f64,
+    /// B(a, 1/2).
+    beta_ab: f64,
+    /// Peak of phi, pi / B(a, 1/2).
+    peak: f64,
+}
+
+impl SinePower {
+    /// A sin^n pulse of `duration` tau (s); `exponent` n must be finite and in (0, 64].
+    ///
+    /// ```
+    /// use billiard_contact::profile::{ForceProfile, SinePower};
+    /// let p = SinePower::new(1.0, 1.5).unwrap();
+    /// assert!((p.shape(0.5) - 1.7972104).abs() < 1e-7); // ERRATA.md
+    /// ```
+    pub fn new(duration: f64, exponent: f64) -> Result<Self, Error> {
+        finite("contact.profile.exponent", exponent)?;
+        if !(exponent > 0.0 && exponent <= 64.0) {
+            return Err(Error::invalid(
+                "contact.profile.exponent",
+                exponent,
+                "in (0, 64] (sin^n with n > 0; 1.5 approximates a Hertz pulse)",
+            ));
+        }
+        let a = 0.5 * (exponent + 1.0);
+        let beta_ab = beta(a, 0.5);
+        Ok(SinePower {
+            duration,
+            exponent,
+            a,
+            beta_ab,
+            peak: PI / beta_ab,
+        })
+    }
+
+    /// The exponent n.
+    pub fn exponent(&self) -> f64 {
+        self.exponent
+    }
+
+    /// Phi for s in [0, 1/2].
+    fn rising(&self, s: f64) -> f64 {
+        let sin = (PI * s).sin();
+        let cos = (PI * (0.5 - s)).sin(); // cos(pi s) without cancellation near s = 1/2
+        0.5 * inc_beta(self.a, 0.5, sin * sin, cos * cos, self.beta_ab)
+    }
+}
+
+impl ForceProfile for SinePower {
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    #[inline]
+    fn shape(&self, s: f64) -> f64 {
+        if !(0.0..=1.0).contains(&s) {
+            return 0.0;
+        }
+        self.peak * (PI * s.min(1.0 - s)).sin().powf(self.exponent)
+    }
+
+    fn cumulative(&self, s: f64) -> f64 {
+        if s <= 0.0 {
+            0.0
+        } else if s >= 1.0 {
+            1.0
+        } else if s <= 0.5 {
+            self.rising(s)
+        } else {
+            1.0 - self.rising(1.0 - s)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contract_for_several_exponents() {
+        for (n, tol) in [(1.0, 1e-13), (1.5, 1e-10), (0.5, 1e-6), (4.0, 1e-13)] {
+            crate::profile::tests::check_profile(&SinePower::new(1.0, n).unwrap(), tol);
+        }
+    }
+
+    #[test]
+    fn exponent_one_is_the_half_sine() {
+        let p = SinePower::new(1.0, 1.0).unwrap();
+        let h = super::super::HalfSine::new(1.0);
+        for i in 0..=100 {
+            let s = i as f64 / 100.0;
+            assert!((p.shape(s) - h.shape(s)).abs() < 1e-15);
+            assert!((p.cumulative(s) - h.cumulative(s)).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn rejects_bad_exponents() {
+        assert!(SinePower::new(1.0, 0.0).is_err());
+        assert!(SinePower::new(1.0, f64::NAN).is_err());
+        assert!(SinePower::new(1.0, -1.0).is_err());
+    }
+}

@@ -1,0 +1,306 @@
+//! A force profile read from a (time, force) table, linearly interpolated.
+
+use super::ForceProfile;
+use crate::error::Error;
+use std::path::{Path, PathBuf};
+
+/// Linear interpolation of (time, force) points, normalised to unit impulse.
+///
+/// The table's time axis is stretched to `duration` when given (else its own span) and its
+/// force scaled so the impulse is P. The cumulative impulse is the exact integral of the
+/// interpolant (trapezoids, and a quadratic inside a segment); the inverse solves that
+/// quadratic. Interior knots are breakpoints (kinks of f).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tabulated {
+    duration: f64,
+    /// Knots s_i = t_i / t_last, s_0 = 0, s_last = 1.
+    s: Vec<f64>,
+    /// Normalised force at the knots.
+    phi: Vec<f64>,
+    /// Phi at the knots (exact trapezoid sums), last = 1.
+    cum: Vec<f64>,
+    /// Interior knots.
+    breaks: Vec<f64>,
+}
+
+impl Tabulated {
+    /// A profile from (time (s), force (N)) points: at least two, time strictly increasing
+    /// from 0, force finite and >= 0, positive area. `duration` (s) stretches the time axis
+    /// (default the table's span). `source` names the table in errors.
+    pub fn new(points: &[(f64, f64)], duration: Option<f64>, source: &Path) -> Result<Self, Error> {
+        let whole = |message: String| Error::ProfileTable {
+            path: source.to_path_buf(),
+            line: 0,
+            message,
+        };
+        if points.len() < 2 {
+            return Err(whole(format!(
+                "{} data row(s): a tabulated profile needs at least two (time, force) points",
+                points.len()
+            )));
+        }
+        let span = points[points.len() - 1].0;
+        let area: f64 = points
+            .windows(2)
+            .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1 + w[1].1))
+            .sum();
+        if !(area > 0.0 && area.is_finite()) {
+            return Err(whole(format!(
+                "the force integrates to {area} N s: a profile needs a positive impulse"
+            )));
+        }
+        let s: Vec<f64> = points.iter().map(|p| p.0 / span).collect();
+        // phi = f * span / area, so that integral_0^1 phi ds = 1.
+        let phi: Vec<f64> = points.iter().map(|p| p.1 * span / area).collect();
+        let mut cum = Vec::with_capacity(s.len());
+        let mut acc = 0.0;
+        cum.push(0.0);
+        for i in 1..s.len() {
+            acc += 0.5 * (s[i] - s[i - 1]) * (phi[i - 1] + phi[i]);
+            cum.push(acc);
+        }
+        // Round-off: the exact total is 1; spread the residue proportionally.
+        let total = acc;
+        for c in cum.iter_mut() {
+            *c /= total;
+        }
+        let phi: Vec<f64> = phi.iter().map(|p| p / total).collect();
+        *cum.last_mut().expect("two points at least") = 1.0;
+        let breaks = s[1..s.len() - 1].to_vec();
+        Ok(Tabulated {
+            duration: duration.unwrap_or(span),
+            s,
+            phi,
+            cum,
+            breaks,
+        })
+    }
+
+    /// Reads a CSV with the header `time,force` (seconds, newtons). Errors name the line.
+    pub fn from_csv_file(path: &Path, duration: Option<f64>) -> Result<Self, Error> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let points = parse_table(&text, path)?;
+        Tabulated::new(&points, duration, path)
+    }
+
+    /// Number of knots.
+    pub fn len(&self) -> usize {
+        self.s.len()
+    }
+
+    /// Always false: a table has at least two knots.
+    pub fn is_empty(&self) -> bool {
+        self.s.is_empty()
+    }
+
+    /// Index k of the segment [s_k, s_k+1] holding s (s in [0, 1]).
+    fn segment(&self, s: f64) -> usize {
+        let k = self.s.partition_point(|&x| x <= s);
+        k.saturating_sub(1).min(self.s.len() - 2)
+    }
+}
+
+/// Parses `time,force` CSV text into points, validating every line.
+pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
+    let err = |line: u64, message: String| Error::ProfileTable {
+        path: PathBuf::from(path),
+        line,
+        message,
+    };
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    match lines.next() {
+        Some((i, header)) => {
+            let cells: Vec<String> = header
+                .split(',')
+                .map(|c| c.trim().trim_start_matches('\u{feff}').to_ascii_lowercase())
+                .collect();
+            if cells != ["time", "force"] {
+                return Err(err(
+                    i as u64 + 1,
+                    format!(
+                        "header `{}`: expected `time,force` (seconds, newtons)",
+                        header.trim()
+                    ),
+                ));
+            }
+        }
+        None => {
+            return Err(err(
+                0,
+                "empty file: expected the header `time,force`".into(),
+            ))
+        }
+    }
+    let mut points: Vec<(f64, f64)> = Vec::new();
+    for (i, line) in lines {
+        let n = i as u64 + 1;
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        if cells.len() != 2 {
+            return Err(err(
+                n,
+                format!("`{}`: expected two cells, time and force", line.trim()),
+            ));
+        }
+        let num = |cell: &str, what: &str| -> Result<f64, Error> {
+            let v: f64 = cell
+                .parse()
+                .map_err(|_| err(n, format!("{what} `{cell}` is not a number")))?;
+            if !v.is_finite() {
+                return Err(err(n, format!("{what} {v} is not finite")));
+            }
+            Ok(v)
+        };
+        let t = num(cells[0], "time")?;
+        let f = num(cells[1], "force")?;
+        if f < 0.0 {
+            return Err(err(
+                n,
+                format!("force {f} N is negative: force must be >= 0"),
+            ));
+        }
+        match points.last() {
+            None if t != 0.0 => {
+                return Err(err(
+                    n,
+                    format!("time {t} s: the table must start at time 0"),
+                ))
+            }
+            Some(&(t_prev, _)) if t <= t_prev => {
+                return Err(err(
+                    n,
+                    format!("time {t} s after {t_prev} s: times must be strictly increasing"),
+                ))
+            }
+            _ => {}
+        }
+        points.push((t, f));
+    }
+    Ok(points)
+}
+
+impl ForceProfile for Tabulated {
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    fn shape(&self, s: f64) -> f64 {
+        if !(0.0..=1.0).contains(&s) {
+            return 0.0;
+        }
+        let k = self.segment(s);
+        let (s0, s1) = (self.s[k], self.s[k + 1]);
+        let x = (s - s0) / (s1 - s0);
+        self.phi[k] + x * (self.phi[k + 1] - self.phi[k])
+    }
+
+    fn cumulative(&self, s: f64) -> f64 {
+        if s <= 0.0 {
+            return 0.0;
+        }
+        if s >= 1.0 {
+            return 1.0;
+        }
+        let k = self.segment(s);
+        let h = s - self.s[k];
+        let slope = (self.phi[k + 1] - self.phi[k]) / (self.s[k + 1] - self.s[k]);
+        (self.cum[k] + h * (self.phi[k] + 0.5 * slope * h)).min(1.0)
+    }
+
+    fn time_at_cumulative(&self, q: f64) -> f64 {
+        if q <= 0.0 {
+            return 0.0;
+        }
+        if q >= 1.0 {
+            return 1.0;
+        }
+        // First segment whose end reaches q.
+        let k = self
+            .cum
+            .partition_point(|&c| c < q)
+            .clamp(1, self.s.len() - 1)
+            - 1;
+        let r = q - self.cum[k];
+        let width = self.s[k + 1] - self.s[k];
+        let slope = (self.phi[k + 1] - self.phi[k]) / width;
+        // (slope/2) h^2 + phi_k h - r = 0, in the form without cancellation.
+        let disc = (self.phi[k] * self.phi[k] + 2.0 * slope * r).max(0.0);
+        let den = self.phi[k] + disc.sqrt();
+        let h = if den > 0.0 { 2.0 * r / den } else { 0.0 };
+        (self.s[k] + h.clamp(0.0, width)).min(1.0)
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        &self.breaks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(points: &[(f64, f64)]) -> Tabulated {
+        Tabulated::new(points, None, Path::new("test.csv")).unwrap()
+    }
+
+    #[test]
+    fn contract_with_kinks_plateau_and_spike() {
+        let p = table(&[
+            (0.0, 0.0),
+            (1.0, 2.0),
+            (2.0, 2.0),
+            (2.5, 0.0),
+            (3.0, 0.0),
+            (3.1, 9.0),
+            (3.2, 0.0),
+            (4.0, 1.0),
+        ]);
+        crate::profile::tests::check_profile(&p, 1e-14);
+        assert_eq!(p.breakpoints().len(), 6);
+        // On the zero-force plateau (2.5 .. 3.0) the inverse gives the plateau's start.
+        let q = p.cumulative(2.75 / 4.0);
+        assert!((p.time_at_cumulative(q) - 2.5 / 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn triangle_by_hand() {
+        // f: 0 -> 2 -> 0 over [0, 2]: area 2, phi peaks at 2 at s = 1/2; Phi(1/4) = 1/8.
+        let p = table(&[(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)]);
+        assert!((p.shape(0.5) - 2.0).abs() < 1e-15);
+        assert!((p.cumulative(0.25) - 0.125).abs() < 1e-15);
+        assert!((p.time_at_cumulative(0.125) - 0.25).abs() < 1e-15);
+        assert_eq!(p.duration(), 2.0);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let path = Path::new("p.csv");
+        let cases = [
+            ("time,force\n0,1\n0,2\n", 3, "strictly increasing"),
+            ("time,force\n0,1\n1,-2\n", 3, "negative"),
+            ("time,force\n0,1\n1,nan\n", 3, "not finite"),
+            ("time,force\n0,1\n1,abc\n", 3, "not a number"),
+            ("time,force\n0.5,1\n1,1\n", 2, "start at time 0"),
+            ("t,f\n0,1\n", 1, "header"),
+            ("time,force\n0,1\n1,2,3\n", 3, "two cells"),
+        ];
+        for (text, line, what) in cases {
+            match parse_table(text, path) {
+                Err(Error::ProfileTable {
+                    line: l, message, ..
+                }) => {
+                    assert_eq!(l, line, "{text:?}: {message}");
+                    assert!(message.contains(what), "{text:?}: {message}");
+                }
+                other => panic!("{text:?}: {other:?}"),
+            }
+        }
+        let one = parse_table("time,force\n0,1\n", path).unwrap();
+        let e = Tabulated::new(&one, None, path).unwrap_err().to_string();
+        assert!(e.contains("at least two"), "{e}");
+        let zero = parse_table("time,force\n0,0\n1,0\n", path).unwrap();
+        assert!(Tabulated::new(&zero, None, path).is_err());
+    }
+}

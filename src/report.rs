@@ -1,0 +1,304 @@
+//! The report of a run: JSON (one object, the keys of the contract) and a human summary.
+//!
+//! Every float is checked finite before output: a non-finite value fails the run, naming
+//! the field, instead of turning into `null`. Only the fields documented as nullable
+//! (`theta`, `stick_time`, `stick_impulse`, `throw_angle_deg`) may be null.
+
+use crate::check::Checks;
+use crate::error::Error;
+use crate::profile::ForceProfile;
+use crate::runner::SceneOutcome;
+use crate::scene::Scene;
+use crate::state::CmState;
+use nalgebra::Vector3;
+use serde::{ser, Serialize, Serializer};
+
+/// A number that refuses to serialise when it is not finite.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl Serialize for Num {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.0.is_finite() {
+            s.serialize_f64(self.0)
+        } else {
+            Err(ser::Error::custom(format_args!(
+                "non-finite value {}",
+                self.0
+            )))
+        }
+    }
+}
+
+fn v3(v: &Vector3<f64>) -> [Num; 3] {
+    [Num(v.x), Num(v.y), Num(v.z)]
+}
+
+/// A centre-of-mass state in JSON.
+#[derive(Debug, Serialize)]
+pub struct CmJson {
+    /// Velocity of A (m/s).
+    pub u: [Num; 3],
+    /// Spin of A (rad/s).
+    pub omega_a: [Num; 3],
+    /// Spin of B (rad/s).
+    pub omega_b: [Num; 3],
+}
+
+impl From<&CmState> for CmJson {
+    fn from(s: &CmState) -> Self {
+        CmJson {
+            u: v3(&s.u_cm),
+            omega_a: v3(&s.omega_a),
+            omega_b: v3(&s.omega_b),
+        }
+    }
+}
+
+/// A ball's lab motion in JSON.
+#[derive(Debug, Serialize)]
+pub struct MotionJson {
+    /// Velocity (m/s).
+    pub velocity: [Num; 3],
+    /// Spin (rad/s).
+    pub spin: [Num; 3],
+}
+
+/// Both balls' lab motions.
+#[derive(Debug, Serialize)]
+pub struct LabJson {
+    /// Ball A.
+    pub a: MotionJson,
+    /// Ball B.
+    pub b: MotionJson,
+}
+
+/// The checks in JSON.
+#[derive(Debug, Serialize)]
+pub struct CheckJson {
+    theta_drift: Num,
+    closed_form_error: Num,
+    momentum_error: Num,
+    angular_momentum_error: Num,
+    energy_balance_error: Num,
+    slip_consistency: Num,
+}
+
+impl From<&Checks> for CheckJson {
+    fn from(c: &Checks) -> Self {
+        CheckJson {
+            theta_drift: Num(c.theta_drift),
+            closed_form_error: Num(c.closed_form_error),
+            momentum_error: Num(c.momentum_error),
+            angular_momentum_error: Num(c.angular_momentum_error),
+            energy_balance_error: Num(c.energy_balance_error),
+            slip_consistency: Num(c.slip_consistency),
+        }
+    }
+}
+
+/// Solver settings and work.
+#[derive(Debug, Serialize)]
+pub struct SolverJson {
+    method: &'static str,
+    rtol: Num,
+    atol: Num,
+    steps: u32,
+    rhs_evaluations: u64,
+    accepted_steps: u64,
+    rejected_steps: u64,
+}
+
+/// The JSON report (`--json`).
+#[derive(Debug, Serialize)]
+pub struct Report {
+    /// Scene name.
+    pub name: String,
+    /// Profile name.
+    pub profile: &'static str,
+    /// Contact duration (s).
+    pub duration: Num,
+    /// Simulated effects.
+    pub effects: Vec<&'static str>,
+    /// Whether the balls collide.
+    pub collision: bool,
+    /// Impulse P (N s).
+    pub impulse: Num,
+    /// S(0) (m/s).
+    pub s0: Num,
+    /// theta (rad), null when S(0) = 0.
+    pub theta: Option<Num>,
+    /// Signed outgoing sliding speed (m/s).
+    pub s_out: Num,
+    /// Whether sliding stopped.
+    pub sticks: bool,
+    /// When sliding stopped (s).
+    pub stick_time: Option<Num>,
+    /// p_stick (N s).
+    pub stick_impulse: Option<Num>,
+    /// Tangential impulse J >= 0 (N s).
+    pub tangential_impulse: Num,
+    /// Heat H (J).
+    pub heat: Num,
+    /// Sliding heat H_sfr (J).
+    pub heat_sliding: Num,
+    /// Incoming centre-of-mass state.
+    pub cm_in: CmJson,
+    /// Outgoing centre-of-mass state.
+    pub cm_out: CmJson,
+    /// Outgoing lab motions (lab scenes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lab_out: Option<LabJson>,
+    /// Throw angle (degrees).
+    pub throw_angle_deg: Option<Num>,
+    /// Checks.
+    pub check: CheckJson,
+    /// Solver.
+    pub solver: SolverJson,
+    /// Warnings.
+    pub warnings: Vec<String>,
+}
+
+impl Report {
+    /// The report of a scene's outcome.
+    pub fn new(scene: &Scene, so: &SceneOutcome) -> Self {
+        let o = &so.outcome;
+        let (incoming, _) = scene
+            .collision()
+            .expect("a scene that ran has a valid collision");
+        Report {
+            name: scene.name.clone(),
+            profile: scene.profile.name(),
+            duration: Num(scene.profile.duration()),
+            effects: scene.effects.names(),
+            collision: o.collision,
+            impulse: Num(o.impulse),
+            s0: Num(o.s0),
+            theta: o.theta.map(Num),
+            s_out: Num(o.s_out),
+            sticks: o.sticks,
+            stick_time: o.stick_time.map(Num),
+            stick_impulse: o.stick_impulse.map(Num),
+            tangential_impulse: Num(o.tangential_impulse),
+            heat: Num(o.heat),
+            heat_sliding: Num(o.heat_sliding),
+            cm_in: CmJson::from(&incoming.incoming),
+            cm_out: CmJson::from(&o.out),
+            lab_out: so.lab_out.map(|(a, b)| LabJson {
+                a: MotionJson {
+                    velocity: v3(&a.velocity),
+                    spin: v3(&a.spin),
+                },
+                b: MotionJson {
+                    velocity: v3(&b.velocity),
+                    spin: v3(&b.spin),
+                },
+            }),
+            throw_angle_deg: so.throw_angle_deg.map(Num),
+            check: CheckJson::from(&o.check),
+            solver: SolverJson {
+                method: so.settings.method.name(),
+                rtol: Num(so.settings.rtol),
+                atol: Num(so.settings.atol),
+                steps: so.settings.steps,
+                rhs_evaluations: o.stats.rhs_evaluations,
+                accepted_steps: o.stats.accepted_steps,
+                rejected_steps: o.stats.rejected_steps,
+            },
+            warnings: o.warnings.clone(),
+        }
+    }
+
+    /// Pretty JSON; fails naming the field when a number is not finite.
+    pub fn to_json(&self) -> Result<String, Error> {
+        let mut out = Vec::new();
+        let mut ser = serde_json::Serializer::pretty(&mut out);
+        serde_path_to_error::serialize(self, &mut ser).map_err(|e| Error::NonFinite {
+            field: e.path().to_string(),
+            value: f64::NAN,
+        })?;
+        Ok(String::from_utf8(out).expect("serde_json writes UTF-8"))
+    }
+}
+
+/// A human-readable summary.
+pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
+    use std::fmt::Write;
+    let o = &so.outcome;
+    let mut s = String::new();
+    let _ = writeln!(s, "{}", scene.name);
+    let _ = writeln!(
+        s,
+        "  profile {} over {:.4e} s, method {}, effects: {}",
+        scene.profile.name(),
+        scene.profile.duration(),
+        so.settings.method,
+        scene.effects.names().join(", ")
+    );
+    if !o.collision {
+        let _ = writeln!(
+            s,
+            "  no collision: the balls do not approach (U(0) = {:.6} m/s); state unchanged",
+            o.exact.out.u_cm.x
+        );
+        return s;
+    }
+    let _ = writeln!(s, "  impulse P         {:.9e} N s", o.impulse);
+    let theta = o
+        .theta
+        .map(|t| format!("{:.6} deg", t.to_degrees()))
+        .unwrap_or_else(|| "undefined (no slip)".into());
+    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", o.s0);
+    match (o.sticks, o.stick_time) {
+        (true, Some(t)) => {
+            let _ = writeln!(
+                s,
+                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
+                o.stick_impulse.unwrap_or(0.0)
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "  sliding           throughout, S_out = {:.9} m/s",
+                o.s_out
+            );
+        }
+    }
+    let _ = writeln!(s, "  tangential J      {:.9e} N s", o.tangential_impulse);
+    let _ = writeln!(
+        s,
+        "  heat H            {:.9e} J (sliding {:.9e} J)",
+        o.heat, o.heat_sliding
+    );
+    let fmt = |v: &Vector3<f64>| format!("[{:+.9}, {:+.9}, {:+.9}]", v.x, v.y, v.z);
+    let _ = writeln!(s, "  centre-of-mass frame, out:");
+    let _ = writeln!(s, "    U        {} m/s", fmt(&o.out.u_cm));
+    let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&o.out.omega_a));
+    let _ = writeln!(s, "    omega_B  {} rad/s", fmt(&o.out.omega_b));
+    if let Some((a, b)) = so.lab_out {
+        let _ = writeln!(s, "  lab frame, out:");
+        let _ = writeln!(s, "    v_A      {} m/s", fmt(&a.velocity));
+        let _ = writeln!(s, "    spin_A   {} rad/s", fmt(&a.spin));
+        let _ = writeln!(s, "    v_B      {} m/s", fmt(&b.velocity));
+        let _ = writeln!(s, "    spin_B   {} rad/s", fmt(&b.spin));
+    }
+    if let Some(th) = so.throw_angle_deg {
+        let _ = writeln!(s, "  throw angle       {th:.6} deg");
+    }
+    let c = &o.check;
+    let _ = writeln!(
+        s,
+        "  checks (scaled): closed form {:.1e}, theta drift {:.1e}, momentum {:.1e}, angular momentum {:.1e}, energy balance {:.1e}",
+        c.closed_form_error, c.theta_drift, c.momentum_error, c.angular_momentum_error, c.energy_balance_error
+    );
+    let _ = writeln!(
+        s,
+        "  solver: {} rhs evaluations, {} accepted and {} rejected steps",
+        o.stats.rhs_evaluations, o.stats.accepted_steps, o.stats.rejected_steps
+    );
+    for w in &o.warnings {
+        let _ = writeln!(s, "  warning: {w}");
+    }
+    s
+}

@@ -1,0 +1,70 @@
+//! Running a scene: the collision in the centre-of-mass frame, the outcome, and its lab
+//! form.
+
+use crate::error::Error;
+use crate::frame::Frame;
+use crate::integrate::{Sampling, SolverSettings};
+use crate::outcome::{solve, Outcome};
+use crate::scene::Scene;
+use crate::state::LabMotion;
+use crate::trace::TraceSink;
+use nalgebra::{Matrix3, Vector3};
+
+/// The outcome of a scene, with the lab-frame motions for lab scenes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneOutcome {
+    /// The centre-of-mass outcome and its checks.
+    pub outcome: Outcome,
+    /// Settings used.
+    pub settings: SolverSettings,
+    /// Outgoing lab motions of A and B (lab scenes).
+    pub lab_out: Option<(LabMotion, LabMotion)>,
+    /// Throw angle (degrees), counter-clockwise about `up` (+z of the paper's frame for
+    /// centre-of-mass scenes); `None` when undefined.
+    pub throw_angle_deg: Option<f64>,
+}
+
+/// Runs `scene` with `settings`, optionally streaming a trace (centre-of-mass frame).
+pub fn run_scene(
+    scene: &Scene,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<SceneOutcome, Error> {
+    let (collision, frame) = scene.collision()?;
+    let mut outcome = solve(&collision, &scene.profile, settings, trace)?;
+    let du = outcome.out.u_cm - collision.incoming.u_cm;
+    let (lab_out, throw, lab_momentum_error) = match frame {
+        Some(f) => {
+            let (a, b) = f.to_lab(&outcome.out);
+            let (a0, b0) = match &scene.incoming {
+                crate::scene::Incoming::Lab(l) => (l.a.velocity, l.b.velocity),
+                crate::scene::Incoming::Cm(_) => unreachable!("a frame comes from a lab scene"),
+            };
+            let m = scene.ball.mass;
+            let dp = (m * (a.velocity + b.velocity) - m * (a0 + b0)).amax();
+            let err = if dp == 0.0 {
+                0.0
+            } else {
+                dp / collision.scales.impulse
+            };
+            let dvb = b.velocity - b0;
+            (Some((a, b)), f.throw_angle_deg(&dvb), err)
+        }
+        None => {
+            let paper = Frame {
+                basis: Matrix3::identity(),
+                v_cm: Vector3::zeros(),
+                up: Vector3::z(),
+            };
+            (None, paper.throw_angle_deg(&-du), 0.0)
+        }
+    };
+    // The lab momentum of both balls is conserved: fold its error into the check.
+    outcome.check.momentum_error = outcome.check.momentum_error.max(lab_momentum_error);
+    Ok(SceneOutcome {
+        outcome,
+        settings: *settings,
+        lab_out,
+        throw_angle_deg: throw,
+    })
+}

@@ -1,0 +1,107 @@
+//! States of the two balls: the centre-of-mass state of the paper and a lab-frame ball.
+
+use crate::params::Ball;
+use nalgebra::{Vector2, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// The centre-of-mass state of the paper: ball A at x = -r, ball B at x = +r, line of
+/// centres along +x, contact at the origin.
+///
+/// Ball A moves with `u_cm` = (U, V, W), ball B with -(U, V, W); U > 0 means the balls
+/// approach.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CmState {
+    /// Velocity of ball A, (U, V, W) (m/s).
+    #[serde(rename = "u")]
+    pub u_cm: Vector3<f64>,
+    /// Angular velocity of ball A (rad/s).
+    pub omega_a: Vector3<f64>,
+    /// Angular velocity of ball B (rad/s).
+    pub omega_b: Vector3<f64>,
+}
+
+impl CmState {
+    /// A state from ball A's velocity and both spins.
+    pub fn new(u_cm: Vector3<f64>, omega_a: Vector3<f64>, omega_b: Vector3<f64>) -> Self {
+        CmState {
+            u_cm,
+            omega_a,
+            omega_b,
+        }
+    }
+
+    /// Omega = Omega^A + Omega^B (eq 4).
+    pub fn omega_sum(&self) -> Vector3<f64> {
+        self.omega_a + self.omega_b
+    }
+
+    /// The slip (S cos theta, S sin theta) = (2V + r Omega_z, 2W - r Omega_y) of eqs 5-6 (m/s):
+    /// the surface of B slides relative to A along -slip (eq 3).
+    pub fn slip(&self, radius: f64) -> Vector2<f64> {
+        let o = self.omega_sum();
+        Vector2::new(
+            2.0 * self.u_cm.y + radius * o.z,
+            2.0 * self.u_cm.z - radius * o.y,
+        )
+    }
+
+    /// Sliding speed S >= 0 (m/s), eqs 5-6.
+    pub fn sliding_speed(&self, radius: f64) -> f64 {
+        let s = self.slip(radius);
+        s.x.hypot(s.y)
+    }
+
+    /// Sliding direction theta (rad, in (-pi, pi]) of eqs 5-6; `None` when S = 0.
+    pub fn theta(&self, radius: f64) -> Option<f64> {
+        let s = self.slip(radius);
+        if s.x == 0.0 && s.y == 0.0 {
+            None
+        } else {
+            Some(s.y.atan2(s.x))
+        }
+    }
+
+    /// Kinetic energy of both balls (J), eq 37.
+    pub fn kinetic_energy(&self, ball: &Ball) -> f64 {
+        let i = ball.inertia();
+        ball.mass * self.u_cm.norm_squared()
+            + 0.5 * i * (self.omega_a.norm_squared() + self.omega_b.norm_squared())
+    }
+
+    /// Angular momentum about the centre of mass (kg m^2/s), eq 36.
+    pub fn angular_momentum(&self, ball: &Ball) -> Vector3<f64> {
+        let r = ball.radius;
+        let m = ball.mass;
+        let ex = Vector3::x();
+        ball.inertia() * (self.omega_a + self.omega_b)
+            + (-r * ex).cross(&(m * self.u_cm))
+            + (r * ex).cross(&(-m * self.u_cm))
+    }
+
+    /// True when every component is finite.
+    pub fn is_finite(&self) -> bool {
+        self.u_cm.iter().all(|x| x.is_finite())
+            && self.omega_a.iter().all(|x| x.is_finite())
+            && self.omega_b.iter().all(|x| x.is_finite())
+    }
+}
+
+/// One ball in the lab frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LabBall {
+    /// Centre position (m).
+    pub position: Vector3<f64>,
+    /// Centre velocity (m/s).
+    pub velocity: Vector3<f64>,
+    /// Angular velocity (rad/s).
+    pub spin: Vector3<f64>,
+}
+
+/// Velocity and spin of a ball after the collision, lab frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LabMotion {
+    /// Centre velocity (m/s).
+    pub velocity: Vector3<f64>,
+    /// Angular velocity (rad/s).
+    pub spin: Vector3<f64>,
+}

@@ -1,0 +1,132 @@
+//! Trace rows of a run and their CSV form.
+//!
+//! Columns (header cells `name (unit)`, CONTRACTS.md): `t (s)`, `f (N)`, `p (N s)`,
+//! `U (m/s)`, `V (m/s)`, `W (m/s)`, `omega_a_x (rad/s)` .. `omega_b_z (rad/s)`, `S (m/s)`,
+//! `theta (rad)`, `H_sfr (J)`. The state is the paper's centre-of-mass frame. After
+//! sticking, S is 0 and theta is the last sliding value; theta is empty when S(0) = 0.
+
+use crate::error::Error;
+use crate::state::CmState;
+use std::io::Write;
+
+/// One row of a trace.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceRow {
+    /// Time t (s).
+    pub t: f64,
+    /// Normal force f(t) (N).
+    pub force: f64,
+    /// Cumulative normal impulse p(t) (N s).
+    pub impulse: f64,
+    /// Centre-of-mass state.
+    pub state: CmState,
+    /// Sliding speed S (m/s), signed along e0 (negative only with `stick = false`).
+    pub slip_speed: f64,
+    /// Sliding direction theta (rad); `None` when undefined (S(0) = 0).
+    pub theta: Option<f64>,
+    /// Sliding heat H_sfr so far (J).
+    pub heat_sliding: f64,
+}
+
+/// Receives trace rows as they are produced (streaming: nothing is kept in memory).
+pub trait TraceSink {
+    /// Takes one row.
+    fn row(&mut self, row: &TraceRow) -> Result<(), Error>;
+}
+
+/// Collects rows in memory (tests, examples, small runs).
+impl TraceSink for Vec<TraceRow> {
+    fn row(&mut self, row: &TraceRow) -> Result<(), Error> {
+        self.push(*row);
+        Ok(())
+    }
+}
+
+/// The header cells of the trace CSV.
+pub const HEADER: [&str; 15] = [
+    "t (s)",
+    "f (N)",
+    "p (N s)",
+    "U (m/s)",
+    "V (m/s)",
+    "W (m/s)",
+    "omega_a_x (rad/s)",
+    "omega_a_y (rad/s)",
+    "omega_a_z (rad/s)",
+    "omega_b_x (rad/s)",
+    "omega_b_y (rad/s)",
+    "omega_b_z (rad/s)",
+    "S (m/s)",
+    "theta (rad)",
+    "H_sfr (J)",
+];
+
+/// Writes trace rows as CSV, streaming.
+pub struct CsvTrace<W: Write> {
+    out: csv::Writer<W>,
+    rows: u64,
+}
+
+impl<W: Write> CsvTrace<W> {
+    /// A writer that starts with the header line.
+    pub fn new(out: W) -> Result<Self, Error> {
+        let mut out = csv::Writer::from_writer(out);
+        out.write_record(HEADER)?;
+        Ok(CsvTrace { out, rows: 0 })
+    }
+
+    /// Rows written so far.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Flushes and returns the underlying writer.
+    pub fn finish(self) -> Result<W, Error> {
+        self.out
+            .into_inner()
+            .map_err(|e| Error::io("trace", e.into_error()))
+    }
+}
+
+impl<W: Write> TraceSink for CsvTrace<W> {
+    fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
+        let s = &r.state;
+        let values = [
+            r.t,
+            r.force,
+            r.impulse,
+            s.u_cm.x,
+            s.u_cm.y,
+            s.u_cm.z,
+            s.omega_a.x,
+            s.omega_a.y,
+            s.omega_a.z,
+            s.omega_b.x,
+            s.omega_b.y,
+            s.omega_b.z,
+            r.slip_speed,
+        ];
+        for (name, v) in HEADER.iter().zip(values) {
+            if !v.is_finite() {
+                return Err(Error::NonFinite {
+                    field: format!("trace column {name} at t = {}", r.t),
+                    value: v,
+                });
+            }
+            self.out.write_field(ryu_like(v))?;
+        }
+        match r.theta {
+            Some(th) => self.out.write_field(ryu_like(th))?,
+            None => self.out.write_field("")?,
+        }
+        self.out.write_field(ryu_like(r.heat_sliding))?;
+        self.out.write_record(None::<&[u8]>)?;
+        self.rows += 1;
+        Ok(())
+    }
+}
+
+/// Shortest representation that reads back to the same f64.
+fn ryu_like(v: f64) -> String {
+    format!("{v:?}")
+}
