@@ -26,6 +26,7 @@ pub use outcome::{solve, Outcome};
 pub use params::{Ball, Contact, Friction, ImpulseRule};
 pub use profile::{ForceProfile, Profile};
 pub use state::{CmState, LabBall, LabMotion};
+pub mod plot;
 pub mod report;
 pub mod runner;
 pub mod scene;
