@@ -298,6 +298,9 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 
 /// Composite Gauss-Legendre (16 nodes) of `f` over [a, b] in `panels` panels.
 pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
+    if a == b {
+        return 0.0;
+    }
     let nodes = gauss_legendre(16);
     let h = (b - a) / panels as f64;
     let mut sum = 0.0;
@@ -375,6 +378,11 @@ pub fn sine_power_fraction(n: f64, s: f64) -> f64 {
 /// F by quadrature: z = sqrt(x') for x <= 0.64, and x' = 1 - y^2 near the turning point,
 /// where the integrand becomes 2 / sqrt(g(y)), g(y) = (1 - (1 - y^2)^(5/2)) / y^2 (smooth).
 pub fn hertz_f(x: f64) -> f64 {
+    hertz_f_split(x, 1.0 - x)
+}
+
+/// F(x) given both x and 1 - x (the latter to full relative accuracy near the turning point).
+fn hertz_f_split(x: f64, one_minus_x: f64) -> f64 {
     let near_zero = |x: f64| {
         integrate(
             |z: f64| 2.0 * z / (1.0 - z.powi(5)).sqrt(),
@@ -398,7 +406,7 @@ pub fn hertz_f(x: f64) -> f64 {
     if x <= 0.64 {
         near_zero(x)
     } else {
-        whole - near_top((1.0 - x).sqrt())
+        whole - near_top(one_minus_x.sqrt())
     }
 }
 
@@ -407,12 +415,15 @@ pub fn hertz_half() -> f64 {
     hertz_f(1.0)
 }
 
-/// Hertz pulse: the scaled time s = t/tau at which p = q P. For q <= 1/2, delta' = 1 - 2q,
-/// so x^(5/2) = 1 - (1 - 2q)^2 = 4 q (1 - q); the pulse is symmetric.
+/// Hertz pulse: the scaled time s = t/tau at which p = q P. For q <= 1/2, delta' = w = 1 - 2q,
+/// so x^(5/2) = 1 - w^2 = 4 q (1 - q), and 1 - x = -expm1(ln(1 - w^2) / 2.5) keeps its digits
+/// near the peak; the pulse is symmetric.
 pub fn hertz_time(q: f64) -> f64 {
     let rising = |q: f64| {
+        let w = 1.0 - 2.0 * q;
         let x = (4.0 * q * (1.0 - q)).powf(0.4);
-        hertz_f(x) / (2.0 * hertz_half())
+        let one_minus_x = -(0.4 * (-w * w).ln_1p()).exp_m1();
+        hertz_f_split(x, one_minus_x) / (2.0 * hertz_half())
     };
     if q <= 0.0 {
         0.0
