@@ -253,9 +253,10 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
     observer: &mut O,
     stats: &mut Stats,
 ) -> Result<Advanced<N>, Error> {
-    if b - a <= 4.0 * f64::EPSILON * a.abs() {
-        // Nothing to integrate (or less than the solvers' step-size floor at this time):
-        // the state moves by at most a rounding error.
+    if b - a <= 16.0 * f64::EPSILON * a.abs() {
+        // Nothing to integrate (or less than the solvers' step-size floor at this time:
+        // Dopri5 and Dop853 give up with StepSizeUnderflow when 0.1 h <= EPSILON |x|, i.e.
+        // h <= 10 EPSILON |x|): the state moves by at most a rounding error.
         let mut y = y0;
         y[0] = y[0].max(b);
         return Ok(Advanced { y, h_last: h_init });
