@@ -96,8 +96,15 @@ pub fn solve<P: ForceProfile + ?Sized>(
     };
     if !c.collides() {
         outcome.stick_impulse = None;
-        if let Some((sink, _)) = trace {
-            closed_form_trace(c, &exact, profile, sink, 1)?;
+        if let Some((sink, sampling)) = trace {
+            // Nothing happens: the samples asked for (the closed form's default number of
+            // them), or, without steps to show, the start and the end.
+            let n = match (sampling, settings.method) {
+                (Sampling::Uniform(n), _) => n,
+                (Sampling::Steps, Method::ClosedForm) => CLOSED_FORM_TRACE_SAMPLES,
+                (Sampling::Steps, _) => 1,
+            };
+            closed_form_trace(c, &exact, profile, sink, n)?;
         }
         return Ok(outcome);
     }
