@@ -1,0 +1,712 @@
+//! The command as a user runs it: every scene in `data/scenes/` with every method, the JSON
+//! contract (issue 2, CONTRACTS.md), agreement with the independent first-principles
+//! resolution (`common::resolve`, computed from the scene file read here with `toml`, not
+//! through the crate's scene code), the trace CSV, and failures that leave no file behind.
+
+mod common;
+
+use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
+use nalgebra::{Matrix3, Vector3};
+use serde_json::Value;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Issue 2, done when: closed-form method within 1e-12 of an independent closed form.
+const CLOSED_FORM_TOL: f64 = 1e-12;
+/// Issue 2, done when: dop853 at rtol 1e-12 within 1e-8 (it lands within ~1e-10).
+const DOP853_TOL: f64 = 1e-8;
+/// dopri5 at rtol 1e-12: same bound.
+const DOPRI5_TOL: f64 = 1e-8;
+/// rk4, 1000 steps: O(h^2.5) at the t^(3/2) ends of the Hertz pulse (~3e-9 measured).
+const RK4_TOL: f64 = 1e-7;
+/// Stick times over the duration: issue 2 asks 1e-8 (rk4 is held to that); CONTRACTS asks
+/// 1e-10 where f is not small (adaptive methods at rtol 1e-12), and the closed form's time
+/// is exact to round-off.
+const STICK_TIME_TOL: f64 = 1e-8;
+const STICK_TIME_TOL_ADAPTIVE: f64 = 1e-10;
+const STICK_TIME_TOL_CLOSED_FORM: f64 = 1e-13;
+/// Stick impulse of a stepping run: CONTRACTS, |p(t_stick) - p_stick| <= 1e-10 P.
+const STICK_IMPULSE_TOL: f64 = 1e-10;
+/// Samples of the trace tests.
+const SAMPLES: u64 = 37;
+
+const METHODS: [&str; 4] = ["closed-form", "rk4", "dopri5", "dop853"];
+
+/// The trace header of CONTRACTS.md and issue 2: time, force, cumulative impulse, U, V, W,
+/// both balls' spins, S, theta, sliding heat, each `name (unit)`.
+const TRACE_HEADER: [&str; 15] = [
+    "t (s)",
+    "f (N)",
+    "p (N s)",
+    "U (m/s)",
+    "V (m/s)",
+    "W (m/s)",
+    "omega_a_x (rad/s)",
+    "omega_a_y (rad/s)",
+    "omega_a_z (rad/s)",
+    "omega_b_x (rad/s)",
+    "omega_b_y (rad/s)",
+    "omega_b_z (rad/s)",
+    "S (m/s)",
+    "theta (rad)",
+    "H_sfr (J)",
+];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scenes() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root().join("data/scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    v.sort();
+    // The scenes issue 2 asks for must be there.
+    for name in [
+        "default",
+        "paper_special_case",
+        "head_on_stun",
+        "stun_cut_slides",
+        "stun_cut_sticks",
+        "draw_side_spin",
+        "tabulated_pulse",
+        "separating",
+    ] {
+        assert!(
+            v.iter().any(|p| p.file_stem().unwrap() == name),
+            "data/scenes/{name}.toml missing"
+        );
+    }
+    v
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the binary runs")
+}
+
+fn ok_stdout(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: exit {:?}, stderr {}",
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn json(args: &[&str]) -> Value {
+    let text = ok_stdout(args);
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_scenes");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+// ---------------------------------------------------------------------------------------
+// The scene file, read independently
+// ---------------------------------------------------------------------------------------
+
+/// A profile's reference p(t)/P inverse: scaled time at which p = q P.
+enum ProfileRef {
+    HalfSine,
+    Hertz,
+    SinePower(f64),
+    Rectangle,
+    Table(Table),
+}
+
+impl ProfileRef {
+    fn time(&self, q: f64) -> f64 {
+        match self {
+            ProfileRef::HalfSine => 2.0 / PI * q.sqrt().asin(),
+            ProfileRef::Hertz => common::hertz_time(q),
+            ProfileRef::SinePower(n) => common::invert(|s| common::sine_power_fraction(*n, s), q),
+            ProfileRef::Rectangle => q,
+            ProfileRef::Table(t) => t.time(q),
+        }
+    }
+}
+
+struct SceneRef {
+    balls: Balls,
+    law: Law,
+    /// Constant mu (the reference does not cover speed-dependent friction).
+    constant_mu: bool,
+    table_effect: bool,
+    pair: Pair,
+    lab: bool,
+    up: Vector3<f64>,
+    duration: f64,
+    profile: ProfileRef,
+}
+
+fn vec3(v: &toml::Value) -> Vector3<f64> {
+    let a = v.as_array().expect("an array of 3 numbers");
+    let num = |x: &toml::Value| x.as_float().or(x.as_integer().map(|i| i as f64)).unwrap();
+    Vector3::new(num(&a[0]), num(&a[1]), num(&a[2]))
+}
+
+fn num(v: Option<&toml::Value>) -> Option<f64> {
+    v.and_then(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
+}
+
+fn read_scene(path: &Path) -> SceneRef {
+    let text = std::fs::read_to_string(path).unwrap();
+    let t: toml::Table = text.parse().unwrap();
+    let balls = &t["balls"];
+    let balls = Balls {
+        m: num(balls.get("mass")).unwrap(),
+        r: num(balls.get("radius")).unwrap(),
+        alpha: num(balls.get("alpha")).unwrap_or(0.4),
+    };
+    let contact = &t["contact"];
+    let mu = num(contact.get("mu"));
+    let rule = match (num(contact.get("restitution")), num(contact.get("impulse"))) {
+        (Some(e), None) => Rule::Restitution(e),
+        (None, Some(p)) => Rule::Explicit(p),
+        (None, None) => Rule::Restitution(1.0),
+        _ => panic!("both restitution and impulse"),
+    };
+    let effects = t.get("effects");
+    let flag = |k: &str| effects.and_then(|e| e.get(k)).and_then(|v| v.as_bool());
+    let mut law = Law::new(mu.unwrap_or(0.0), rule);
+    law.friction = flag("friction").unwrap_or(true);
+    law.stick = flag("stick").unwrap_or(true);
+    let prof = &contact["profile"];
+    let shape = prof["shape"].as_str().unwrap();
+    let mut duration = num(prof.get("duration"));
+    let profile = match shape {
+        "half-sine" => ProfileRef::HalfSine,
+        "hertz" => ProfileRef::Hertz,
+        "sine-power" => ProfileRef::SinePower(num(prof.get("exponent")).unwrap_or(1.5)),
+        "rectangle" => ProfileRef::Rectangle,
+        "tabulated" => {
+            let file = path.parent().unwrap().join(prof["file"].as_str().unwrap());
+            if duration.is_none() {
+                // The table's own span: its last time.
+                let text = std::fs::read_to_string(&file).unwrap();
+                let last = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap();
+                duration = Some(last.split(',').next().unwrap().trim().parse().unwrap());
+            }
+            ProfileRef::Table(Table::read(&file))
+        }
+        other => panic!("unknown shape {other}"),
+    };
+    let inc = &t["incoming"];
+    let (pair, lab, up) = if let Some(cm) = inc.get("cm") {
+        let z = toml::Value::Array(vec![0.0.into(), 0.0.into(), 0.0.into()]);
+        (
+            Pair::cm(
+                vec3(&cm["u"]),
+                vec3(cm.get("omega_a").unwrap_or(&z)),
+                vec3(cm.get("omega_b").unwrap_or(&z)),
+            ),
+            false,
+            Vector3::z(),
+        )
+    } else {
+        let lab = &inc["lab"];
+        let ball = |k: &str| {
+            let b = &lab[k];
+            let spin = b.get("spin").map(vec3).unwrap_or_else(Vector3::zeros);
+            (vec3(&b["position"]), vec3(&b["velocity"]), spin)
+        };
+        let (pa, va, wa) = ball("a");
+        let (pb, vb, wb) = ball("b");
+        let up = lab.get("up").map(vec3).unwrap_or_else(Vector3::z);
+        (
+            Pair {
+                n: (pb - pa).normalize(),
+                va,
+                wa,
+                vb,
+                wb,
+            },
+            true,
+            up.normalize(),
+        )
+    };
+    SceneRef {
+        balls,
+        law,
+        constant_mu: mu.is_some(),
+        table_effect: flag("table").unwrap_or(false),
+        pair,
+        lab,
+        up,
+        duration: duration.unwrap(),
+        profile,
+    }
+}
+
+impl SceneRef {
+    /// The centre-of-mass basis of issue 2: e_x the line of centres, e_z = `up` without its
+    /// e_x part, e_y = e_z x e_x (columns, lab coordinates).
+    fn basis(&self) -> Matrix3<f64> {
+        let ex = self.pair.n;
+        let ez = (self.up - ex * self.up.dot(&ex)).normalize();
+        Matrix3::from_columns(&[ex, ez.cross(&ex), ez])
+    }
+
+    /// Ball A's velocity and both spins in the centre-of-mass frame.
+    fn to_cm(&self, p: &Pair) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        let rt = self.basis().transpose();
+        (rt * (0.5 * (p.va - p.vb)), rt * p.wa, rt * p.wb)
+    }
+}
+
+fn arr(v: &Value) -> Vector3<f64> {
+    let a = v.as_array().expect("array");
+    assert_eq!(a.len(), 3);
+    Vector3::new(
+        a[0].as_f64().unwrap(),
+        a[1].as_f64().unwrap(),
+        a[2].as_f64().unwrap(),
+    )
+}
+
+fn f(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
+}
+
+// ---------------------------------------------------------------------------------------
+// The JSON contract
+// ---------------------------------------------------------------------------------------
+
+/// Fields that may be null (CONTRACTS): nothing else.
+const NULLABLE: [&str; 4] = ["theta", "stick_time", "stick_impulse", "throw_angle_deg"];
+
+/// Walks the report: no null outside the nullable fields, every number finite.
+fn walk(v: &Value, path: &str, nulls: &mut Vec<String>) {
+    match v {
+        Value::Null => nulls.push(path.to_string()),
+        Value::Number(n) => {
+            if let Some(x) = n.as_f64() {
+                assert!(x.is_finite(), "{path} = {x}");
+            }
+        }
+        Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .for_each(|(i, x)| walk(x, &format!("{path}[{i}]"), nulls)),
+        Value::Object(o) => o.iter().for_each(|(k, x)| {
+            let p = if path.is_empty() {
+                k.clone()
+            } else {
+                format!("{path}.{k}")
+            };
+            walk(x, &p, nulls)
+        }),
+        _ => {}
+    }
+}
+
+fn check_contract(j: &Value, lab: bool, method: &str, what: &str) {
+    for key in [
+        "collision",
+        "impulse",
+        "s0",
+        "theta",
+        "s_out",
+        "sticks",
+        "stick_time",
+        "stick_impulse",
+        "tangential_impulse",
+        "heat",
+        "heat_sliding",
+        "cm_out",
+        "throw_angle_deg",
+        "check",
+        "solver",
+        "effects",
+        "warnings",
+    ] {
+        assert!(j.get(key).is_some(), "{what}: key {key} missing");
+    }
+    for key in ["u", "omega_a", "omega_b"] {
+        arr(&j["cm_out"][key]);
+    }
+    if lab {
+        for ball in ["a", "b"] {
+            for key in ["velocity", "spin"] {
+                arr(&j["lab_out"][ball][key]);
+            }
+        }
+    }
+    for key in [
+        "theta_drift",
+        "closed_form_error",
+        "momentum_error",
+        "angular_momentum_error",
+        "energy_balance_error",
+    ] {
+        let x = f(&j["check"], key);
+        assert!(x >= 0.0, "{what}: check.{key} = {x}");
+    }
+    assert_eq!(j["solver"]["method"], method, "{what}");
+    for key in ["rhs_evaluations", "accepted_steps", "rejected_steps"] {
+        assert!(j["solver"][key].is_u64(), "{what}: solver.{key}");
+    }
+    assert!(j["collision"].is_boolean() && j["sticks"].is_boolean());
+    assert!(j["effects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(Value::is_string));
+    assert!(j["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(Value::is_string));
+    let mut nulls = Vec::new();
+    walk(j, "", &mut nulls);
+    for n in nulls {
+        assert!(NULLABLE.contains(&n.as_str()), "{what}: {n} is null");
+    }
+}
+
+/// The scaled distance of a report from the reference; checks the scalar fields on the way.
+fn compare(sc: &SceneRef, want: &Expected, j: &Value, tol: f64, what: &str) -> f64 {
+    let b = &sc.balls;
+    let v = sc.pair.v_ref(b.r);
+    let (spin, imp, energy) = (v / b.r, b.m * v, b.m * v * v);
+    assert_eq!(j["collision"], want.collision, "{what}");
+    let (u, wa, wb) = sc.to_cm(&want.out);
+    let cm = &j["cm_out"];
+    let mut errs = vec![
+        amax(&(arr(&cm["u"]) - u)) / v,
+        amax(&(arr(&cm["omega_a"]) - wa)) / spin,
+        amax(&(arr(&cm["omega_b"]) - wb)) / spin,
+        (f(j, "impulse") - want.impulse).abs() / imp,
+        (f(j, "s0") - want.s0).abs() / v,
+        (f(j, "s_out") - want.s_out).abs() / v,
+        (f(j, "tangential_impulse") - want.tangential).abs() / imp,
+        (f(j, "heat") - want.heat).abs() / energy,
+        (f(j, "heat_sliding") - want.heat_sliding).abs() / energy,
+    ];
+    if sc.lab {
+        let lab = &j["lab_out"];
+        errs.extend([
+            amax(&(arr(&lab["a"]["velocity"]) - want.out.va)) / v,
+            amax(&(arr(&lab["b"]["velocity"]) - want.out.vb)) / v,
+            amax(&(arr(&lab["a"]["spin"]) - want.out.wa)) / spin,
+            amax(&(arr(&lab["b"]["spin"]) - want.out.wb)) / spin,
+        ]);
+    } else {
+        assert!(
+            j.get("lab_out").is_none(),
+            "{what}: lab_out for a centre-of-mass scene"
+        );
+    }
+    let worst = errs.iter().cloned().fold(0.0, f64::max);
+    assert!(worst <= tol, "{what}: scaled errors {errs:?} > {tol:e}");
+    assert!(
+        (f(&j["check"], "closed_form_error") - errs[..3].iter().cloned().fold(0.0, f64::max)).abs()
+            <= 1e-13,
+        "{what}: check.closed_form_error differs from the independent one"
+    );
+    assert_eq!(j["sticks"], want.sticks, "{what}");
+    // theta (CM basis): S0 (cos, sin) against the slip's e_y, e_z parts; null when S0 = 0.
+    let slip = sc.basis().transpose() * sc.pair.slip(b.r);
+    if want.s0 == 0.0 {
+        assert!(j["theta"].is_null(), "{what}: theta with S0 = 0");
+    } else {
+        let th = f(j, "theta");
+        assert!(th > -PI && th <= PI);
+        let d = (want.s0 * th.cos() - slip.y)
+            .abs()
+            .max((want.s0 * th.sin() - slip.z).abs());
+        assert!(d <= CLOSED_FORM_TOL * v, "{what}: theta {th}");
+    }
+    // Throw angle: counter-clockwise about up from the horizontal line of centres to B's
+    // horizontal velocity change (the paper's +z is up for centre-of-mass scenes).
+    let dvb = want.out.vb - sc.pair.vb;
+    let line = sc.pair.n - sc.up * sc.pair.n.dot(&sc.up);
+    let dvh = dvb - sc.up * dvb.dot(&sc.up);
+    if line.norm() < 1e-12 || dvh.norm() == 0.0 {
+        assert!(j["throw_angle_deg"].is_null(), "{what}: throw angle");
+    } else {
+        let want_deg = line
+            .cross(&dvh)
+            .dot(&sc.up)
+            .atan2(line.dot(&dvh))
+            .to_degrees();
+        let got = f(j, "throw_angle_deg");
+        assert!(
+            (got - want_deg).abs() <= 1e3 * tol,
+            "{what}: throw {got} vs {want_deg}"
+        );
+    }
+    worst
+}
+
+/// Stick time and impulse against the profile's reference; returns the stick time error
+/// over the duration (0 without a stop).
+fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, what: &str) -> f64 {
+    if !want.collision {
+        let none = j["stick_time"].is_null() && j["stick_impulse"].is_null();
+        assert!(none, "{what}");
+        return 0.0;
+    }
+    if !want.sticks {
+        assert!(j["stick_time"].is_null(), "{what}");
+        match want.p_stick {
+            Some(p) => assert!((f(j, "stick_impulse") - p).abs() <= 1e-13 * p, "{what}"),
+            None => assert!(j["stick_impulse"].is_null(), "{what}"),
+        }
+        return 0.0;
+    }
+    let p_stick = want.p_stick.unwrap();
+    let t = f(j, "stick_time");
+    if want.s0 == 0.0 {
+        assert_eq!(t, 0.0, "{what}");
+        assert_eq!(f(j, "stick_impulse"), 0.0, "{what}");
+        return 0.0;
+    }
+    let exact = sc.duration * sc.profile.time(p_stick / want.impulse);
+    let tol = match method {
+        "closed-form" => STICK_TIME_TOL_CLOSED_FORM,
+        "rk4" => STICK_TIME_TOL,
+        _ => STICK_TIME_TOL_ADAPTIVE,
+    };
+    let dt = (t - exact).abs() / sc.duration;
+    assert!(dt <= tol, "{what}: stick time {t} vs {exact}");
+    let tol = if method == "closed-form" {
+        1e-13
+    } else {
+        STICK_IMPULSE_TOL
+    };
+    assert!(
+        (f(j, "stick_impulse") - p_stick).abs() <= tol * want.impulse,
+        "{what}: stick impulse"
+    );
+    dt
+}
+
+#[test]
+fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
+    let mut worst = [0.0_f64; 4];
+    let mut worst_t = [0.0_f64; 4];
+    for path in scenes() {
+        let sc = read_scene(&path);
+        let want = resolve(&sc.balls, &sc.law, &sc.pair);
+        let p = path.to_str().unwrap();
+        for (k, method) in METHODS.iter().enumerate() {
+            // The scene's own settings: runs, keeps the contract.
+            let what = format!("{} --method {method}", path.display());
+            let j = json(&["run", p, "--json", "--method", method]);
+            check_contract(&j, sc.lab, method, &what);
+            // At rtol 1e-12: agrees with the reference.
+            let j = json(&["run", p, "--json", "--method", method, "--rtol", "1e-12"]);
+            check_contract(&j, sc.lab, method, &what);
+            if !sc.constant_mu || sc.table_effect {
+                eprintln!("{what}: no independent reference (speed-dependent mu or table)");
+                continue;
+            }
+            let tol = match *method {
+                "closed-form" => CLOSED_FORM_TOL,
+                "dop853" => DOP853_TOL,
+                "dopri5" => DOPRI5_TOL,
+                _ => RK4_TOL,
+            };
+            worst[k] = worst[k].max(compare(&sc, &want, &j, tol, &what));
+            worst_t[k] = worst_t[k].max(check_stick(&sc, &want, &j, method, &what));
+            if !want.collision {
+                // No collision: the state is unchanged, exactly.
+                assert_eq!(j["cm_out"], j["cm_in"], "{what}");
+            }
+        }
+    }
+    for (k, m) in METHODS.iter().enumerate() {
+        eprintln!(
+            "scenes, {m} (rtol 1e-12): largest scaled error {:.2e}, stick time error {:.2e} \
+             of the duration",
+            worst[k], worst_t[k]
+        );
+    }
+}
+
+/// `billiard-contact` with no arguments and `run` without a scene run the built-in default
+/// scene, which is `data/scenes/default.toml` (CONTRACTS).
+#[test]
+fn default_runs() {
+    let bare = ok_stdout(&[]);
+    let run_only = ok_stdout(&["run"]);
+    assert_eq!(bare, run_only);
+    assert!(bare.contains("rolling cue ball"), "{bare}");
+    let embedded = json(&["run", "--json"]);
+    let file = json(&["run", "data/scenes/default.toml", "--json"]);
+    assert_eq!(
+        embedded, file,
+        "the embedded default scene differs from the file"
+    );
+    check_contract(&embedded, true, "dop853", "default");
+    let flat = json(&["--json", "--method", "closed-form"]);
+    check_contract(&flat, true, "closed-form", "default --json");
+}
+
+fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|c| (!c.is_empty()).then(|| c.parse::<f64>().unwrap()))
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+/// Trace CSV: the contract header; with --samples N rows at exactly t = i duration / N plus
+/// the stop once; time strictly increasing; S = 0 from the stop on; numbers finite; theta
+/// empty only when S(0) = 0.
+#[test]
+fn trace_csv_follows_the_contract() {
+    assert_eq!(billiard_contact::trace::HEADER, TRACE_HEADER);
+    let n = SAMPLES.to_string();
+    for path in scenes() {
+        let sc = read_scene(&path);
+        let p = path.to_str().unwrap();
+        for method in METHODS {
+            for sampled in [true, false] {
+                let what = format!("{} {method} samples {sampled}", path.display());
+                let file = tmp(&format!(
+                    "{}-{method}-{sampled}.csv",
+                    path.file_stem().unwrap().to_str().unwrap()
+                ));
+                let f_s = file.to_str().unwrap();
+                let mut args = vec!["run", p, "--json", "--method", method, "--trace", f_s];
+                if sampled {
+                    args.extend(["--samples", n.as_str()]);
+                }
+                let j = json(&args);
+                let (header, rows) = read_trace(&file);
+                assert_eq!(header, TRACE_HEADER, "{what}");
+                assert!(rows.iter().all(|r| r.len() == 15), "{what}: row width");
+                let t: Vec<f64> = rows.iter().map(|r| r[0].unwrap()).collect();
+                assert!(
+                    t.windows(2).all(|w| w[0] < w[1]),
+                    "{what}: time not increasing"
+                );
+                assert_eq!(t[0], 0.0, "{what}");
+                let end = *t.last().unwrap();
+                assert!(
+                    (end - sc.duration).abs() <= 4.0 * f64::EPSILON * sc.duration,
+                    "{what}: last row at {end}, not at the end"
+                );
+                for r in &rows {
+                    for (k, x) in r.iter().enumerate() {
+                        match x {
+                            Some(x) => assert!(x.is_finite(), "{what}"),
+                            None => assert!(k == 13 && j["theta"].is_null(), "{what}: empty cell"),
+                        }
+                    }
+                }
+                let stop = j["stick_time"].as_f64();
+                if let Some(ts) = stop {
+                    assert_eq!(
+                        t.iter().filter(|&&x| x == ts).count(),
+                        1,
+                        "{what}: stop row"
+                    );
+                    for r in rows.iter().filter(|r| r[0].unwrap() >= ts) {
+                        assert_eq!(r[12], Some(0.0), "{what}: S after the stop");
+                    }
+                }
+                if sampled {
+                    let want: Vec<f64> = (0..=SAMPLES)
+                        .map(|i| i as f64 * sc.duration / SAMPLES as f64)
+                        .collect();
+                    // A stop that falls on a sample time is written once.
+                    let samples: Vec<f64> = t
+                        .iter()
+                        .copied()
+                        .filter(|x| Some(*x) != stop || want.contains(x))
+                        .collect();
+                    assert_eq!(samples, want, "{what}: sample times");
+                } else if method == "closed-form" {
+                    // 100 samples without --samples (README).
+                    let extra = usize::from(stop.is_some_and(|x| x > 0.0));
+                    assert_eq!(rows.len(), 101 + extra, "{what}");
+                }
+                // The final row is the outgoing state of the report.
+                let last = rows.last().unwrap();
+                let u = arr(&j["cm_out"]["u"]);
+                assert_eq!(
+                    [last[3], last[4], last[5]],
+                    [Some(u.x), Some(u.y), Some(u.z)],
+                    "{what}"
+                );
+                std::fs::remove_file(&file).unwrap();
+            }
+        }
+    }
+}
+
+/// A failing run writes no trace: bad input (exit 2) and a run that fails after the trace
+/// was written (a non-finite energy, exit 1) leave neither the file nor a temporary one, and
+/// an existing file is left as it was.
+#[test]
+fn failed_runs_leave_no_trace_file() {
+    let dir = tmp("failing");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[balls]\nmass = -1.0\n").unwrap();
+    // Speeds whose squares overflow: the outgoing kinetic energy is not finite.
+    let huge = dir.join("huge.toml");
+    std::fs::write(
+        &huge,
+        "[balls]\nmass = 0.17\nradius = 0.028575\n[contact]\nmu = 0.06\n\
+         [contact.profile]\nshape = \"half-sine\"\nduration = 2.5e-4\n\
+         [incoming.cm]\nu = [1.3e154, 3e153, 0.0]\n",
+    )
+    .unwrap();
+    for (scene, code) in [(&bad, 2), (&huge, 1)] {
+        for method in METHODS {
+            let trace = dir.join("trace.csv");
+            let _ = std::fs::remove_file(&trace);
+            let args = [
+                "run",
+                scene.to_str().unwrap(),
+                "--json",
+                "--method",
+                method,
+                "--trace",
+                trace.to_str().unwrap(),
+            ];
+            let out = run(&args);
+            assert_eq!(out.status.code(), Some(code), "{args:?}");
+            assert!(out.stdout.is_empty(), "{args:?}: printed a report");
+            assert!(!String::from_utf8_lossy(&out.stderr).is_empty());
+            assert!(!trace.exists(), "{args:?} left a trace");
+            // An existing file is not touched.
+            std::fs::write(&trace, "old").unwrap();
+            assert_eq!(run(&args).status.code(), Some(code));
+            assert_eq!(std::fs::read_to_string(&trace).unwrap(), "old");
+            std::fs::remove_file(&trace).unwrap();
+            let left: Vec<_> = std::fs::read_dir(&dir)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().into_string().unwrap())
+                .filter(|n| n.ends_with(".tmp"))
+                .collect();
+            assert!(left.is_empty(), "temporary files left: {left:?}");
+        }
+    }
+    let err = String::from_utf8(run(&["run", huge.to_str().unwrap(), "--json"]).stderr).unwrap();
+    assert!(err.contains("non-finite"), "{err}");
+}
