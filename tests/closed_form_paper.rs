@@ -491,7 +491,8 @@ fn special_scene(sp: &Special, method: &str) -> Scene {
          [contact]\nmu = {:?}\nrestitution = 1.0\n\
          [contact.profile]\nshape = \"half-sine\"\nduration = 2.5e-4\n\
          [incoming.lab]\n\
-         a = {{ position = [{:?}, 0.0, 0.0], velocity = [{u:?}, {v:?}, 0.0], spin = [{:?}, {:?}, 0.0] }}\n\
+         a = {{ position = [{:?}, 0.0, 0.0], velocity = [{u:?}, {v:?}, 0.0], \
+         spin = [{:?}, {:?}, 0.0] }}\n\
          b = {{ position = [{R:?}, 0.0, 0.0], velocity = [0.0, 0.0, 0.0] }}\n\
          up = [0.0, 0.0, 1.0]\n\
          [solver]\nmethod = \"{method}\"\n",

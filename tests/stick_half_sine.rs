@@ -206,7 +206,10 @@ fn stun_cut_stick_times_match_the_half_sine_formula() {
         wt = wt.max(dt);
         wp = wp.max(dp);
     }
-    eprintln!("stun cuts, dop853 rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, |p - p_stick| {wp:.2e} P");
+    eprintln!(
+        "stun cuts, dop853 rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, \
+         |p - p_stick| {wp:.2e} P"
+    );
 }
 
 #[test]
@@ -223,7 +226,8 @@ fn stops_early_middle_and_late_in_the_pulse() {
             wp = wp.max(dp);
         }
         eprintln!(
-            "spinning states, {} rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, |p - p_stick| {wp:.2e} P",
+            "spinning states, {} rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, \
+             |p - p_stick| {wp:.2e} P",
             settings.method
         );
     }
