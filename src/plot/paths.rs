@@ -17,6 +17,9 @@ use plotters::prelude::*;
 /// Figure size in pixels.
 pub const SIZE: (u32, u32) = (900, 820);
 
+/// An arrow on the figure: from, to, colour.
+type Arrow = ((f64, f64), (f64, f64), RGBColor);
+
 const COLOR_A: RGBColor = RGBColor(31, 90, 180);
 const COLOR_B: RGBColor = RGBColor(200, 60, 30);
 
@@ -91,7 +94,7 @@ where
     let span0 = (x1 - x0).max(y1 - y0).max(8.0 * radius);
     // Arrows along the final rolling directions: a fifth of the span.
     let arrow_len = 0.2 * span0;
-    let arrows: Vec<((f64, f64), (f64, f64), RGBColor)> = [(&t.a, COLOR_A), (&t.b, COLOR_B)]
+    let arrows: Vec<Arrow> = [(&t.a, COLOR_A), (&t.b, COLOR_B)]
         .into_iter()
         .filter_map(|(r, c)| {
             let (_, s) = r.at(&up, end, true);
