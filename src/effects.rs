@@ -59,6 +59,19 @@ impl Effects {
     }
 }
 
+impl Effects {
+    /// The effects a run with ball-ball friction `friction` actually simulates: as
+    /// [`Effects::names`], without `friction` and `stick` when mu is zero at every speed
+    /// (then only eq 14 is integrated).
+    pub fn simulated(&self, friction: &crate::params::Friction) -> Vec<&'static str> {
+        let mut names = self.names();
+        if friction.is_zero() {
+            names.retain(|n| *n != "friction" && *n != "stick");
+        }
+        names
+    }
+}
+
 /// What one effect adds to a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EffectInfo {
@@ -101,3 +114,27 @@ pub const CATALOGUE: [EffectInfo; 4] = [
         outputs: "table {a, b}, --path CSV, --plot SVG",
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Friction;
+
+    #[test]
+    fn every_name_is_catalogued_and_zero_friction_is_not_simulated() {
+        let all = Effects {
+            friction: true,
+            stick: true,
+            table: true,
+        };
+        let names = all.names();
+        assert_eq!(names, vec!["normal-impulse", "friction", "stick", "table"]);
+        let catalogued: Vec<&str> = CATALOGUE.iter().map(|e| e.name).collect();
+        assert_eq!(names, catalogued);
+        assert_eq!(
+            all.simulated(&Friction::Constant(0.0)),
+            vec!["normal-impulse", "table"]
+        );
+        assert_eq!(all.simulated(&Friction::Constant(0.06)), names);
+    }
+}

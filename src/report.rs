@@ -333,7 +333,7 @@ impl Report {
             name: scene.name.clone(),
             profile: scene.profile.name(),
             duration: Num(scene.profile.duration()),
-            effects: scene.effects.names(),
+            effects: scene.effects.simulated(&scene.contact.friction),
             collision: o.collision,
             impulse: Num(o.impulse),
             s0: Num(o.s0),
@@ -397,7 +397,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         scene.profile.name(),
         scene.profile.duration(),
         so.settings.method,
-        scene.effects.names().join(", ")
+        scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if !o.collision {
         let _ = writeln!(
