@@ -505,3 +505,73 @@ table = true
         .to_string();
     assert!(e.contains("table.restitution"), "{e}");
 }
+
+/// Rolling resistance: a ball rolling at v decelerates at mu_r g and stays rolling, so it
+/// rests after v / (mu_r g), having rolled v^2 / (2 mu_r g). Spin decay: |w.n| falls at
+/// mu_sp g / (alpha r) and reaches 0 after |w.n| alpha r / (mu_sp g), while the horizontal
+/// motion is untouched (the torque is about n).
+#[test]
+fn rolling_resistance_and_spin_decay() {
+    let (g, mu_r, mu_sp) = (9.81, 0.01, 0.044);
+    let tab = Table {
+        params: TableParams::new(0.2, 0.0, g, mu_r, mu_sp, None).unwrap(),
+        up: Vector3::z(),
+        height: 0.0,
+    };
+    let v = 1.2;
+    let wz = 20.0;
+    // Rolling along +x: w = z x v / r = (0, v / r, 0), plus side spin wz.
+    let r = roll_out(&ball(), &tab, &on_cloth([v, 0.0, 0.0], [0.0, v / R, wz])).unwrap();
+    assert_eq!(r.slide_time, 0.0);
+    let (t_rest, p_rest) = r.rest.unwrap();
+    assert!(close(t_rest, v / (mu_r * g), EXACT));
+    assert!(close(p_rest.x, v * v / (2.0 * mu_r * g), EXACT));
+    let t_spin = wz * 0.4 * R / (mu_sp * g);
+    assert!(t_spin < t_rest);
+    let (_, half) = r.at(&tab.up, 0.5 * t_spin, true);
+    assert!(close(half.spin.z, 0.5 * wz, 1e-12));
+    assert!(close(half.spin.y, half.velocity.x / R, 1e-12), "still rolling");
+    let (phase, late) = r.at(&tab.up, 0.5 * (t_spin + t_rest), true);
+    assert_eq!(phase, Phase::Rolling);
+    assert_eq!(late.spin.z, 0.0);
+}
+
+/// The table does not care which lab axis is up: the half-ball hit of the 33.7 degree test
+/// rotated by -90 degrees about x (up = +y; (x, y, z) -> (x, z, -y) for positions, velocities
+/// and spins alike) deflects the same.
+#[test]
+fn any_up_direction_gives_the_same_roll_out() {
+    use billiard_contact::scene::Scene;
+    use std::path::Path;
+    let (va, wa) = cue(1.5, 30f64.to_radians(), 1.0);
+    let rot = |v: [f64; 3]| [v[0], v[2], -v[1]];
+    let (p_a, p_b) = (rot([-R, 0.0, R]), rot([R, 0.0, R]));
+    let (va, wa) = (rot(va), rot(wa));
+    let text = format!(
+        r#"
+[balls]
+mass = {M}
+radius = {R}
+[contact]
+mu = 0.0
+[contact.profile]
+shape = "half-sine"
+duration = 2.5e-4
+[incoming.lab]
+a = {{ position = {p_a:?}, velocity = {va:?}, spin = {wa:?} }}
+b = {{ position = {p_b:?}, velocity = [0.0, 0.0, 0.0] }}
+up = [0.0, 1.0, 0.0]
+[solver]
+method = "closed-form"
+[effects]
+table = true
+"#
+    );
+    let s = Scene::parse(&text, Path::new("."), None).unwrap();
+    let t = run_scene(&s, &s.solver, None).unwrap().table.unwrap();
+    assert!((t.table.height - 0.0).abs() < 1e-15);
+    let d = t.deflection_deg(0, &t.a).unwrap();
+    let expected = (5.0 * 3f64.sqrt() / 13.0).atan().to_degrees();
+    assert!((d.abs() - expected).abs() <= ANGLE_EXACT_DEG, "{d}");
+    assert!(t.a.rolling.velocity.y.abs() <= 1e-15, "rolls on the cloth");
+}
