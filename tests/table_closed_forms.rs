@@ -530,7 +530,10 @@ fn rolling_resistance_and_spin_decay() {
     assert!(t_spin < t_rest);
     let (_, half) = r.at(&tab.up, 0.5 * t_spin, true);
     assert!(close(half.spin.z, 0.5 * wz, 1e-12));
-    assert!(close(half.spin.y, half.velocity.x / R, 1e-12), "still rolling");
+    assert!(
+        close(half.spin.y, half.velocity.x / R, 1e-12),
+        "still rolling"
+    );
     let (phase, late) = r.at(&tab.up, 0.5 * (t_spin + t_rest), true);
     assert_eq!(phase, Phase::Rolling);
     assert_eq!(late.spin.z, 0.0);
