@@ -176,17 +176,23 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
         let n = self.impulse * self.profile.shape(clamp_time(st.time()));
         let slip = st.slip();
         let speed = slip.x.hypot(slip.y);
-        let e = match self.direction {
+        // Past the stop (only inside the step that crosses it) both the direction and a
+        // speed-dependent mu continue smoothly in the signed slip: mu(|S|) would put a kink
+        // at S = 0 inside that step, costing rejected steps and slow event location. At the
+        // located stop the two agree. Frozen (stick = false) is physical beyond the stop:
+        // mu of the sliding speed |S|.
+        let (e, s_mu) = match self.direction {
             Direction::CurrentSlip if speed > 0.0 => {
                 if slip.dot(&self.e0) < 0.0 {
-                    -slip / speed
+                    (-slip / speed, -speed)
                 } else {
-                    slip / speed
+                    (slip / speed, speed)
                 }
             }
-            _ => self.e0,
+            Direction::CurrentSlip => (self.e0, 0.0),
+            Direction::Frozen => (self.e0, speed),
         };
-        let fr = self.friction.mu(speed * self.speed_scale) * n;
+        let fr = self.friction.mu(s_mu * self.speed_scale) * n;
         let spin = 2.0 * fr * self.inv_alpha;
         let slip_rate = 2.0 * fr * (1.0 + self.inv_alpha);
         *dy = SVector::from([

@@ -122,7 +122,11 @@ impl Friction {
                 } else if a == 0.0 {
                     (c * s).exp_m1() / (b * c)
                 } else {
-                    s / a + ((-c * s).exp() * b / (a + b) + a / (a + b)).ln() / (a * c)
+                    // ln((a + b e^(-cS)) / (a + b)) as ln_1p of a small number: the plain
+                    // ln of a ratio near 1 loses digits for small c S (3e-10 relative at
+                    // S = 1e-6 m/s with the literature fit). The remaining cancellation
+                    // against S / a costs a factor (a + b) / a only.
+                    (c * s + (b * (-c * s).exp_m1() / (a + b)).ln_1p()) / (a * c)
                 }
             }
         }

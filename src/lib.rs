@@ -13,8 +13,10 @@ pub mod integrate;
 pub mod outcome;
 pub mod output;
 pub mod params;
+pub mod path;
 pub mod profile;
 pub mod state;
+pub mod table;
 pub mod trace;
 
 pub use closed_form::ClosedForm;

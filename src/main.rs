@@ -6,8 +6,9 @@
 use billiard_contact::integrate::{Method, Sampling, SolverSettings};
 use billiard_contact::output::AtomicFile;
 use billiard_contact::report::{summary, Report};
-use billiard_contact::runner::run_scene;
+use billiard_contact::runner::{run_scene, SceneOutcome};
 use billiard_contact::scene::Scene;
+use billiard_contact::table::TableOutcome;
 use billiard_contact::trace::CsvTrace;
 use billiard_contact::Error;
 use clap::{Args, Parser, Subcommand};
@@ -62,6 +63,17 @@ struct RunArgs {
     /// RK4 steps over the contact (overrides the scene).
     #[arg(long, value_name = "N")]
     steps: Option<u32>,
+    /// Write both balls' paths on the table (lab frame, until both roll) to this CSV
+    /// (needs `[effects] table = true`).
+    #[arg(long, value_name = "FILE.csv")]
+    path: Option<PathBuf>,
+    /// Uniform intervals of the path CSV (plus every change of phase; default 200).
+    #[arg(long, value_name = "N")]
+    path_samples: Option<u64>,
+    /// Draw a top view of both balls' paths with the line of centres (SVG, or PNG for a
+    /// `.png` name; needs `[effects] table = true`).
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
@@ -109,31 +121,92 @@ fn run(args: &RunArgs) -> Result<(), Error> {
     if args.samples == Some(0) {
         return Err(Error::invalid("--samples", 0, "at least 1"));
     }
+    if (args.path.is_some() || args.plot.is_some()) && !scene.effects.table {
+        return Err(Error::invalid(
+            if args.path.is_some() {
+                "--path"
+            } else {
+                "--plot"
+            },
+            "given",
+            "the table effect: set `table = true` under [effects] in the scene (lab frame, \
+             horizontal line of centres)",
+        ));
+    }
+    if args.path_samples == Some(0) {
+        return Err(Error::invalid("--path-samples", 0, "at least 1"));
+    }
     let sampling = match args.samples {
         Some(n) => Sampling::Uniform(n),
         None => Sampling::Steps,
     };
-    let render = |outcome| -> Result<String, Error> {
+    let render = |outcome: &SceneOutcome| -> Result<String, Error> {
         Ok(if args.json {
-            Report::new(&scene, &outcome).to_json()? + "\n"
+            Report::new(&scene, outcome).to_json()? + "\n"
         } else {
-            summary(&scene, &outcome)
+            summary(&scene, outcome)
         })
     };
     // The trace becomes visible only once the whole run, report included, succeeded.
-    let text = match &args.trace {
+    let (text, outcome) = match &args.trace {
         Some(path) => {
             let file = AtomicFile::create(path)?;
             let mut csv = CsvTrace::new(file)?;
-            let text = render(run_scene(&scene, &settings, Some((&mut csv, sampling)))?)?;
+            let outcome = run_scene(&scene, &settings, Some((&mut csv, sampling)))?;
+            let text = render(&outcome)?;
             csv.finish()?.commit()?;
-            text
+            (text, outcome)
         }
-        None => render(run_scene(&scene, &settings, None)?)?,
+        None => {
+            let outcome = run_scene(&scene, &settings, None)?;
+            (render(&outcome)?, outcome)
+        }
     };
+    if let Some(table) = &outcome.table {
+        if let Some(path) = &args.path {
+            let rows = billiard_contact::path::path_rows(
+                table,
+                args.path_samples
+                    .unwrap_or(billiard_contact::path::DEFAULT_PATH_SAMPLES),
+            );
+            billiard_contact::path::write_path(AtomicFile::create(path)?, &rows)?.commit()?;
+        }
+        if let Some(path) = &args.plot {
+            write_plot(path, table, &scene)?;
+        }
+    }
     let mut stdout = std::io::stdout().lock();
     stdout
         .write_all(text.as_bytes())
         .and_then(|_| stdout.flush())
         .map_err(|e| Error::io("stdout", e))
+}
+
+/// The top view of the table phase: SVG through an atomic file, PNG for a `.png` name
+/// (rendered beside the target and renamed into place).
+fn write_plot(path: &std::path::Path, table: &TableOutcome, scene: &Scene) -> Result<(), Error> {
+    use billiard_contact::plot::paths;
+    let title = format!("{}: top view", scene.name);
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if png {
+        let file = AtomicFile::create(path)?;
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
+        let drawn = paths::png(table, scene.ball.radius, &title, &temp);
+        let moved =
+            drawn.and_then(|_| std::fs::rename(&temp, path).map_err(|e| Error::io(path, e)));
+        if moved.is_err() {
+            let _ = std::fs::remove_file(&temp);
+        }
+        drop(file);
+        moved
+    } else {
+        let svg = paths::svg(table, scene.ball.radius, &title)?;
+        let mut file = AtomicFile::create(path)?;
+        file.write_all(svg.as_bytes())
+            .map_err(|e| Error::io(path, e))?;
+        file.commit()
+    }
 }

@@ -1,8 +1,10 @@
 //! The report of a run: JSON (one object, the keys of the contract) and a human summary.
 //!
 //! Every float is checked finite before output: a non-finite value fails the run, naming
-//! the field, instead of turning into `null`. Only the fields documented as nullable
-//! (`theta`, `stick_time`, `stick_impulse`, `throw_angle_deg`) may be null.
+//! the field, instead of turning into `null`. Only the fields documented as nullable in
+//! CONTRACTS.md (`theta`, `stick_time`, `stick_impulse`, `throw_angle_deg`) may be null;
+//! optional keys of extensions (`lab_out`, `table`, and in `table` each ball's
+//! `direction_deg`, `deflection_deg` and `rest`) are left out when they do not apply.
 
 use crate::check::Checks;
 use crate::error::Error;
@@ -10,6 +12,7 @@ use crate::profile::ForceProfile;
 use crate::runner::SceneOutcome;
 use crate::scene::Scene;
 use crate::state::CmState;
+use crate::table::{RollOut, TableOutcome};
 use nalgebra::Vector3;
 use serde::{ser, Serialize, Serializer};
 
@@ -157,6 +160,170 @@ pub struct Report {
     pub solver: SolverJson,
     /// Warnings.
     pub warnings: Vec<String>,
+    /// The table phase (effect `table`); absent when the effect is off.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table: Option<TableJson>,
+}
+
+/// The table phase in JSON: both balls from separation until they roll.
+#[derive(Debug, Serialize)]
+pub struct TableJson {
+    /// Ball A.
+    pub a: RollOutJson,
+    /// Ball B.
+    pub b: RollOutJson,
+    /// Ball-cloth sliding friction.
+    pub mu: Num,
+    /// Ball-cloth restitution.
+    pub restitution: Num,
+    /// Gravity (m/s^2).
+    pub g: Num,
+    /// Rolling resistance (0: off).
+    pub rolling_resistance: Num,
+    /// Spin decay about the vertical (0: off).
+    pub spin_decay: Num,
+    /// Cloth height along up (m).
+    pub height: Num,
+    /// When both balls roll (or rest, with rolling resistance) (s).
+    pub end_time: Num,
+    /// Self-checks (scaled).
+    pub check: TableCheckJson,
+}
+
+/// The table phase's checks in JSON.
+#[derive(Debug, Serialize)]
+pub struct TableCheckJson {
+    /// Largest energy increase (kinetic + gravitational), over m v_ref^2.
+    pub energy_increase: Num,
+    /// Momentum against the cloth's impulses and gravity, over m v_ref.
+    pub momentum_error: Num,
+}
+
+/// One impact with the cloth in JSON.
+#[derive(Debug, Serialize)]
+pub struct ImpactJson {
+    /// When (s after separation).
+    pub time: Num,
+    /// Velocity after it (m/s).
+    pub velocity: [Num; 3],
+    /// Spin after it (rad/s).
+    pub spin: [Num; 3],
+    /// Normal impulse (N s).
+    pub normal_impulse: Num,
+    /// Tangential impulse J_t >= 0 (N s), against the slip.
+    pub tangential_impulse: Num,
+    /// Whether the impact stopped the slip.
+    pub sticks: bool,
+}
+
+/// A ball once it rolls.
+#[derive(Debug, Serialize)]
+pub struct RollingJson {
+    /// Velocity (m/s).
+    pub velocity: [Num; 3],
+    /// Spin (rad/s).
+    pub spin: [Num; 3],
+    /// Centre position where it starts to roll (m).
+    pub position: [Num; 3],
+}
+
+/// Where a ball comes to rest (rolling resistance on).
+#[derive(Debug, Serialize)]
+pub struct RestJson {
+    /// When (s after separation).
+    pub time: Num,
+    /// Centre position (m).
+    pub position: [Num; 3],
+}
+
+/// One ball's roll-out in JSON.
+#[derive(Debug, Serialize)]
+pub struct RollOutJson {
+    /// Duration of the hop (s), 0 when the ball does not leave the cloth.
+    pub hop_time: Num,
+    /// Height of the hop (m).
+    pub hop_height: Num,
+    /// The first impact with the cloth.
+    pub impact: ImpactJson,
+    /// Bounces after it (restitution > 0).
+    pub bounces: u32,
+    /// From when the ball stays on the cloth (s).
+    pub settle_time: Num,
+    /// Duration of the slide until rolling (s).
+    pub slide_time: Num,
+    /// Displacement during the slide (m).
+    pub slide_displacement: [Num; 3],
+    /// When it starts to roll (s after separation).
+    pub roll_time: Num,
+    /// Once rolling.
+    pub rolling: RollingJson,
+    /// Rolling direction, degrees counter-clockwise about up from the line of centres;
+    /// absent when it ends at rest.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub direction_deg: Option<Num>,
+    /// From the incoming direction of travel to the rolling direction, degrees
+    /// counter-clockwise about up; absent for a ball that came in at rest or ends at rest.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub deflection_deg: Option<Num>,
+    /// Where it rests (rolling resistance on); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rest: Option<RestJson>,
+    /// Total impulse of the cloth on the ball until it rolls (or rests) (N s).
+    pub table_impulse: [Num; 3],
+}
+
+impl TableJson {
+    /// The JSON form of a table phase.
+    pub fn new(t: &TableOutcome) -> Self {
+        let ball = |i: usize, r: &RollOut| {
+            let imp = r.impacts[0];
+            RollOutJson {
+                hop_time: Num(r.hop_time),
+                hop_height: Num(r.hop_height),
+                impact: ImpactJson {
+                    time: Num(imp.time),
+                    velocity: v3(&imp.velocity),
+                    spin: v3(&imp.spin),
+                    normal_impulse: Num(imp.normal_impulse),
+                    tangential_impulse: Num(imp.tangential_impulse),
+                    sticks: imp.sticks,
+                },
+                bounces: r.bounces,
+                settle_time: Num(r.settle_time),
+                slide_time: Num(r.slide_time),
+                slide_displacement: v3(&r.slide_displacement),
+                roll_time: Num(r.roll_time),
+                rolling: RollingJson {
+                    velocity: v3(&r.rolling.velocity),
+                    spin: v3(&r.rolling.spin),
+                    position: v3(&r.rolling.position),
+                },
+                direction_deg: t.direction_deg(r).map(Num),
+                deflection_deg: t.deflection_deg(i, r).map(Num),
+                rest: r.rest.map(|(time, p)| RestJson {
+                    time: Num(time),
+                    position: v3(&p),
+                }),
+                table_impulse: v3(&r.table_impulse),
+            }
+        };
+        let p = &t.table.params;
+        TableJson {
+            a: ball(0, &t.a),
+            b: ball(1, &t.b),
+            mu: Num(p.mu),
+            restitution: Num(p.restitution),
+            g: Num(p.g),
+            rolling_resistance: Num(p.rolling_resistance),
+            spin_decay: Num(p.spin_decay),
+            height: Num(t.table.height),
+            end_time: Num(t.end_time()),
+            check: TableCheckJson {
+                energy_increase: Num(t.check.energy_increase),
+                momentum_error: Num(t.check.momentum_error),
+            },
+        }
+    }
 }
 
 impl Report {
@@ -170,7 +337,7 @@ impl Report {
             name: scene.name.clone(),
             profile: scene.profile.name(),
             duration: Num(scene.profile.duration()),
-            effects: scene.effects.names(),
+            effects: scene.effects.simulated(&scene.contact.friction),
             collision: o.collision,
             impulse: Num(o.impulse),
             s0: Num(o.s0),
@@ -206,6 +373,7 @@ impl Report {
                 rejected_steps: o.stats.rejected_steps,
             },
             warnings: o.warnings.clone(),
+            table: so.table.as_ref().map(TableJson::new),
         }
     }
 
@@ -233,7 +401,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         scene.profile.name(),
         scene.profile.duration(),
         so.settings.method,
-        scene.effects.names().join(", ")
+        scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if !o.collision {
         let _ = writeln!(
@@ -297,8 +465,82 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  solver: {} rhs evaluations, {} accepted and {} rejected steps",
         o.stats.rhs_evaluations, o.stats.accepted_steps, o.stats.rejected_steps
     );
+    if let Some(t) = &so.table {
+        s.push_str(&table_summary(t));
+    }
     for w in &o.warnings {
         let _ = writeln!(s, "  warning: {w}");
     }
+    s
+}
+
+/// The table phase, human-readable.
+fn table_summary(t: &TableOutcome) -> String {
+    use std::fmt::Write;
+    let p = &t.table.params;
+    let mut s = String::new();
+    let fmt = |v: &Vector3<f64>| format!("[{:+.6}, {:+.6}, {:+.6}]", v.x, v.y, v.z);
+    let _ = writeln!(
+        s,
+        "  table (cloth mu {}, restitution {}, g {} m/s^2): until both roll, {:.6} s",
+        p.mu,
+        p.restitution,
+        p.g,
+        t.end_time()
+    );
+    for (i, (name, r)) in [("A", &t.a), ("B", &t.b)].into_iter().enumerate() {
+        let imp = &r.impacts[0];
+        if r.hop_time > 0.0 {
+            let _ = writeln!(
+                s,
+                "    {name}: hops {:.6e} s, {:.6e} m high, lands at t = {:.6e} s",
+                r.hop_time, r.hop_height, imp.time
+            );
+        } else {
+            let _ = writeln!(s, "    {name}: stays on the cloth (no hop)");
+        }
+        let _ = writeln!(
+            s,
+            "       impact: normal {:.6e} N s, tangential {:.6e} N s ({}), {} bounce(s)",
+            imp.normal_impulse,
+            imp.tangential_impulse,
+            if imp.sticks {
+                "slip stopped"
+            } else {
+                "slips on"
+            },
+            r.bounces
+        );
+        let _ = writeln!(
+            s,
+            "       slides {:.6e} s over {} m, rolls from t = {:.6e} s",
+            r.slide_time,
+            fmt(&r.slide_displacement),
+            r.roll_time
+        );
+        let _ = writeln!(
+            s,
+            "       rolling: v {} m/s, spin {} rad/s",
+            fmt(&r.rolling.velocity),
+            fmt(&r.rolling.spin)
+        );
+        let dir = t
+            .direction_deg(r)
+            .map(|d| format!("{d:.4} deg from the line of centres"))
+            .unwrap_or_else(|| "at rest".into());
+        let defl = t
+            .deflection_deg(i, r)
+            .map(|d| format!(", deflected {d:.4} deg from its incoming line"))
+            .unwrap_or_default();
+        let _ = writeln!(s, "       direction: {dir}{defl}");
+        if let Some((time, pos)) = r.rest {
+            let _ = writeln!(s, "       rests at t = {time:.6} s at {} m", fmt(&pos));
+        }
+    }
+    let _ = writeln!(
+        s,
+        "    checks (scaled): energy increase {:.1e}, momentum {:.1e}",
+        t.check.energy_increase, t.check.momentum_error
+    );
     s
 }

@@ -7,6 +7,7 @@ use crate::integrate::{Sampling, SolverSettings};
 use crate::outcome::{solve, Outcome};
 use crate::scene::Scene;
 use crate::state::LabMotion;
+use crate::table::TableOutcome;
 use crate::trace::TraceSink;
 use nalgebra::{Matrix3, Vector3};
 
@@ -22,6 +23,8 @@ pub struct SceneOutcome {
     /// Throw angle (degrees), counter-clockwise about `up` (+z of the paper's frame for
     /// centre-of-mass scenes); `None` when undefined.
     pub throw_angle_deg: Option<f64>,
+    /// The table phase after separation (effect `table`).
+    pub table: Option<TableOutcome>,
 }
 
 /// Runs `scene` with `settings`, optionally streaming a trace (centre-of-mass frame).
@@ -61,10 +64,47 @@ pub fn run_scene(
     };
     // The lab momentum of both balls is conserved: fold its error into the check.
     outcome.check.momentum_error = outcome.check.momentum_error.max(lab_momentum_error);
+    let table = run_table(scene, &collision, lab_out, &mut outcome.warnings)?;
     Ok(SceneOutcome {
         outcome,
         settings: *settings,
         lab_out,
         throw_angle_deg: throw,
+        table,
     })
+}
+
+/// The effect `table`: both balls from separation until they roll (`None` when off).
+fn run_table(
+    scene: &Scene,
+    collision: &crate::collision::Collision,
+    lab_out: Option<(LabMotion, LabMotion)>,
+    warnings: &mut Vec<String>,
+) -> Result<Option<TableOutcome>, Error> {
+    let Some(table) = scene.cloth()? else {
+        if scene.table.is_some() {
+            warnings.push(
+                "[table] is given but the effect table is off ([effects] table = false): the run \
+                 ends at separation"
+                    .into(),
+            );
+        }
+        return Ok(None);
+    };
+    let (crate::scene::Incoming::Lab(lab), Some((a, b))) = (&scene.incoming, lab_out) else {
+        unreachable!("Scene::cloth accepts lab scenes only");
+    };
+    let start = |p: nalgebra::Vector3<f64>, m: LabMotion| crate::state::LabBall {
+        position: p,
+        velocity: m.velocity,
+        spin: m.spin,
+    };
+    Ok(Some(TableOutcome::new(
+        &scene.ball,
+        table,
+        &start(lab.a.position, a),
+        &start(lab.b.position, b),
+        [lab.a.velocity, lab.b.velocity],
+        collision.scales.speed,
+    )?))
 }

@@ -29,7 +29,14 @@
 //! [effects]              # optional
 //! friction = true
 //! stick = true
-//! table = false
+//! table = false          # true needs [incoming.lab] with a horizontal line of centres
+//! [table]                # optional; used with table = true; defaults below
+//! mu = 0.2               # ball-cloth sliding friction
+//! restitution = 0.0      # ball-cloth, in [0, 1)
+//! g = 9.81               # m/s^2
+//! rolling_resistance = 0.0   # a rolling ball decelerates at rolling_resistance g (0: off)
+//! spin_decay = 0.0       # |w.up| falls at spin_decay g / (alpha r) on the cloth (0: off)
+//! # height = 0.0         # cloth height along up (m); default: r below the balls' centres
 //! ```
 
 use crate::collision::Collision;
@@ -40,6 +47,7 @@ use crate::integrate::{Method, SolverSettings, DEFAULT_RTOL, DEFAULT_STEPS};
 use crate::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::profile::{Profile, ProfileSpec};
 use crate::state::{CmState, LabBall};
+use crate::table::{Table, TableParams};
 use nalgebra::Vector3;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -76,6 +84,9 @@ pub struct Scene {
     pub effects: Effects,
     /// The file it was read from (`None` for the built-in scene).
     pub source: Option<PathBuf>,
+    /// The cloth (`[table]`) as given; `None` when the section is absent (defaults apply
+    /// when the effect `table` is on).
+    pub table: Option<TableParams>,
 }
 
 #[derive(Deserialize)]
@@ -87,6 +98,18 @@ struct RawScene {
     incoming: RawIncoming,
     solver: Option<RawSolver>,
     effects: Option<Effects>,
+    table: Option<RawTable>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTable {
+    mu: Option<f64>,
+    restitution: Option<f64>,
+    g: Option<f64>,
+    rolling_resistance: Option<f64>,
+    spin_decay: Option<f64>,
+    height: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -243,10 +266,48 @@ impl Scene {
             solver,
             effects: raw.effects.unwrap_or_default(),
             source: source.map(Path::to_path_buf),
+            table: match raw.table {
+                None => None,
+                Some(t) => {
+                    let d = TableParams::default();
+                    Some(TableParams::new(
+                        t.mu.unwrap_or(d.mu),
+                        t.restitution.unwrap_or(d.restitution),
+                        t.g.unwrap_or(d.g),
+                        t.rolling_resistance.unwrap_or(d.rolling_resistance),
+                        t.spin_decay.unwrap_or(d.spin_decay),
+                        t.height,
+                    )?)
+                }
+            },
         };
         // Validate the geometry and the impulse now, so a bad scene fails at load.
         scene.collision()?;
+        scene.cloth()?;
         Ok(scene)
+    }
+
+    /// The cloth under the balls when the effect `table` is on (`None` when off): needs a
+    /// lab scene whose line of centres is horizontal, both centres r above the cloth.
+    pub fn cloth(&self) -> Result<Option<Table>, Error> {
+        if !self.effects.table {
+            return Ok(None);
+        }
+        match &self.incoming {
+            Incoming::Cm(_) => Err(Error::invalid(
+                "effects.table",
+                true,
+                "a scene with [incoming.lab]: the table needs the balls' positions and `up` \
+                 (the centre-of-mass frame has no cloth)",
+            )),
+            Incoming::Lab(lab) => Ok(Some(Table::new(
+                self.table.unwrap_or_default(),
+                lab.up,
+                lab.a.position,
+                lab.b.position,
+                self.ball.radius,
+            )?)),
+        }
     }
 
     /// The collision in the centre-of-mass frame, and the lab frame for lab scenes.

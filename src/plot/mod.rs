@@ -3,6 +3,8 @@
 
 use std::sync::Once;
 
+pub mod paths;
+
 /// The font family every figure uses.
 pub const FONT: &str = "sans-serif";
 
