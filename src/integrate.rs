@@ -14,7 +14,8 @@
 
 use crate::collision::Collision;
 use crate::dynamics::{
-    Direction, NormalRhs, NormalState, ScaledRhs, SlidingRhs, SlidingState, NORMAL_DIM, SLIDING_DIM,
+    Direction, NormalRhs, NormalState, ScaledRhs, SlidingRhs, SlidingState, NORMAL_DIM,
+    SLIDING_DIM, SLIP_ROUND_OFF,
 };
 use crate::error::Error;
 use crate::profile::ForceProfile;
@@ -479,6 +480,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         inv_alpha: 1.0 / c.ball.alpha,
         e0,
         direction,
+        slip_floor: SLIP_ROUND_OFF * slip0.norm(),
     };
     let normal_rhs = NormalRhs {
         profile,
@@ -561,7 +563,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         run.theta_drift =
                             run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
                         run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
-                        run.theta_last = Some(slip.y.atan2(slip.x));
+                        run.theta_last = Some(crate::state::slip_angle(slip));
                         if run.steps_mode {
                             run.emit(&units, &st, None, e0);
                         }
