@@ -235,6 +235,9 @@ impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
     }
 }
 
+/// Relative size (against the scaled time) of a span the adaptive methods cannot step.
+const ROUND_OFF_SPAN: f64 = 1e-12;
+
 /// End of one call to the integrator.
 struct Advanced<const N: usize> {
     y: SVector<f64, N>,
@@ -261,14 +264,25 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
         });
     }
     let span = b - a;
-    let rk4_steps = ((span * stepper.steps_per_unit - 1e-9).ceil()).max(1.0);
+    // The adaptive methods of ode_solvers stop with StepSizeUnderflow when a step is below
+    // 10 eps |x|. A span that short (a stick event or a sample a few ulps from a breakpoint)
+    // is taken in one classical RK4 step, exact to O(span^5) on a smooth segment; a step
+    // size carried over from such a span is not used as the first step of the next one.
+    let round_off = ROUND_OFF_SPAN * a.abs().max(b.abs());
+    let tiny = span <= round_off;
+    let method = if tiny { Method::Rk4 } else { stepper.method };
+    let rk4_steps = if tiny {
+        1.0
+    } else {
+        ((span * stepper.steps_per_unit - 1e-9).ceil()).max(1.0)
+    };
     let mut adapter = Adapter {
         rhs,
         observer,
         evals: Cell::new(0),
         last: y0,
         before_last: y0,
-        step_limit: if stepper.method == Method::Rk4 {
+        step_limit: if method == Method::Rk4 {
             rk4_steps as u64
         } else {
             u64::MAX
@@ -276,13 +290,17 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
         steps: 0,
         stopped: false,
     };
-    let h0 = if h_init > 0.0 { h_init.min(span) } else { 0.0 };
+    let h0 = if h_init > round_off {
+        h_init.min(span)
+    } else {
+        0.0
+    };
     let fail = |source| Error::Integration {
         method: stepper.method.name(),
         scaled_time: a,
         source,
     };
-    let st = match stepper.method {
+    let st = match method {
         Method::Rk4 => {
             let mut s = Rk4::new(&mut adapter, a, y0, b, span / rk4_steps);
             s.integrate().map_err(fail)?
