@@ -607,8 +607,13 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         Some(cross) => {
                             let mut at =
                                 locate_stop(&rhs, &stepper, profile, &prev, &cross, &mut stats)?;
-                            let q = profile.cumulative(at.time());
-                            stick_time = Some(at.time() * profile.duration());
+                            // The event is pinned down by the impulse (CONTRACTS.md): the
+                            // fraction q of P the integrator itself delivered up to the stop
+                            // (-Delta U / pi), and the time at which the exact p(t) reaches
+                            // it. Where the method's own quadrature of f is coarse (rk4 on
+                            // a t^0.5 end) its internal time is off, not the impulse.
+                            let q = (-at.delta_u()[0] / pi).clamp(0.0, 1.0);
+                            stick_time = Some(profile.time_at_cumulative(q) * profile.duration());
                             stick_impulse = Some(q * c.impulse);
                             if c.effects.stick {
                                 sticks = true;
