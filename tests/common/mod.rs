@@ -294,12 +294,16 @@ pub struct Expect<'a> {
 
 /// Checks one outcome against the independent closed form and the contracts.
 pub fn check_outcome(x: &Expect<'_>, o: &Outcome, tau: f64) {
+    check_outcome_with(x, o, tau, state_tolerance(o.method))
+}
+
+/// [`check_outcome`] with a given scaled tolerance.
+pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     let ex = &x.exact;
     let method = o.method;
     let label = format!("{} ({})", x.label, method.name());
     let want = ex.out();
     let err = ex.scaled_error(&o.out, &want.state);
-    let tol = state_tolerance(method);
     assert!(err <= tol, "{label}: scaled state error {err:e} > {tol:e}");
     assert!(o.out.is_finite(), "{label}: non-finite state");
     let v = ex.v_ref();
@@ -404,4 +408,78 @@ pub fn check_outcome(x: &Expect<'_>, o: &Outcome, tau: f64) {
     } else {
         assert_eq!(o.stick_time, None, "{label}");
     }
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n; Golub-Welsch not needed).
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 1.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+            let dx = p1 / dp;
+            x -= dx;
+            if dx.abs() < 1e-16 {
+                break;
+            }
+        }
+        out.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
+    }
+    out
+}
+
+/// Composite Gauss-Legendre quadrature of `f` over [a, b].
+pub fn quad(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
+    let nodes = gauss_legendre(20);
+    let h = (b - a) / panels as f64;
+    let mut sum = 0.0;
+    for i in 0..panels {
+        let lo = a + h * i as f64;
+        for &(x, w) in &nodes {
+            sum += 0.5 * h * w * f(lo + 0.5 * h * (1.0 + x));
+        }
+    }
+    sum
+}
+
+/// Phi(s) of sin^n(pi s) by quadrature, independent of the library's incomplete Beta
+/// function: x = y^2 near 0 and x = 1 - y^2 near 1 make the integrand smooth at the ends.
+pub fn sine_power_phi(n: f64, s: f64) -> f64 {
+    let raw = |s: f64| -> f64 {
+        let s = s.clamp(0.0, 1.0);
+        let rise = |y: f64| (PI * y * y).sin().max(0.0).powf(n) * 2.0 * y;
+        let fall = |y: f64| (PI * y * y).sin().max(0.0).powf(n) * 2.0 * y; // x = 1 - y^2
+        let a = s.min(0.5);
+        let mut v = quad(&rise, 0.0, a.sqrt(), 40);
+        if s > 0.5 {
+            v += quad(&fall, (1.0 - s).sqrt(), 0.5f64.sqrt(), 40);
+        }
+        v
+    };
+    raw(s) / raw(1.0)
+}
+
+/// Phi(s) of a linearly interpolated (time, force) table, its time axis mapped to [0, 1]:
+/// exact trapezoids (and the quadratic inside a segment).
+pub fn table_phi(points: &[(f64, f64)], s: f64) -> f64 {
+    let span = points.last().unwrap().0;
+    let t = s.clamp(0.0, 1.0) * span;
+    let (mut total, mut upto) = (0.0, 0.0);
+    for w in points.windows(2) {
+        let ((t0, f0), (t1, f1)) = (w[0], w[1]);
+        total += 0.5 * (t1 - t0) * (f0 + f1);
+        if t > t0 {
+            let h = t.min(t1) - t0;
+            let slope = (f1 - f0) / (t1 - t0);
+            upto += h * (f0 + 0.5 * slope * h);
+        }
+    }
+    upto / total
 }
