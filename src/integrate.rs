@@ -238,6 +238,10 @@ impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
 /// Relative size (against the scaled time) of a span the adaptive methods cannot step.
 const ROUND_OFF_SPAN: f64 = 1e-12;
 
+/// Largest number of rk4 steps given to one `ode_solvers::Rk4` (its output vector holds
+/// them all).
+const RK4_CHUNK: u64 = 4096;
+
 /// End of one call to the integrator.
 struct Advanced<const N: usize> {
     y: SVector<f64, N>,
@@ -302,8 +306,33 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
     };
     let st = match method {
         Method::Rk4 => {
-            let mut s = Rk4::new(&mut adapter, a, y0, b, span / rk4_steps);
-            s.integrate().map_err(fail)?
+            // ode_solvers' Rk4 keeps every step in its output vector (80 bytes a step here):
+            // a segment of a million steps took 80 MB, steps = 1e9 would exhaust memory.
+            // Integrate in chunks of at most RK4_CHUNK steps, each with its own solver.
+            let total = rk4_steps as u64;
+            let h = span / rk4_steps;
+            let (mut done, mut x, mut y) = (0u64, a, y0);
+            while done < total && !adapter.stopped {
+                let n = (total - done).min(RK4_CHUNK);
+                let x_end = if done + n == total {
+                    b
+                } else {
+                    a + (done + n) as f64 * h
+                };
+                adapter.step_limit = adapter.steps + n;
+                let st = Rk4::new(&mut adapter, x, y, x_end, (x_end - x) / n as f64)
+                    .integrate()
+                    .map_err(fail)?;
+                stats.accepted_steps += u64::from(st.accepted_steps);
+                done += n;
+                x = x_end;
+                y = adapter.last;
+            }
+            ode_solvers::dop_shared::Stats {
+                num_eval: 0,
+                accepted_steps: 0,
+                rejected_steps: 0,
+            }
         }
         Method::Dopri5 => {
             let mut s = Dopri5::from_param(
