@@ -78,7 +78,13 @@ impl Tabulated {
 
     /// Reads a CSV with the header `time,force` (seconds, newtons). Errors name the line.
     pub fn from_csv_file(path: &Path, duration: Option<f64>) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Error::io_doing(
+                path,
+                "cannot read the profile table (contact.profile.file, relative to the scene)",
+                e,
+            )
+        })?;
         let points = parse_table(&text, path)?;
         Tabulated::new(&points, duration, path)
     }
