@@ -88,20 +88,25 @@ impl Collision {
         let s0 = slip.x.hypot(slip.y);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
         let r = ball.radius;
+        // |v| without overflow of the squares (nalgebra's norm gives inf above ~1e154).
+        let norm = |v: &nalgebra::Vector3<f64>| v.x.hypot(v.y).hypot(v.z);
         let speed = u0
             .abs()
             .max(s0)
-            .max(incoming.u_cm.norm())
-            .max(r * incoming.omega_a.norm())
-            .max(r * incoming.omega_b.norm());
-        if !speed.is_finite() {
+            .max(norm(&incoming.u_cm))
+            .max(r * norm(&incoming.omega_a))
+            .max(r * norm(&incoming.omega_b));
+        let m = ball.mass;
+        if !(speed.is_finite() && (m * speed * speed).is_finite()) {
             return Err(Error::invalid(
                 "incoming",
-                speed,
-                "speeds and spins whose magnitudes are finite in m/s",
+                format!("speeds and r |Omega| up to {speed:e} m/s"),
+                format!(
+                    "magnitudes whose energy m v^2 is finite in double precision (below {:.1e} m/s for m = {m} kg)",
+                    f64::MAX.sqrt() / m.sqrt()
+                ),
             ));
         }
-        let m = ball.mass;
         Ok(Collision {
             ball,
             contact,
