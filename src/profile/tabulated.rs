@@ -40,6 +40,13 @@ impl Tabulated {
             )));
         }
         let span = points[points.len() - 1].0;
+        if let Some(k) = unresolved_step(points) {
+            return Err(whole(format!(
+                "point {k} (time {} s) is within {MIN_TIME_STEP:e} of the span ({span} s) of the \
+                 previous time: the time axis cannot resolve it",
+                points[k].0
+            )));
+        }
         let area: f64 = points
             .windows(2)
             .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1 + w[1].1))
@@ -106,6 +113,18 @@ impl Tabulated {
     }
 }
 
+/// Smallest step between consecutive times, relative to the table's span. Closer knots
+/// (the fuzz harness tried times 0, 2e-5, .., 1e300) put breakpoints below the integrators'
+/// resolution and made the adaptive methods stop with a step-size underflow.
+pub const MIN_TIME_STEP: f64 = 1e-9;
+
+/// The index of the first point closer than [`MIN_TIME_STEP`] of the span to its
+/// predecessor.
+fn unresolved_step(points: &[(f64, f64)]) -> Option<usize> {
+    let span = points.last()?.0;
+    (1..points.len()).find(|&k| points[k].0 - points[k - 1].0 < MIN_TIME_STEP * span)
+}
+
 /// Parses `time,force` CSV text into points, validating every line.
 pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
     let err = |line: u64, message: String| Error::ProfileTable {
@@ -141,6 +160,7 @@ pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
         }
     }
     let mut points: Vec<(f64, f64)> = Vec::new();
+    let mut line_of: Vec<u64> = Vec::new();
     for (i, line) in lines {
         let n = i as u64 + 1;
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
@@ -183,6 +203,19 @@ pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
             _ => {}
         }
         points.push((t, f));
+        line_of.push(n);
+    }
+    if let Some(k) = unresolved_step(&points) {
+        let span = points[points.len() - 1].0;
+        return Err(err(
+            line_of[k],
+            format!(
+                "time {} s is within {MIN_TIME_STEP:e} of the table's span ({span} s) of the \
+                 previous time {} s: the time axis cannot resolve it",
+                points[k].0,
+                points[k - 1].0
+            ),
+        ));
     }
     Ok(points)
 }
