@@ -265,9 +265,14 @@ impl Case {
             ProfileKind::Hertz => Ends::Fractional,
             _ => Ends::Smooth,
         };
+        // rk4's fixed first step (h = 1e-3) integrates f ~ t^n with an error O(h^(n+1)).
+        let rk4_first_step = match self.profile {
+            ProfileKind::SinePower(n) => 10.0 * 1e-3f64.powf(n + 1.0),
+            _ => 0.0,
+        };
         match (self.method, ends) {
             (Method::ClosedForm, _) => 1e-13,
-            (Method::Rk4, Ends::BelowOne) => 1e-4,
+            (Method::Rk4, Ends::BelowOne | Ends::Fractional) => rk4_first_step.max(1e-8),
             (_, Ends::BelowOne) => 1e-6,
             (_, Ends::Fractional) => 1e-8,
             _ => 1e-8,
@@ -393,11 +398,14 @@ proptest! {
         let t_stop = o.stick_time.unwrap_or(f64::INFINITY);
         for row in rows.iter().filter(|r| r.t < t_stop) {
             let slip = row.state.slip(case.r);
-            // Round-off of the recomputation: terms of size |V|, r |Omega|.
+            // The slip recomputed from the state inherits the state's integration error,
+            // relative to the size of its terms |V|, r |Omega| (with small alpha the spins
+            // change 1/alpha times faster than the velocities).
             let size = row.state.u_cm.yz().amax() + case.r * row.state.omega_sum().yz().amax();
+            let bound = 1e-8 * v_ref.max(size) + 8.0 * f64::EPSILON * size;
             let across = (slip.x * e0.y - slip.y * e0.x).abs();
-            prop_assert!(across <= 1e-9 * v_ref + 8.0 * f64::EPSILON * size, "slip {slip:?} off e0 {e0:?} at t = {:e}", row.t);
-            prop_assert!(slip.dot(&e0) >= -1e-9 * v_ref - 8.0 * f64::EPSILON * size);
+            prop_assert!(across <= bound, "slip {slip:?} off e0 {e0:?} at t = {:e}", row.t);
+            prop_assert!(slip.dot(&e0) >= -bound);
             // The trace's theta is the angle of the carried slip, measured while |slip| is
             // above 1e-6 |slip(0)|: its round-off, a few eps |slip(0)| per step, is at most
             // about 1e-10 |slip(0)| / |slip| rad per step there (observed 1.5e-8 rad).
