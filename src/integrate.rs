@@ -610,7 +610,11 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         run.theta_drift =
                             run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
                         run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
-                        run.theta_last = Some(crate::state::slip_angle(slip));
+                        // Near the stop the slip's direction is round-off (SLIP_ROUND_OFF):
+                        // the trace keeps the last angle measured above that floor.
+                        if slip.norm() > rhs.slip_floor {
+                            run.theta_last = Some(crate::state::slip_angle(slip));
+                        }
                         if run.steps_mode {
                             run.emit(&units, &st, None, e0);
                         }
