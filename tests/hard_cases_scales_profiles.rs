@@ -242,17 +242,18 @@ fn hard_profiles() -> Vec<Hard<'static>> {
             name: "sine-power 1.5",
             profile: Box::new(SinePower::new(TAU, 1.5).unwrap()),
             phi: Box::new(|s| sine_power_phi(1.5, s)),
-            // t^1.5 ends lower the observed order (CONTRACTS.md, work-precision).
-            // Observed rk4 3.2e-9, dopri5 3.1e-9, dop853 2.8e-9.
-            tol: [1e-8, 1e-8, 1e-8],
+            // t^1.5 ends lower the observed order (CONTRACTS.md, work-precision); the steps
+            // are graded toward them (profile::GRADED_ENDS). Observed rk4 3.0e-9 (its
+            // fixed first step), dopri5 5.9e-10, dop853 5.9e-10.
+            tol: [1e-8, 2e-9, 2e-9],
         },
         Hard {
             name: "hertz",
             profile: Box::new(Hertz::new(TAU)),
             phi: Box::new(|s| Hertz::new(1.0).cumulative(s)),
-            // t^1.5 ends, as sine-power 1.5. Observed rk4 2.9e-9, dopri5 3.9e-9,
-            // dop853 1.5e-9.
-            tol: [1e-8, 1e-8, 5e-9],
+            // t^1.5 ends, as sine-power 1.5. Observed rk4 2.8e-9, dopri5 6.2e-10, dop853
+            // 2.8e-10 (without the graded steps dop853 reached 1.6e-6 in a property test).
+            tol: [1e-8, 2e-9, 1e-9],
         },
     ]
 }
