@@ -113,22 +113,47 @@ impl SlidingLaw {
 
 impl Friction {
     /// G(S) = integral_0^S dS'/mu(S') (s); infinite when mu = 0.
+    ///
+    /// For mu(S) = a + b e^(-c S) with a > 0 the textbook form S/a + ln(..)/(a c) is the
+    /// difference of two terms of size S/a: it loses all digits for small a and gave NaN
+    /// for a = 5e-324 (fuzz harness). It is evaluated as
+    /// G = ln(1 + x) / (a c) = [ln(1 + x) / x] (e^(cS) - 1) / ((a + b) c),
+    /// x = a (e^(cS) - 1) / (a + b), which tends to the a = 0 law as a -> 0, and for
+    /// cS > 700 (e^(cS) overflows) as (cS + ln(a / (a + b)) + ln(1 + b e^(-cS) / a)) / (a c).
     pub fn slide_potential(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => s / mu,
             Friction::SpeedDependent { a, b, c } => {
                 if c == 0.0 || b == 0.0 {
-                    s / (a + b)
-                } else if a == 0.0 {
-                    (c * s).exp_m1() / (b * c)
+                    return s / (a + b);
+                }
+                let cs = c * s;
+                // (e^(cS) - 1) / c, also where c S underflows.
+                let e_over_c = if cs < 1e-8 {
+                    s * (1.0 + 0.5 * cs)
                 } else {
-                    s / a + ((-c * s).exp() * b / (a + b) + a / (a + b)).ln() / (a * c)
+                    cs.exp_m1() / c
+                };
+                if a == 0.0 {
+                    e_over_c / b
+                } else if cs <= 700.0 {
+                    let x = (a / (a + b)) * cs.exp_m1();
+                    let ratio = if x < 1e-10 {
+                        1.0 - 0.5 * x
+                    } else {
+                        x.ln_1p() / x
+                    };
+                    ratio * e_over_c / (a + b)
+                } else {
+                    (cs + (a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p()) / a / c
                 }
             }
         }
     }
 
-    /// The inverse of [`Friction::slide_potential`]: the speed S >= 0 with G(S) = g >= 0.
+    /// The inverse of [`Friction::slide_potential`]: the speed S >= 0 with G(S) = g >= 0,
+    /// S = a g + ln(1 + b y) / c with y = (1 - e^(-a c g)) / a evaluated without dividing
+    /// by a small a.
     pub fn slide_speed(&self, g: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => mu * g,
@@ -138,7 +163,13 @@ impl Friction {
                 } else if a == 0.0 {
                     (b * c * g).ln_1p() / c
                 } else {
-                    a * g + ((b / a) * -(-a * c * g).exp_m1()).ln_1p() / c
+                    let acg = a * g * c;
+                    let f = if acg < 1e-10 {
+                        1.0 - 0.5 * acg
+                    } else {
+                        -(-acg).exp_m1() / acg
+                    };
+                    a * g + (b * c * g * f).ln_1p() / c
                 }
             }
         }
@@ -199,6 +230,57 @@ mod tests {
                 sl.slip
             );
             assert!((sl.tangential_impulse - j).abs() < 1e-12);
+        }
+    }
+
+    /// G and its inverse stay finite and tend to the a = 0 law as a -> 0 (the fuzz harness
+    /// found a = 5e-324 giving NaN), and round-trip for ordinary and extreme arguments.
+    #[test]
+    fn small_a_tends_to_the_pure_exponential_law() {
+        let zero = Friction::SpeedDependent {
+            a: 0.0,
+            b: 0.108,
+            c: 1.088,
+        };
+        for a in [5e-324, 1e-300, 1e-20, 1e-12] {
+            let f = Friction::SpeedDependent {
+                a,
+                b: 0.108,
+                c: 1.088,
+            };
+            for s in [1e-12, 0.3, 2.0, 50.0] {
+                let (g, g0) = (f.slide_potential(s), zero.slide_potential(s));
+                assert!(g.is_finite(), "a = {a:e}, S = {s}: G = {g}");
+                // 1/mu changes by at most a / (b e^(-cS)) relative over [0, S].
+                let rel = ((g - g0) / g0).abs();
+                assert!(
+                    rel <= 1e-14 + a / 0.108 * (1.088 * s).exp(),
+                    "a = {a:e}, S = {s}: {g} vs {g0}"
+                );
+                let back = f.slide_speed(g);
+                assert!(
+                    (back - s).abs() <= 1e-12 * s.max(1.0),
+                    "a = {a:e}, S = {s}: {back}"
+                );
+            }
+        }
+        // Large c S (e^(cS) overflows): finite and round-trips.
+        let f = Friction::SpeedDependent {
+            a: 0.01,
+            b: 0.1,
+            c: 100.0,
+        };
+        for s in [5.0, 8.0, 20.0] {
+            let g = f.slide_potential(s);
+            assert!(g.is_finite());
+            assert!((f.slide_speed(g) - s).abs() <= 1e-10 * s, "S = {s}");
+            // Against the textbook form, well conditioned here.
+            let (a, b, c) = (0.01f64, 0.1f64, 100.0f64);
+            let textbook = s / a + ((a + b * (-c * s).exp()) / (a + b)).ln() / (a * c);
+            assert!(
+                (g - textbook).abs() <= 1e-12 * textbook,
+                "S = {s}: {g} vs {textbook}"
+            );
         }
     }
 
