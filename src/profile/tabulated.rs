@@ -58,7 +58,15 @@ impl Tabulated {
         }
         let s: Vec<f64> = points.iter().map(|p| p.0 / span).collect();
         // phi = f * span / area, so that integral_0^1 phi ds = 1.
-        let phi: Vec<f64> = points.iter().map(|p| p.1 * span / area).collect();
+        // Divided first: f * span overflows for forces near f64::MAX (found by the fuzz
+        // harness: a force of 1.8e308 N gave phi = inf and NaN after normalisation).
+        let phi: Vec<f64> = points.iter().map(|p| p.1 / area * span).collect();
+        if let Some(k) = phi.iter().position(|x| !x.is_finite()) {
+            return Err(whole(format!(
+                "point {k} (force {} N) is too large against the table's impulse {area} N s",
+                points[k].1
+            )));
+        }
         let mut cum = Vec::with_capacity(s.len());
         let mut acc = 0.0;
         cum.push(0.0);
