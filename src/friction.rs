@@ -97,6 +97,11 @@ impl SlidingLaw {
                 } else if past {
                     let s = -f.slide_speed((k * p - g0).max(0.0));
                     ((s0 - s) / k, s)
+                } else if !g0.is_finite() {
+                    // G(S(0)) overflows: mu(S) <= b e^(-c S(0)) is below 1e-300 while
+                    // sliding, so the slip does not change (fuzz harness: c = 1.8e308, and
+                    // S(0) = 3.7e14 m/s, gave NaN).
+                    (0.0, s0)
                 } else {
                     let s = f.slide_speed((g0 - k * p).max(0.0));
                     ((s0 - s) / k, s)
@@ -145,7 +150,7 @@ impl Friction {
                     };
                     ratio * e_over_c / (a + b)
                 } else {
-                    (cs + (a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p()) / a / c
+                    s / a + ((a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p()) / a / c
                 }
             }
         }
@@ -161,18 +166,35 @@ impl Friction {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {
-                    (b * c * g).ln_1p() / c
+                    ln_1p_product(b, c, g) / c
                 } else {
                     let acg = a * g * c;
-                    let f = if acg < 1e-10 {
-                        1.0 - 0.5 * acg
+                    // ln(1 + (b/a)(1 - e^(-a c g))), without 0 * inf for huge c or tiny a.
+                    let ln_term = if acg < 1e-10 {
+                        ln_1p_product(b * (1.0 - 0.5 * acg), c, g)
                     } else {
-                        -(-acg).exp_m1() / acg
+                        let t = -(-acg).exp_m1();
+                        let z = b * t / a;
+                        if z.is_finite() {
+                            z.ln_1p()
+                        } else {
+                            (b * t).ln() - a.ln()
+                        }
                     };
-                    a * g + (b * c * g * f).ln_1p() / c
+                    a * g + ln_term / c
                 }
             }
         }
+    }
+}
+
+/// ln(1 + x y z) for x, y, z >= 0, also where the product overflows.
+fn ln_1p_product(x: f64, y: f64, z: f64) -> f64 {
+    let p = x * y * z;
+    if p.is_finite() {
+        p.ln_1p()
+    } else {
+        x.ln() + y.ln() + z.ln()
     }
 }
 
@@ -264,6 +286,29 @@ mod tests {
                 );
             }
         }
+        // Extreme c and S (fuzz harness): finite, and the law sensible.
+        let huge_c = Friction::SpeedDependent {
+            a: 9.951e-3,
+            b: 0.108,
+            c: f64::MAX,
+        };
+        let g = huge_c.slide_potential(2.0);
+        assert!(
+            (g - 2.0 / 9.951e-3).abs() <= 1e-12 * g,
+            "mu = a for S > 0: {g}"
+        );
+        assert!((huge_c.slide_speed(g) - 2.0).abs() <= 1e-12);
+        let pure = Friction::SpeedDependent {
+            a: 0.0,
+            b: 0.108,
+            c: 1.088,
+        };
+        assert_eq!(pure.slide_potential(1e15), f64::INFINITY);
+        let law = SlidingLaw::new(pure, 3.7e14, 40.0, true);
+        assert_eq!(law.stick_impulse(), None);
+        let sl = law.at(0.3);
+        assert_eq!((sl.slip, sl.tangential_impulse), (3.7e14, 0.0));
+        assert!(pure.slide_speed(1e300).is_finite());
         // Large c S (e^(cS) overflows): finite and round-trips.
         let f = Friction::SpeedDependent {
             a: 0.01,
