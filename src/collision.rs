@@ -88,20 +88,34 @@ impl Collision {
         let s0 = slip.x.hypot(slip.y);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
         let r = ball.radius;
+        // |v| without overflow of the squares (nalgebra's norm gives inf above ~1e154).
+        let norm = |v: &nalgebra::Vector3<f64>| v.x.hypot(v.y).hypot(v.z);
         let speed = u0
             .abs()
             .max(s0)
-            .max(incoming.u_cm.norm())
-            .max(r * incoming.omega_a.norm())
-            .max(r * incoming.omega_b.norm());
-        if !speed.is_finite() {
+            .max(norm(&incoming.u_cm))
+            .max(r * norm(&incoming.omega_a))
+            .max(r * norm(&incoming.omega_b));
+        let m = ball.mass;
+        // Every scale the checks and the integrator divide by must be finite and, for balls
+        // in motion, normal (the fuzz harness found r = 1e308 with m v r = inf, and r = 1e-300
+        // with v / r overflowing, both giving NaN checks).
+        let scales_ok = [speed / r, m * speed, m * speed * speed, m * speed * r]
+            .iter()
+            .all(|x| x.is_finite() && (speed == 0.0 || x.is_normal()));
+        if !(speed.is_finite() && scales_ok && impulse.is_finite()) {
             return Err(Error::invalid(
                 "incoming",
-                speed,
-                "speeds and spins whose magnitudes are finite in m/s",
+                format!("speeds and r |Omega| up to {speed:e} m/s (m = {m} kg, r = {r} m)"),
+                format!(
+                    "magnitudes whose scales v/r, m v, m v^2 and m v r are finite, normal \
+                     double-precision numbers (here speeds below {:.1e} m/s)",
+                    (f64::MAX.sqrt() / m.sqrt())
+                        .min(f64::MAX / (m * r))
+                        .min(f64::MAX * r)
+                ),
             ));
         }
-        let m = ball.mass;
         Ok(Collision {
             ball,
             contact,

@@ -124,6 +124,15 @@ impl Error {
         }
     }
 
+    /// [`Error::Io`] whose message says what was being done: `what` (e.g. "cannot read the
+    /// scene file"), then the system's cause.
+    pub fn io_doing(path: impl Into<PathBuf>, what: &str, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source: std::io::Error::new(source.kind(), format!("{what}: {source}")),
+        }
+    }
+
     /// True when the error is the user's input (exit code 2), false when the run
     /// itself failed (exit code 1).
     pub fn is_bad_input(&self) -> bool {

@@ -97,6 +97,11 @@ impl SlidingLaw {
                 } else if past {
                     let s = -f.slide_speed((k * p - g0).max(0.0));
                     ((s0 - s) / k, s)
+                } else if !g0.is_finite() {
+                    // G(S(0)) overflows: mu(S) <= b e^(-c S(0)) is below 1e-300 while
+                    // sliding, so the slip does not change (fuzz harness: c = 1.8e308, and
+                    // S(0) = 3.7e14 m/s, gave NaN).
+                    (0.0, s0)
                 } else {
                     let s = f.slide_speed((g0 - k * p).max(0.0));
                     ((s0 - s) / k, s)
@@ -113,26 +118,47 @@ impl SlidingLaw {
 
 impl Friction {
     /// G(S) = integral_0^S dS'/mu(S') (s); infinite when mu = 0.
+    ///
+    /// For mu(S) = a + b e^(-c S) with a > 0 the textbook form S/a + ln(..)/(a c) is the
+    /// difference of two terms of size S/a: it loses all digits for small a and gave NaN
+    /// for a = 5e-324 (fuzz harness). It is evaluated as
+    /// G = ln(1 + x) / (a c) = [ln(1 + x) / x] (e^(cS) - 1) / ((a + b) c),
+    /// x = a (e^(cS) - 1) / (a + b), which tends to the a = 0 law as a -> 0, and for
+    /// cS > 700 (e^(cS) overflows) as (cS + ln(a / (a + b)) + ln(1 + b e^(-cS) / a)) / (a c).
     pub fn slide_potential(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => s / mu,
             Friction::SpeedDependent { a, b, c } => {
                 if c == 0.0 || b == 0.0 {
-                    s / (a + b)
-                } else if a == 0.0 {
-                    (c * s).exp_m1() / (b * c)
+                    return s / (a + b);
+                }
+                let cs = c * s;
+                // (e^(cS) - 1) / c, also where c S underflows.
+                let e_over_c = if cs < 1e-8 {
+                    s * (1.0 + 0.5 * cs)
                 } else {
-                    // ln((a + b e^(-cS)) / (a + b)) as ln_1p of a small number: the plain
-                    // ln of a ratio near 1 loses digits for small c S (3e-10 relative at
-                    // S = 1e-6 m/s with the literature fit). The remaining cancellation
-                    // against S / a costs a factor (a + b) / a only.
-                    (c * s + (b * (-c * s).exp_m1() / (a + b)).ln_1p()) / (a * c)
+                    cs.exp_m1() / c
+                };
+                if a == 0.0 {
+                    e_over_c / b
+                } else if cs <= 700.0 {
+                    let x = (a / (a + b)) * cs.exp_m1();
+                    let ratio = if x < 1e-10 {
+                        1.0 - 0.5 * x
+                    } else {
+                        x.ln_1p() / x
+                    };
+                    ratio * e_over_c / (a + b)
+                } else {
+                    s / a + ((a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p()) / a / c
                 }
             }
         }
     }
 
-    /// The inverse of [`Friction::slide_potential`]: the speed S >= 0 with G(S) = g >= 0.
+    /// The inverse of [`Friction::slide_potential`]: the speed S >= 0 with G(S) = g >= 0,
+    /// S = a g + ln(1 + b y) / c with y = (1 - e^(-a c g)) / a evaluated without dividing
+    /// by a small a.
     pub fn slide_speed(&self, g: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => mu * g,
@@ -140,12 +166,35 @@ impl Friction {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {
-                    (b * c * g).ln_1p() / c
+                    ln_1p_product(b, c, g) / c
                 } else {
-                    a * g + ((b / a) * -(-a * c * g).exp_m1()).ln_1p() / c
+                    let acg = a * g * c;
+                    // ln(1 + (b/a)(1 - e^(-a c g))), without 0 * inf for huge c or tiny a.
+                    let ln_term = if acg < 1e-10 {
+                        ln_1p_product(b * (1.0 - 0.5 * acg), c, g)
+                    } else {
+                        let t = -(-acg).exp_m1();
+                        let z = b * t / a;
+                        if z.is_finite() {
+                            z.ln_1p()
+                        } else {
+                            (b * t).ln() - a.ln()
+                        }
+                    };
+                    a * g + ln_term / c
                 }
             }
         }
+    }
+}
+
+/// ln(1 + x y z) for x, y, z >= 0, also where the product overflows.
+fn ln_1p_product(x: f64, y: f64, z: f64) -> f64 {
+    let p = x * y * z;
+    if p.is_finite() {
+        p.ln_1p()
+    } else {
+        x.ln() + y.ln() + z.ln()
     }
 }
 
@@ -203,6 +252,80 @@ mod tests {
                 sl.slip
             );
             assert!((sl.tangential_impulse - j).abs() < 1e-12);
+        }
+    }
+
+    /// G and its inverse stay finite and tend to the a = 0 law as a -> 0 (the fuzz harness
+    /// found a = 5e-324 giving NaN), and round-trip for ordinary and extreme arguments.
+    #[test]
+    fn small_a_tends_to_the_pure_exponential_law() {
+        let zero = Friction::SpeedDependent {
+            a: 0.0,
+            b: 0.108,
+            c: 1.088,
+        };
+        for a in [5e-324, 1e-300, 1e-20, 1e-12] {
+            let f = Friction::SpeedDependent {
+                a,
+                b: 0.108,
+                c: 1.088,
+            };
+            for s in [1e-12, 0.3, 2.0, 50.0] {
+                let (g, g0) = (f.slide_potential(s), zero.slide_potential(s));
+                assert!(g.is_finite(), "a = {a:e}, S = {s}: G = {g}");
+                // 1/mu changes by at most a / (b e^(-cS)) relative over [0, S].
+                let rel = ((g - g0) / g0).abs();
+                assert!(
+                    rel <= 1e-14 + a / 0.108 * (1.088 * s).exp(),
+                    "a = {a:e}, S = {s}: {g} vs {g0}"
+                );
+                let back = f.slide_speed(g);
+                assert!(
+                    (back - s).abs() <= 1e-12 * s.max(1.0),
+                    "a = {a:e}, S = {s}: {back}"
+                );
+            }
+        }
+        // Extreme c and S (fuzz harness): finite, and the law sensible.
+        let huge_c = Friction::SpeedDependent {
+            a: 9.951e-3,
+            b: 0.108,
+            c: f64::MAX,
+        };
+        let g = huge_c.slide_potential(2.0);
+        assert!(
+            (g - 2.0 / 9.951e-3).abs() <= 1e-12 * g,
+            "mu = a for S > 0: {g}"
+        );
+        assert!((huge_c.slide_speed(g) - 2.0).abs() <= 1e-12);
+        let pure = Friction::SpeedDependent {
+            a: 0.0,
+            b: 0.108,
+            c: 1.088,
+        };
+        assert_eq!(pure.slide_potential(1e15), f64::INFINITY);
+        let law = SlidingLaw::new(pure, 3.7e14, 40.0, true);
+        assert_eq!(law.stick_impulse(), None);
+        let sl = law.at(0.3);
+        assert_eq!((sl.slip, sl.tangential_impulse), (3.7e14, 0.0));
+        assert!(pure.slide_speed(1e300).is_finite());
+        // Large c S (e^(cS) overflows): finite and round-trips.
+        let f = Friction::SpeedDependent {
+            a: 0.01,
+            b: 0.1,
+            c: 100.0,
+        };
+        for s in [5.0, 8.0, 20.0] {
+            let g = f.slide_potential(s);
+            assert!(g.is_finite());
+            assert!((f.slide_speed(g) - s).abs() <= 1e-10 * s, "S = {s}");
+            // Against the textbook form, well conditioned here.
+            let (a, b, c) = (0.01f64, 0.1f64, 100.0f64);
+            let textbook = s / a + ((a + b * (-c * s).exp()) / (a + b)).ln() / (a * c);
+            assert!(
+                (g - textbook).abs() <= 1e-12 * textbook,
+                "S = {s}: {g} vs {textbook}"
+            );
         }
     }
 

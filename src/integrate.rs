@@ -14,7 +14,8 @@
 
 use crate::collision::Collision;
 use crate::dynamics::{
-    Direction, NormalRhs, NormalState, ScaledRhs, SlidingRhs, SlidingState, NORMAL_DIM, SLIDING_DIM,
+    Direction, NormalRhs, NormalState, ScaledRhs, SlidingRhs, SlidingState, NORMAL_DIM,
+    SLIDING_DIM, SLIP_ROUND_OFF,
 };
 use crate::error::Error;
 use crate::profile::ForceProfile;
@@ -234,6 +235,13 @@ impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
     }
 }
 
+/// Relative size (against the scaled time) of a span the adaptive methods cannot step.
+const ROUND_OFF_SPAN: f64 = 1e-12;
+
+/// Largest number of rk4 steps given to one `ode_solvers::Rk4` (its output vector holds
+/// them all).
+const RK4_CHUNK: u64 = 4096;
+
 /// End of one call to the integrator.
 struct Advanced<const N: usize> {
     y: SVector<f64, N>,
@@ -262,14 +270,25 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
         return Ok(Advanced { y, h_last: h_init });
     }
     let span = b - a;
-    let rk4_steps = ((span * stepper.steps_per_unit - 1e-9).ceil()).max(1.0);
+    // The adaptive methods of ode_solvers stop with StepSizeUnderflow when a step is below
+    // 10 eps |x|. A span that short (a stick event or a sample a few ulps from a breakpoint)
+    // is taken in one classical RK4 step, exact to O(span^5) on a smooth segment; a step
+    // size carried over from such a span is not used as the first step of the next one.
+    let round_off = ROUND_OFF_SPAN * a.abs().max(b.abs());
+    let tiny = span <= round_off;
+    let method = if tiny { Method::Rk4 } else { stepper.method };
+    let rk4_steps = if tiny {
+        1.0
+    } else {
+        ((span * stepper.steps_per_unit - 1e-9).ceil()).max(1.0)
+    };
     let mut adapter = Adapter {
         rhs,
         observer,
         evals: Cell::new(0),
         last: y0,
         before_last: y0,
-        step_limit: if stepper.method == Method::Rk4 {
+        step_limit: if method == Method::Rk4 {
             rk4_steps as u64
         } else {
             u64::MAX
@@ -277,16 +296,45 @@ fn advance<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>(
         steps: 0,
         stopped: false,
     };
-    let h0 = if h_init > 0.0 { h_init.min(span) } else { 0.0 };
+    let h0 = if h_init > round_off {
+        h_init.min(span)
+    } else {
+        0.0
+    };
     let fail = |source| Error::Integration {
         method: stepper.method.name(),
         scaled_time: a,
         source,
     };
-    let st = match stepper.method {
+    let st = match method {
         Method::Rk4 => {
-            let mut s = Rk4::new(&mut adapter, a, y0, b, span / rk4_steps);
-            s.integrate().map_err(fail)?
+            // ode_solvers' Rk4 keeps every step in its output vector (80 bytes a step here):
+            // a segment of a million steps took 80 MB, steps = 1e9 would exhaust memory.
+            // Integrate in chunks of at most RK4_CHUNK steps, each with its own solver.
+            let total = rk4_steps as u64;
+            let h = span / rk4_steps;
+            let (mut done, mut x, mut y) = (0u64, a, y0);
+            while done < total && !adapter.stopped {
+                let n = (total - done).min(RK4_CHUNK);
+                let x_end = if done + n == total {
+                    b
+                } else {
+                    a + (done + n) as f64 * h
+                };
+                adapter.step_limit = adapter.steps + n;
+                let st = Rk4::new(&mut adapter, x, y, x_end, (x_end - x) / n as f64)
+                    .integrate()
+                    .map_err(fail)?;
+                stats.accepted_steps += u64::from(st.accepted_steps);
+                done += n;
+                x = x_end;
+                y = adapter.last;
+            }
+            ode_solvers::dop_shared::Stats {
+                num_eval: 0,
+                accepted_steps: 0,
+                rejected_steps: 0,
+            }
         }
         Method::Dopri5 => {
             let mut s = Dopri5::from_param(
@@ -473,6 +521,9 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     let pi = c.impulse / sc.impulse;
     let e0 = c.direction.unwrap_or_else(Vector2::zeros);
     let slip0 = c.incoming.slip(c.ball.radius) / sc.speed;
+    // The event function at or below which the slip counts as stopped: its round-off level,
+    // a relative 1e-14 of S(0) (an impulse error of at most 1e-14 p_stick).
+    let stop_floor = 1e-14 * slip0.norm();
     let sliding_rhs = |direction| SlidingRhs {
         profile,
         impulse: pi,
@@ -481,6 +532,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         inv_alpha: 1.0 / c.ball.alpha,
         e0,
         direction,
+        slip_floor: SLIP_ROUND_OFF * slip0.norm(),
     };
     let normal_rhs = NormalRhs {
         profile,
@@ -555,7 +607,9 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                             run.error = Some(non_finite("state", v));
                             return true;
                         }
-                        if rhs.event(&st) <= 0.0 {
+                        // A slip within round-off of zero has stopped: a step that lands
+                        // there (a sample time, a breakpoint) is the stop itself.
+                        if rhs.event(&st) <= stop_floor {
                             crossed = Some(st);
                             return true;
                         }
@@ -563,7 +617,11 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         run.theta_drift =
                             run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
                         run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
-                        run.theta_last = Some(slip.y.atan2(slip.x));
+                        // Near the stop the slip's direction is round-off (SLIP_ROUND_OFF):
+                        // the trace keeps the last angle measured above that floor.
+                        if slip.norm() > rhs.slip_floor {
+                            run.theta_last = Some(crate::state::slip_angle(slip));
+                        }
                         if run.steps_mode {
                             run.emit(&units, &st, None, e0);
                         }
@@ -589,8 +647,15 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         Some(cross) => {
                             let mut at =
                                 locate_stop(&rhs, &stepper, profile, &prev, &cross, &mut stats)?;
-                            let q = profile.cumulative(at.time());
-                            stick_time = Some(at.time() * profile.duration());
+                            // The event is pinned down by the impulse (CONTRACTS.md): the
+                            // fraction q of P the integrator itself delivered up to the stop
+                            // (-Delta U / pi), and the time at which the exact p(t) reaches
+                            // it. Where the method's own quadrature of f is coarse (rk4 on
+                            // a t^0.5 end) its internal time is off, not the impulse. The
+                            // trace's stop row carries that time.
+                            let q = (-at.delta_u()[0] / pi).clamp(0.0, 1.0);
+                            let t_stop = profile.time_at_cumulative(q) * profile.duration();
+                            stick_time = Some(t_stop);
                             stick_impulse = Some(q * c.impulse);
                             if c.effects.stick {
                                 sticks = true;
@@ -599,7 +664,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                             } else {
                                 phase = Phase::Frozen;
                             }
-                            run.emit(&units, &at, None, e0);
+                            run.emit(&units, &at, stick_time, e0);
                             y = at;
                         }
                     }
@@ -610,6 +675,14 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         if !v.iter().all(|x| x.is_finite()) {
                             run.error = Some(non_finite("state", v));
                             return true;
+                        }
+                        // Past the stop the signed slip S < 0 runs along -e0: theta is
+                        // the angle of slip / S, measured once the slip is clear of
+                        // round-off again (an angle kept from near the stop is noise).
+                        let slip = SlidingState(*v).slip();
+                        if slip.norm() > rhs.slip_floor {
+                            let along = if slip.dot(&e0) < 0.0 { -slip } else { slip };
+                            run.theta_last = Some(crate::state::slip_angle(along));
                         }
                         if run.steps_mode {
                             run.emit(&units, &SlidingState(*v), None, e0);
@@ -727,7 +800,7 @@ fn non_finite<const N: usize>(what: &str, v: &SVector<f64, N>) -> Error {
 /// Locates the stop of sliding inside the step from `prev` (g > 0) to `cross` (g <= 0):
 /// regula falsi (Illinois) in q = Phi(s), each trial re-integrated from `prev`.
 ///
-/// The trials integrate with friction along e0 ([`Direction::Frozen`]). Every trial is
+/// The trials integrate with friction along e0 (the round-off branch of the right-hand side). Every trial is
 /// aimed at the stop, so its last stages evaluate the right-hand side where the slip is a
 /// rounding error of S(0) and its direction slip/|slip| is noise: friction at full
 /// strength in a random direction, an error of order (step) x mu f in the located state
@@ -748,19 +821,20 @@ fn locate_stop<P: ForceProfile + ?Sized>(
     let (s_lo0, s_hi0) = (prev.time(), cross.time());
     let (mut q_lo, mut g_lo) = (profile.cumulative(s_lo0), rhs.event(prev));
     let (mut q_hi, mut g_hi) = (profile.cumulative(s_hi0), rhs.event(cross));
+    if g_hi >= 0.0 {
+        // The step ended within round-off of the stop: that is the stop.
+        return Ok(*cross);
+    }
     let g_tol = 1e-14 * (g_lo - g_hi);
     let mut best = *cross;
     let mut best_g = g_hi.abs();
     let mut side = 0i8;
     let mut no_stop = |_: &SVector<f64, SLIDING_DIM>| false;
+    // Friction along e0 in every trial, with a speed-dependent mu continued in the signed
+    // slip: an infinite round-off floor selects exactly that branch of the right-hand side.
     let frozen = SlidingRhs {
-        profile: rhs.profile,
-        impulse: rhs.impulse,
-        friction: rhs.friction,
-        speed_scale: rhs.speed_scale,
-        inv_alpha: rhs.inv_alpha,
-        e0: rhs.e0,
-        direction: Direction::Frozen,
+        slip_floor: f64::INFINITY,
+        ..*rhs
     };
     for _ in 0..100 {
         if best_g <= g_tol || q_hi - q_lo <= Q_TOL {

@@ -49,19 +49,19 @@ struct RunArgs {
     trace: Option<PathBuf>,
     /// Trace rows at t = i duration / N, i = 0..N (plus the stick event), instead of one row
     /// per accepted step.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     samples: Option<u64>,
     /// Method: closed-form, rk4, dopri5, dop853 (overrides the scene).
     #[arg(long, value_name = "M")]
     method: Option<String>,
     /// Relative tolerance (overrides the scene).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_negative_numbers = true)]
     rtol: Option<f64>,
     /// Absolute tolerance on the scaled variables (default: rtol).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_negative_numbers = true)]
     atol: Option<f64>,
     /// RK4 steps over the contact (overrides the scene).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     steps: Option<u32>,
     /// Write both balls' paths on the table (lab frame, until both roll) to this CSV
     /// (needs `[effects] table = true`).
@@ -77,7 +77,25 @@ struct RunArgs {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(
+                e.kind(),
+                ErrorKind::DisplayHelp
+                    | ErrorKind::DisplayVersion
+                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+            ) {
+                e.exit();
+            }
+            // Bad options are bad input: one line (clap's first), exit code 2.
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("error: invalid arguments");
+            eprintln!("{} (see --help)", first.trim_end());
+            return ExitCode::from(2);
+        }
+    };
     let result = match cli.command {
         Some(Command::Run(args)) => run(&args),
         None => run(&cli.run),

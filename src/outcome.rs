@@ -180,8 +180,10 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
     let stick_s = (exact.sticks && c.collides())
         .then(|| profile.time_at_cumulative(exact.stick_impulse.unwrap_or(0.0) / c.impulse));
     let theta = c.theta();
-    let row = |s: f64, t: f64| {
-        let p = c.impulse * profile.cumulative(s);
+    // The stop row carries p_stick itself (p(t) at the inverted time can fall an ulp short
+    // of it, which would leave a round-off slip at the stop).
+    let row = |s: f64, t: f64, p: Option<f64>| {
+        let p = p.unwrap_or_else(|| c.impulse * profile.cumulative(s));
         let part = exact.at_impulse(p);
         TraceRow {
             t,
@@ -199,10 +201,10 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
         let s = i as f64 / n as f64;
         if let Some(ss) = stick_s {
             if ss > last && ss < s {
-                sink.row(&row(ss, ss * tau))?;
+                sink.row(&row(ss, ss * tau, exact.stick_impulse))?;
             }
         }
-        sink.row(&row(s, i as f64 * tau / n as f64))?;
+        sink.row(&row(s, i as f64 * tau / n as f64, None))?;
         last = s;
     }
     Ok(())

@@ -42,7 +42,13 @@ impl AtomicFile {
             name.to_string_lossy(),
             std::process::id()
         ));
-        let file = File::create(&temp).map_err(|e| Error::io(target, e))?;
+        let file = File::create(&temp).map_err(|e| {
+            Error::io_doing(
+                target,
+                "cannot write an output file here (give a file in an existing, writable directory)",
+                e,
+            )
+        })?;
         Ok(AtomicFile {
             target: target.to_path_buf(),
             temp,

@@ -7,6 +7,15 @@ use serde::{Deserialize, Serialize};
 /// radial mass distribution puts more of the mass farther out.
 pub const ALPHA_MAX: f64 = 2.0 / 3.0;
 
+/// Smallest `alpha` accepted: the spin equations scale with 1/alpha, and alpha = 5e-324 (a
+/// subnormal the fuzz harness tried) made 1/alpha infinite and the closed form NaN.
+pub const ALPHA_MIN: f64 = 1e-12;
+
+/// Largest friction coefficient accepted (constant mu, and a, b of mu(S)): far beyond any
+/// physical value, while the time stepping's intermediate slips and heat stay finite (the
+/// fuzz harness found mu = 1e300 overflowing the rk4 state to -inf).
+pub const MU_MAX: f64 = 1e6;
+
 /// Moment-of-inertia factor of a solid uniform ball, I = (2/5) m r^2.
 pub const ALPHA_SOLID: f64 = 0.4;
 
@@ -25,7 +34,7 @@ impl Ball {
     /// A validated ball.
     ///
     /// `mass` (kg) and `radius` (m) must be finite and positive; `alpha` in
-    /// (0, 2/3] (0.4 for a solid ball, [`ALPHA_SOLID`]).
+    /// [1e-12, 2/3] (0.4 for a solid ball, [`ALPHA_SOLID`]; see [`ALPHA_MIN`]).
     ///
     /// ```
     /// let ball = billiard_contact::Ball::new(0.17, 0.028575, 0.4).unwrap();
@@ -41,6 +50,31 @@ impl Ball {
                 "balls.alpha",
                 alpha,
                 "in (0, 2/3]: I = alpha m r^2, and a sphere cannot exceed the thin shell's 2/3",
+            ));
+        }
+        if alpha < ALPHA_MIN {
+            return Err(Error::invalid(
+                "balls.alpha",
+                alpha,
+                format!(
+                    "at least {ALPHA_MIN:e}: the spins change like 1/alpha, and a smaller \
+                     alpha (all the mass at the centre) overflows them"
+                ),
+            ));
+        }
+        // The equations divide by m and by alpha m r (eqs 25-33): both, and I, must be
+        // normal numbers (the fuzz harness found mass = 5e-324 and radius = 1e308 giving NaN).
+        let inertia = alpha * mass * radius * radius;
+        if !(inertia.is_normal()
+            && (1.0 / mass).is_normal()
+            && (1.0 / (alpha * mass * radius)).is_normal()
+            && (alpha * mass * radius * 1e6).is_finite())
+        {
+            return Err(Error::invalid(
+                "balls",
+                format!("mass = {mass} kg, radius = {radius} m, alpha = {alpha}"),
+                "values whose m, 1/m, I = alpha m r^2 and 1/(alpha m r) are normal double-precision \
+                 numbers (SI units)",
             ));
         }
         Ok(Ball {
@@ -80,16 +114,24 @@ pub enum Friction {
 }
 
 impl Friction {
-    /// Constant Coulomb friction, validated (finite, >= 0).
+    /// Constant Coulomb friction, validated (finite, in [0, 1e6]).
     pub fn constant(mu: f64) -> Result<Self, Error> {
         finite("contact.mu", mu)?;
         if mu < 0.0 {
             return Err(Error::invalid("contact.mu", mu, "mu >= 0"));
         }
+        if mu > MU_MAX {
+            return Err(Error::invalid(
+                "contact.mu",
+                mu,
+                format!("mu <= {MU_MAX:e} (ball-ball friction is below 1)"),
+            ));
+        }
         Ok(Friction::Constant(mu))
     }
 
-    /// Speed-dependent friction mu(S) = a + b exp(-c S), validated (all finite, >= 0).
+    /// Speed-dependent friction mu(S) = a + b exp(-c S), validated (all finite, >= 0; a
+    /// and b <= 1e6).
     pub fn speed_dependent(a: f64, b: f64, c: f64) -> Result<Self, Error> {
         for (name, v) in [
             ("contact.mu.a", a),
@@ -99,6 +141,11 @@ impl Friction {
             finite(name, v)?;
             if v < 0.0 {
                 return Err(Error::invalid(name, v, ">= 0"));
+            }
+        }
+        for (name, v) in [("contact.mu.a", a), ("contact.mu.b", b)] {
+            if v > MU_MAX {
+                return Err(Error::invalid(name, v, format!("<= {MU_MAX:e}")));
             }
         }
         Ok(Friction::SpeedDependent { a, b, c })

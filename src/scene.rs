@@ -172,7 +172,8 @@ struct RawSolver {
 impl Scene {
     /// Reads and validates a scene file; relative profile files resolve beside it.
     pub fn load(path: &Path) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::io_doing(path, "cannot read the scene file", e))?;
         let base = path.parent().unwrap_or(Path::new("."));
         Scene::parse(&text, base, Some(path))
     }
@@ -188,10 +189,11 @@ impl Scene {
         let shown = source
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from("<built-in scene>"));
-        let raw: RawScene = toml::from_str(text).map_err(|e| Error::Scene {
-            path: shown.clone(),
-            message: explain_toml_error(&e),
-        })?;
+        let raw: RawScene = serde_path_to_error::deserialize(toml::Deserializer::new(text))
+            .map_err(|e| Error::Scene {
+                path: shown.clone(),
+                message: explain_toml_error(text, &e),
+            })?;
         let ball = Ball::new(
             raw.balls.mass,
             raw.balls.radius,
@@ -365,11 +367,15 @@ fn parse_mu(v: &toml::Value) -> Result<Friction, Error> {
                 ));
             }
             for key in t.keys() {
-                if !["model", "a", "b", "c"].contains(&key.as_str()) {
+                const KEYS: [&str; 4] = ["model", "a", "b", "c"];
+                if !KEYS.contains(&key.as_str()) {
+                    let hint = closest(key, &KEYS)
+                        .map(|k| format!(" (did you mean `{k}`?)"))
+                        .unwrap_or_default();
                     return Err(Error::invalid(
                         format!("contact.mu.{key}"),
                         t[key].to_string(),
-                        "no such key: the speed-dependent model takes a, b, c",
+                        format!("no such key: the speed-dependent model takes a, b, c{hint}"),
                     ));
                 }
             }
@@ -393,24 +399,78 @@ fn parse_mu(v: &toml::Value) -> Result<Friction, Error> {
     }
 }
 
-/// The TOML error with a suggestion for a misspelt key.
-fn explain_toml_error(e: &toml::de::Error) -> String {
-    let msg = e.to_string();
-    let plain = e.message();
-    if let Some(rest) = plain.strip_prefix("unknown field `") {
-        if let Some((field, expected)) = rest.split_once('`') {
-            let candidates: Vec<&str> = expected
-                .split('`')
-                .enumerate()
-                .filter(|(i, _)| i % 2 == 1)
-                .map(|(_, s)| s)
-                .collect();
-            if let Some(best) = closest(field, &candidates) {
-                return format!("{} (did you mean `{best}`?)", msg.trim_end());
+/// The TOML error in one line: where (line, column), which field (its dotted path, as in
+/// the scene file), what is wrong and what is accepted, with a suggestion for a misspelt
+/// key or name at any depth.
+fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error>) -> String {
+    let inner = e.inner();
+    let plain = inner
+        .message()
+        .trim()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let at = inner
+        .span()
+        .map(|span| {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!("line {line}, column {col}: ")
+        })
+        .unwrap_or_default();
+    let path = e.path().to_string();
+    let table = if path.is_empty() || path == "." {
+        None
+    } else {
+        Some(path)
+    };
+    // The path of an unknown key already ends with it.
+    let join = |key: &str| match &table {
+        Some(t) if t == key || t.ends_with(&format!(".{key}")) => t.clone(),
+        Some(t) => format!("{t}.{key}"),
+        None => key.to_string(),
+    };
+    // unknown field `x`, expected one of `a`, `b` / unknown variant `x`, expected ...
+    for what in ["field", "variant"] {
+        if let Some(rest) = plain.strip_prefix(&format!("unknown {what} `")) {
+            if let Some((name, expected)) = rest.split_once('`') {
+                let candidates: Vec<&str> = expected
+                    .split('`')
+                    .enumerate()
+                    .filter(|(i, _)| i % 2 == 1)
+                    .map(|(_, s)| s)
+                    .collect();
+                let hint = closest(name, &candidates)
+                    .map(|best| format!(" (did you mean `{best}`?)"))
+                    .unwrap_or_default();
+                let expected = expected.trim_start_matches(',').trim();
+                return if what == "field" {
+                    format!("{at}{}: unknown key, {expected}{hint}", join(name))
+                } else {
+                    let field = table.clone().unwrap_or_else(|| "value".into());
+                    format!("{at}{field} = \"{name}\": unknown name, {expected}{hint}")
+                };
             }
         }
     }
-    msg.trim_end().to_string()
+    if let Some(rest) = plain.strip_prefix("missing field `") {
+        if let Some((name, _)) = rest.split_once('`') {
+            return match &table {
+                None => format!("missing section [{name}]: a scene needs [balls], [contact], [contact.profile] and [incoming.cm] or [incoming.lab]"),
+                Some(_) => format!("{at}{}: missing (required)", join(name)),
+            };
+        }
+    }
+    let plain = plain
+        .replace("expected f64", "expected a number")
+        .replace("expected u32", "expected a whole number in [0, 4294967295]");
+    match &table {
+        Some(t) => format!("{at}{t}: {plain}"),
+        None => format!("{at}{plain}"),
+    }
 }
 
 /// The candidate within edit distance 2 (or a third of the length) of `word`.

@@ -57,7 +57,7 @@ impl CmState {
         if s.x == 0.0 && s.y == 0.0 {
             None
         } else {
-            Some(s.y.atan2(s.x))
+            Some(slip_angle(s))
         }
     }
 
@@ -83,6 +83,20 @@ impl CmState {
         self.u_cm.iter().all(|x| x.is_finite())
             && self.omega_a.iter().all(|x| x.is_finite())
             && self.omega_b.iter().all(|x| x.is_finite())
+    }
+}
+
+/// The angle of a slip vector (S cos theta, S sin theta) in (-pi, pi] (CONTRACTS.md).
+///
+/// `atan2` returns -pi for a slip along -y whose second component is -0.0 or a negative
+/// round-off remainder (below half an ulp of pi); both are the direction +pi, and the
+/// contract's interval is open at -pi.
+pub fn slip_angle(slip: nalgebra::Vector2<f64>) -> f64 {
+    let t = slip.y.atan2(slip.x);
+    if t == -std::f64::consts::PI {
+        std::f64::consts::PI
+    } else {
+        t
     }
 }
 

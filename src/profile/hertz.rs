@@ -109,6 +109,11 @@ impl ForceProfile for Hertz {
         self.duration
     }
 
+    /// The force grows like t^1.5 from both ends: steps graded toward them.
+    fn breakpoints(&self) -> &[f64] {
+        &super::GRADED_ENDS
+    }
+
     fn shape(&self, s: f64) -> f64 {
         if !(0.0..=1.0).contains(&s) {
             return 0.0;

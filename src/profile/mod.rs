@@ -30,7 +30,7 @@ pub use half_sine::HalfSine;
 pub use hertz::Hertz;
 pub use rectangle::Rectangle;
 pub use sine_power::SinePower;
-pub use tabulated::Tabulated;
+pub use tabulated::{parse_table, Tabulated};
 
 use crate::error::Error;
 use crate::params::positive;
@@ -56,8 +56,9 @@ pub trait ForceProfile {
         invert_cumulative(self, q)
     }
 
-    /// Scaled times in (0, 1), sorted, where phi is not smooth (kinks, jumps): the
-    /// integrators step exactly to them.
+    /// Scaled times in (0, 1), sorted, where phi is not smooth (kinks, jumps), or that
+    /// grade the steps toward an end where phi ~ s^n with fractional n ([`GRADED_ENDS`]):
+    /// the integrators step exactly to them.
     fn breakpoints(&self) -> &[f64] {
         &[]
     }
@@ -72,6 +73,38 @@ pub trait ForceProfile {
         impulse * self.cumulative(t / self.duration())
     }
 }
+
+/// Scaled times grading the steps toward both ends of a pulse whose force behaves like
+/// s^n there with n not an integer (hertz: n = 1.5; sine-power with a fractional
+/// exponent): 2^-10 .. 2^-2 and 1 - 2^-2 .. 1 - 2^-10, so that no step is longer than
+/// twice its distance from the end it approaches.
+///
+/// The force is analytic inside the pulse but its expansion about a point converges only
+/// up to the nearer end. A step that reaches from the middle of the pulse to near the end
+/// leaves the region where the embedded error estimates hold: dop853 at rtol 1e-10 took a
+/// step from s = 0.567 to 0.969 of a hertz pulse with a true error of 5e-6 (found by the
+/// property tests). Used as breakpoints, these points cost a few steps and keep the error
+/// at the tolerance's level.
+pub const GRADED_ENDS: [f64; 18] = [
+    1.0 / 1024.0,
+    1.0 / 512.0,
+    1.0 / 256.0,
+    1.0 / 128.0,
+    1.0 / 64.0,
+    1.0 / 32.0,
+    1.0 / 16.0,
+    1.0 / 8.0,
+    1.0 / 4.0,
+    1.0 - 1.0 / 4.0,
+    1.0 - 1.0 / 8.0,
+    1.0 - 1.0 / 16.0,
+    1.0 - 1.0 / 32.0,
+    1.0 - 1.0 / 64.0,
+    1.0 - 1.0 / 128.0,
+    1.0 - 1.0 / 256.0,
+    1.0 - 1.0 / 512.0,
+    1.0 - 1.0 / 1024.0,
+];
 
 /// Safeguarded Newton iteration (bisection fallback) for Phi(s) = q on [0, 1].
 pub fn invert_cumulative<P: ForceProfile + ?Sized>(profile: &P, q: f64) -> f64 {

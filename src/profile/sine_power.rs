@@ -68,6 +68,16 @@ impl ForceProfile for SinePower {
         self.duration
     }
 
+    /// A fractional exponent n makes the force grow like t^n from the ends: steps graded
+    /// toward them. An integer exponent gives an analytic pulse: none.
+    fn breakpoints(&self) -> &[f64] {
+        if self.exponent.fract() == 0.0 {
+            &[]
+        } else {
+            &super::GRADED_ENDS
+        }
+    }
+
     #[inline]
     fn shape(&self, s: f64) -> f64 {
         if !(0.0..=1.0).contains(&s) {

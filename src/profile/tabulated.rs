@@ -40,6 +40,13 @@ impl Tabulated {
             )));
         }
         let span = points[points.len() - 1].0;
+        if let Some(k) = unresolved_step(points) {
+            return Err(whole(format!(
+                "point {k} (time {} s) is within {MIN_TIME_STEP:e} of the span ({span} s) of the \
+                 previous time: the time axis cannot resolve it",
+                points[k].0
+            )));
+        }
         let area: f64 = points
             .windows(2)
             .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1 + w[1].1))
@@ -51,7 +58,15 @@ impl Tabulated {
         }
         let s: Vec<f64> = points.iter().map(|p| p.0 / span).collect();
         // phi = f * span / area, so that integral_0^1 phi ds = 1.
-        let phi: Vec<f64> = points.iter().map(|p| p.1 * span / area).collect();
+        // Divided first: f * span overflows for forces near f64::MAX (found by the fuzz
+        // harness: a force of 1.8e308 N gave phi = inf and NaN after normalisation).
+        let phi: Vec<f64> = points.iter().map(|p| p.1 / area * span).collect();
+        if let Some(k) = phi.iter().position(|x| !x.is_finite()) {
+            return Err(whole(format!(
+                "point {k} (force {} N) is too large against the table's impulse {area} N s",
+                points[k].1
+            )));
+        }
         let mut cum = Vec::with_capacity(s.len());
         let mut acc = 0.0;
         cum.push(0.0);
@@ -78,7 +93,13 @@ impl Tabulated {
 
     /// Reads a CSV with the header `time,force` (seconds, newtons). Errors name the line.
     pub fn from_csv_file(path: &Path, duration: Option<f64>) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Error::io_doing(
+                path,
+                "cannot read the profile table (contact.profile.file, relative to the scene)",
+                e,
+            )
+        })?;
         let points = parse_table(&text, path)?;
         Tabulated::new(&points, duration, path)
     }
@@ -98,6 +119,18 @@ impl Tabulated {
         let k = self.s.partition_point(|&x| x <= s);
         k.saturating_sub(1).min(self.s.len() - 2)
     }
+}
+
+/// Smallest step between consecutive times, relative to the table's span. Closer knots
+/// (the fuzz harness tried times 0, 2e-5, .., 1e300) put breakpoints below the integrators'
+/// resolution and made the adaptive methods stop with a step-size underflow.
+pub const MIN_TIME_STEP: f64 = 1e-9;
+
+/// The index of the first point closer than [`MIN_TIME_STEP`] of the span to its
+/// predecessor.
+fn unresolved_step(points: &[(f64, f64)]) -> Option<usize> {
+    let span = points.last()?.0;
+    (1..points.len()).find(|&k| points[k].0 - points[k - 1].0 < MIN_TIME_STEP * span)
 }
 
 /// Parses `time,force` CSV text into points, validating every line.
@@ -135,6 +168,7 @@ pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
         }
     }
     let mut points: Vec<(f64, f64)> = Vec::new();
+    let mut line_of: Vec<u64> = Vec::new();
     for (i, line) in lines {
         let n = i as u64 + 1;
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
@@ -177,6 +211,19 @@ pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
             _ => {}
         }
         points.push((t, f));
+        line_of.push(n);
+    }
+    if let Some(k) = unresolved_step(&points) {
+        let span = points[points.len() - 1].0;
+        return Err(err(
+            line_of[k],
+            format!(
+                "time {} s is within {MIN_TIME_STEP:e} of the table's span ({span} s) of the \
+                 previous time {} s: the time axis cannot resolve it",
+                points[k].0,
+                points[k - 1].0
+            ),
+        ));
     }
     Ok(points)
 }

@@ -1,0 +1,87 @@
+//! The fuzz harness (examples/fuzz_inputs.rs) on a few thousand inputs, so that it keeps
+//! building and its guarantees hold in `cargo test`; and the inputs it found failing
+//! (fuzz/regressions/), which must now be refused as bad input in one line. The full run
+//! (1,000,000 inputs) is a documented command, not part of `cargo test`.
+
+#[path = "../examples/fuzz_inputs.rs"]
+#[allow(dead_code)]
+mod fuzz;
+
+use billiard_contact::integrate::{Method, SolverSettings};
+use billiard_contact::profile::{parse_table, Profile, Tabulated};
+use billiard_contact::report::Report;
+use billiard_contact::runner::run_scene;
+use billiard_contact::scene::Scene;
+use std::path::Path;
+
+#[test]
+fn a_few_thousand_inputs_without_panic_nan_or_hang() {
+    let sum = fuzz::run(3000, 12345, None, false);
+    assert_eq!(sum.inputs, 3000);
+    assert!(sum.scenes_parsed > 100 && sum.tables_parsed > 50, "{sum:?}");
+    assert_eq!(sum.panics, 0, "{:?}", sum.findings);
+    assert_eq!(sum.non_finite, 0, "{:?}", sum.findings);
+    assert_eq!(sum.failed_runs, 0, "{:?}", sum.findings);
+    assert!(sum.findings.is_empty(), "{:?}", sum.findings);
+}
+
+#[test]
+fn regressions_are_refused_in_one_line() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/refused");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let err = match path.extension().and_then(|e| e.to_str()) {
+            Some("toml") => Scene::parse(&text, &dir, Some(&path)).unwrap_err(),
+            Some("csv") => parse_table(&text, &path)
+                .and_then(|pts| Tabulated::new(&pts, None, &path))
+                .unwrap_err(),
+            _ => continue,
+        };
+        seen += 1;
+        assert!(err.is_bad_input(), "{}: {err}", path.display());
+        assert!(!err.to_string().contains('\n'), "{}: {err}", path.display());
+    }
+    assert!(seen >= 9, "{seen} regression inputs");
+}
+
+#[test]
+fn regressions_run_with_finite_output() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/run");
+    let stun = "[balls]\nmass = 0.17\nradius = 0.028575\n[contact]\nmu = 0.2\n[contact.profile]\n\
+                shape = \"rectangle\"\nduration = 3e-4\n[incoming.cm]\nu = [1.0, 0.01, 0.0]\n";
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let scene = match path.extension().and_then(|e| e.to_str()) {
+            Some("toml") => Scene::parse(&text, &dir, Some(&path)).unwrap(),
+            Some("csv") => {
+                let pts = parse_table(&text, &path).unwrap();
+                let mut scene = Scene::parse(stun, &dir, None).unwrap();
+                scene.profile = Profile::Tabulated(Tabulated::new(&pts, None, &path).unwrap());
+                scene
+            }
+            _ => continue,
+        };
+        seen += 1;
+        for method in [Method::ClosedForm, Method::Dop853] {
+            let settings = SolverSettings {
+                method,
+                ..scene.solver
+            };
+            let out = run_scene(&scene, &settings, None)
+                .unwrap_or_else(|e| panic!("{} ({method}): {e}", path.display()));
+            Report::new(&scene, &out)
+                .to_json()
+                .unwrap_or_else(|e| panic!("{} ({method}): {e}", path.display()));
+            assert!(
+                out.outcome.check.closed_form_error <= 1e-6,
+                "{} ({method})",
+                path.display()
+            );
+        }
+    }
+    assert!(seen >= 4, "{seen} regression inputs");
+}
