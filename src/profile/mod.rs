@@ -30,7 +30,7 @@ pub use half_sine::HalfSine;
 pub use hertz::Hertz;
 pub use rectangle::Rectangle;
 pub use sine_power::SinePower;
-pub use tabulated::Tabulated;
+pub use tabulated::{parse_table, Tabulated};
 
 use crate::error::Error;
 use crate::params::positive;
