@@ -279,7 +279,8 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 /// let out = resolve_slice(&setup, &[BatchInput::cm(head_on)]);
 /// let o = out[0].as_ref().unwrap();
 /// assert_eq!(o.out.u_cm.x, -1.0); // eq 24, P = 2 m U(0)
-/// assert!(!o.sticks && o.theta.is_none());
+/// // S(0) = 0: the surfaces never slide (CONTRACTS.md: sticks at t = 0, theta undefined).
+/// assert!(o.sticks && o.theta.is_none() && o.stick_time == Some(0.0));
 /// ```
 pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<BatchOutput, Error>> {
     inputs.par_iter().map(|i| resolve(setup, i)).collect()

@@ -77,6 +77,7 @@ impl ClosedForm {
     /// assert!((out.u_cm.y - (v / 2.0 - mu * u * v / s)).abs() < 1e-15); // eq 67
     /// assert!((out.u_cm.z - mu * u * u / s).abs() < 1e-15);            // eq 68
     /// ```
+    #[inline]
     pub fn new(c: &Collision) -> Self {
         let ball = c.ball;
         let m = ball.mass;
@@ -124,6 +125,7 @@ impl ClosedForm {
     }
 
     /// The exact state after normal impulse `p` (N s), 0 <= p <= P.
+    #[inline]
     pub fn at_impulse(&self, p: f64) -> Partial {
         let sliding = match self.law {
             Some(l) => l.at(p),

@@ -32,6 +32,7 @@
 
 use crate::params::Friction;
 use crate::profile::ForceProfile;
+use crate::state::planar_length;
 use nalgebra::{SVector, Vector2};
 
 /// Number of components of the sliding state.
@@ -175,13 +176,14 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
         let st = SlidingState(*y);
         let n = self.impulse * self.profile.shape(clamp_time(st.time()));
         let slip = st.slip();
-        let speed = slip.x.hypot(slip.y);
+        let speed = planar_length(slip);
         let e = match self.direction {
             Direction::CurrentSlip if speed > 0.0 => {
+                let inv = 1.0 / speed;
                 if slip.dot(&self.e0) < 0.0 {
-                    -slip / speed
+                    -slip * inv
                 } else {
-                    slip / speed
+                    slip * inv
                 }
             }
             _ => self.e0,

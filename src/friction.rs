@@ -49,6 +49,7 @@ pub struct SlidingLaw {
 impl SlidingLaw {
     /// The law for friction `friction`, initial sliding speed `s0` >= 0 (m/s), slip rate
     /// `k` = 2 (1 + 1/alpha) / m (1/kg), and the `stick` effect.
+    #[inline]
     pub fn new(friction: Friction, s0: f64, k: f64, stick: bool) -> Self {
         let p_stick = if s0 == 0.0 {
             0.0
@@ -71,6 +72,7 @@ impl SlidingLaw {
     }
 
     /// Sliding after normal impulse `p` (N s).
+    #[inline]
     pub fn at(&self, p: f64) -> Sliding {
         let (s0, k) = (self.s0, self.k);
         if s0 == 0.0 {
@@ -113,6 +115,7 @@ impl SlidingLaw {
 
 impl Friction {
     /// G(S) = integral_0^S dS'/mu(S') (s); infinite when mu = 0.
+    #[inline]
     pub fn slide_potential(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => s / mu,

@@ -561,7 +561,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         run.theta_drift =
                             run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
                         run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
-                        run.theta_last = Some(slip.y.atan2(slip.x));
+                        run.theta_last = Some(crate::state::slip_angle(slip));
                         if run.steps_mode {
                             run.emit(&units, &st, None, e0);
                         }

@@ -47,8 +47,7 @@ impl CmState {
 
     /// Sliding speed S >= 0 (m/s), eqs 5-6.
     pub fn sliding_speed(&self, radius: f64) -> f64 {
-        let s = self.slip(radius);
-        s.x.hypot(s.y)
+        planar_length(self.slip(radius))
     }
 
     /// Sliding direction theta (rad, in (-pi, pi]) of eqs 5-6; `None` when S = 0.
@@ -57,7 +56,7 @@ impl CmState {
         if s.x == 0.0 && s.y == 0.0 {
             None
         } else {
-            Some(s.y.atan2(s.x))
+            Some(slip_angle(s))
         }
     }
 
@@ -84,6 +83,27 @@ impl CmState {
             && self.omega_a.iter().all(|x| x.is_finite())
             && self.omega_b.iter().all(|x| x.is_finite())
     }
+}
+
+/// |v| of a plane vector (the slip): sqrt(x^2 + y^2) where the squares can neither
+/// overflow nor lose precision to underflow, `hypot` (slower by about 20 ns) elsewhere, so
+/// that a tiny S(0) keeps its full relative precision (CONTRACTS.md: no threshold on S(0)).
+#[inline]
+pub fn planar_length(v: Vector2<f64>) -> f64 {
+    let m = v.x.abs().max(v.y.abs());
+    if (1e-150..=1e150).contains(&m) {
+        (v.x * v.x + v.y * v.y).sqrt()
+    } else {
+        v.x.hypot(v.y)
+    }
+}
+
+/// The angle theta (rad, in (-pi, pi]) of a plane vector (the slip), eqs 5-6: atan2 of the
+/// portable `libm` port (FreeBSD msun, error below 1 ulp), about 60 instructions cheaper
+/// than the system's correctly rounded one, which matters to the closed form in batches.
+#[inline]
+pub fn slip_angle(v: Vector2<f64>) -> f64 {
+    libm::atan2(v.y, v.x)
 }
 
 /// One ball in the lab frame.
