@@ -172,7 +172,7 @@ pub struct StudyOptions {
 
 impl Default for StudyOptions {
     /// All five profiles; rtol = 1e-3, 1e-4, ..., 1e-13; rk4 with 4, 8, ..., 8192 steps;
-    /// 9 samples of at least 200 microseconds each; 0.25 s per setting; the sticking
+    /// 9 samples of at least 1 ms each; 0.25 s per setting; the sticking
     /// companion scene on.
     fn default() -> Self {
         StudyOptions {
@@ -180,7 +180,7 @@ impl Default for StudyOptions {
             rtols: (3..=13).map(|k| 10f64.powi(-k)).collect(),
             rk4_steps: (2..=13).map(|k| 1u32 << k).collect(),
             repeats: 9,
-            sample_time: Duration::from_micros(200),
+            sample_time: Duration::from_millis(1),
             setting_budget: Duration::from_millis(250),
             sticking_scene: true,
         }
