@@ -548,55 +548,70 @@ pub struct BatchSummary {
     pub max_rows_in_memory: usize,
 }
 
-/// Writes one output row; every float must be finite.
-fn write_row<W: Write>(
-    w: &mut csv::Writer<W>,
+/// Formats one output row (with its newline) into `line_out`; every float must be finite.
+/// Rows are formatted by the workers, so the single writer only copies bytes.
+fn format_row(
     line: u64,
     id: Option<&str>,
     o: &BatchOutput,
     method: Method,
-    cells: &mut Vec<String>,
+    line_out: &mut String,
 ) -> Result<(), String> {
-    fn num(name: &str, v: f64) -> Result<String, String> {
-        if v.is_finite() {
-            Ok(format!("{v:?}"))
-        } else {
-            Err(format!("non-finite result: {name} = {v}"))
+    use std::fmt::Write as _;
+    fn num(s: &mut String, name: &str, v: f64) -> Result<(), String> {
+        if !v.is_finite() {
+            return Err(format!("non-finite result: {name} = {v}"));
+        }
+        let _ = write!(s, ",{v:?}");
+        Ok(())
+    }
+    fn opt(s: &mut String, name: &str, v: Option<f64>) -> Result<(), String> {
+        match v {
+            Some(x) => num(s, name, x),
+            None => {
+                s.push(',');
+                Ok(())
+            }
         }
     }
-    fn opt(name: &str, v: Option<f64>) -> Result<String, String> {
-        v.map(|x| num(name, x)).unwrap_or(Ok(String::new()))
-    }
-    cells.clear();
-    cells.push(line.to_string());
+    let s = line_out;
+    s.clear();
+    let _ = write!(s, "{line}");
     if let Some(id) = id {
-        cells.push(id.to_string());
+        s.push(',');
+        if id.contains([',', '"', '\n', '\r']) {
+            s.push('"');
+            s.push_str(&id.replace('"', "\"\""));
+            s.push('"');
+        } else {
+            s.push_str(id);
+        }
     }
-    cells.push(o.collision.to_string());
-    cells.push(num("impulse", o.impulse)?);
-    cells.push(num("s0", o.s0)?);
-    cells.push(opt("theta", o.theta)?);
-    cells.push(o.sticks.to_string());
-    cells.push(opt("stick_time", o.stick_time)?);
-    cells.push(opt("stick_impulse", o.stick_impulse)?);
-    let s = &o.out;
+    let _ = write!(s, ",{}", o.collision);
+    num(s, "impulse", o.impulse)?;
+    num(s, "s0", o.s0)?;
+    opt(s, "theta", o.theta)?;
+    let _ = write!(s, ",{}", o.sticks);
+    opt(s, "stick_time", o.stick_time)?;
+    opt(s, "stick_impulse", o.stick_impulse)?;
+    let st = &o.out;
     let scalars = [
         o.tangential_impulse,
         o.s_out,
         o.heat,
         o.heat_sliding,
-        s.u_cm.x,
-        s.u_cm.y,
-        s.u_cm.z,
-        s.omega_a.x,
-        s.omega_a.y,
-        s.omega_a.z,
-        s.omega_b.x,
-        s.omega_b.y,
-        s.omega_b.z,
+        st.u_cm.x,
+        st.u_cm.y,
+        st.u_cm.z,
+        st.omega_a.x,
+        st.omega_a.y,
+        st.omega_a.z,
+        st.omega_b.x,
+        st.omega_b.y,
+        st.omega_b.z,
     ];
     for (name, v) in OUTPUT_COLUMNS[7..].iter().zip(scalars) {
-        cells.push(num(name, v)?);
+        num(s, name, v)?;
     }
     if let Some((a, b, throw)) = &o.lab {
         let v = [a.velocity, a.spin, b.velocity, b.spin];
@@ -604,15 +619,16 @@ fn write_row<W: Write>(
             .iter()
             .zip(v.iter().flat_map(|v| v.iter()))
         {
-            cells.push(num(name, *x)?);
+            num(s, name, *x)?;
         }
-        cells.push(opt("throw_angle_deg", *throw)?);
+        opt(s, "throw_angle_deg", *throw)?;
     }
     if method != Method::ClosedForm {
-        cells.push(num("closed_form_error", o.closed_form_error)?);
-        cells.push(o.rhs_evaluations.to_string());
+        num(s, "closed_form_error", o.closed_form_error)?;
+        let _ = write!(s, ",{}", o.rhs_evaluations);
     }
-    w.write_record(cells.iter()).map_err(|e| e.to_string())
+    s.push('\n');
+    Ok(())
 }
 
 /// Streams a batch: reads CSV rows from `input` (`input_name` in errors), resolves them
@@ -641,15 +657,16 @@ pub fn run_csv<R: Read, W: Write>(
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
     let method = setup.settings.method;
-    let mut w = csv::Writer::from_writer(output);
-    w.write_record(cols.output_header(method))?;
+    let mut w = output;
+    let io = |e: std::io::Error| Error::io("batch output", e);
+    w.write_all(cols.output_header(method).join(",").as_bytes())
+        .and_then(|_| w.write_all(b"\n"))
+        .map_err(io)?;
     let mut summary = BatchSummary::default();
     // Reused buffers: their size is bounded by the chunk, not by the file.
     let mut records: Vec<csv::StringRecord> = Vec::with_capacity(chunk_rows);
     let mut lines: Vec<u64> = Vec::with_capacity(chunk_rows);
-    let mut results: Vec<Result<(BatchInput, BatchOutput), String>> =
-        Vec::with_capacity(chunk_rows);
-    let mut buf = Vec::new();
+    let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(chunk_rows);
     loop {
         let mut n = 0;
         while n < chunk_rows {
@@ -674,28 +691,28 @@ pub fn run_csv<R: Read, W: Write>(
         results.clear();
         records[..n]
             .par_iter()
-            .map(|rec| {
+            .zip(lines[..n].par_iter())
+            .map(|(rec, &line)| {
                 let input = cols.parse(rec)?;
                 let out = resolve(setup, &input).map_err(|e| e.to_string())?;
-                Ok((input, out))
+                let id = cols.id.and_then(|i| rec.get(i));
+                let mut text = String::with_capacity(400);
+                format_row(line, id, &out, method, &mut text)?;
+                Ok((text, out.collision, out.sticks))
             })
             .collect_into_vec(&mut results);
         for (k, r) in results.iter().enumerate() {
-            let line = lines[k];
-            let (_, out) = r.as_ref().map_err(|m| bad(line, m.clone()))?;
-            let id = cols.id.and_then(|i| records[k].get(i));
-            write_row(&mut w, line, id, out, method, &mut buf).map_err(|m| bad(line, m))?;
+            let (text, collision, sticks) = r.as_ref().map_err(|m| bad(lines[k], m.clone()))?;
+            w.write_all(text.as_bytes()).map_err(io)?;
             summary.rows += 1;
-            summary.collisions += u64::from(out.collision);
-            summary.sticks += u64::from(out.sticks);
+            summary.collisions += u64::from(*collision);
+            summary.sticks += u64::from(*sticks);
         }
         progress(summary.rows, rd.position().byte());
         if n < chunk_rows {
             break;
         }
     }
-    let w = w
-        .into_inner()
-        .map_err(|e| Error::io("batch output", e.into_error()))?;
+    w.flush().map_err(io)?;
     Ok((w, summary))
 }

@@ -348,3 +348,13 @@ fn streaming_holds_one_chunk() {
     assert_eq!(w.expected_line, 30_002);
     assert_eq!(progress_calls, 30_000usize.div_ceil(256));
 }
+
+/// Ids that need quoting come back as they went in.
+#[test]
+fn ids_are_quoted_when_needed() {
+    let s = setup(Method::ClosedForm);
+    let text = "id,u_x,u_y,u_z\n\"shot 1, rack 2\",1,0.2,0\n\"say \"\"hi\"\"\",1,0,0\n";
+    let (rows, h) = run(&s, text, 8);
+    assert_eq!(&rows[0][col(&h, "id")], "shot 1, rack 2");
+    assert_eq!(&rows[1][col(&h, "id")], "say \"hi\"");
+}
