@@ -6,7 +6,7 @@
 use billiard_contact::profile::{HalfSine, Hertz, Profile, SinePower};
 use billiard_contact::scene::Scene;
 use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{black_box, criterion_group, Criterion};
 
 /// The loosest rtol = 10^-k (k = 3..13) at which `method` reaches `target`.
 fn loosest(
@@ -56,5 +56,34 @@ fn bench(cr: &mut Criterion) {
     g.finish();
 }
 
+#[path = "closed_form.rs"]
+#[allow(dead_code)]
+mod closed_form;
+
+/// Criterion's wall-clock numbers, then the target case's CPU time per contact (the
+/// machine is shared: CPU time separates compute from waiting).
+fn cpu_time() {
+    let scene = Scene::default_scene();
+    let (c, _) = scene.collision().unwrap();
+    let p = Profile::HalfSine(HalfSine::new(scene.profile.duration()));
+    let s = loosest(&c, &p, Method::Dop853, 1e-10).expect("dop853 reaches 1e-10");
+    let n = 200_000;
+    let (wall, cpu) = closed_form::per_call(n, || {
+        black_box(solve(black_box(&c), black_box(&p), &s, None).unwrap());
+    });
+    println!(
+        "dop853 half-sine error <= 1e-10 (rtol {:e}): {:.2} us wall, {} CPU per contact ({n} solves)",
+        s.rtol,
+        wall * 1e6,
+        cpu.map(|c| format!("{:.2} us", c * 1e6))
+            .unwrap_or_else(|| "n/a".into()),
+    );
+}
+
 criterion_group!(benches, bench);
-criterion_main!(benches);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    cpu_time();
+}

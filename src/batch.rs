@@ -34,7 +34,7 @@
 //! (outgoing lab velocities and spins) and `throw_angle_deg` (empty when undefined); with
 //! a time-stepping method also `closed_form_error` and `rhs_evaluations`.
 
-use crate::closed_form::ClosedForm;
+use crate::closed_form::{ClosedFormBatch, Resolved};
 use crate::collision::Collision;
 use crate::effects::Effects;
 use crate::error::Error;
@@ -160,83 +160,105 @@ pub struct BatchOutput {
     pub rhs_evaluations: u64,
 }
 
-/// The collision of a row: its ball and contact (setup or overrides) and its
-/// centre-of-mass state, with the lab frame for lab rows.
-fn collision_of(
-    setup: &BatchSetup,
-    input: &BatchInput,
-) -> Result<(Collision, Option<Frame>), Error> {
-    let o = &input.overrides;
-    let (ball, contact) = if o.is_empty() {
-        (setup.ball, setup.contact)
-    } else {
-        let b = setup.ball;
-        let ball = Ball::new(
-            o.mass.unwrap_or(b.mass),
-            o.radius.unwrap_or(b.radius),
-            o.alpha.unwrap_or(b.alpha),
-        )?;
-        let friction = match o.mu {
-            Some(mu) => Friction::constant(mu)?,
-            None => setup.contact.friction,
-        };
-        let impulse = match (o.restitution, o.impulse) {
-            (Some(e), None) => ImpulseRule::restitution(e)?,
-            (None, Some(p)) => ImpulseRule::explicit(p)?,
-            (None, None) => setup.contact.impulse,
-            (Some(e), Some(p)) => {
-                return Err(Error::invalid(
-                    "restitution",
-                    format!("{e} together with impulse = {p}"),
-                    "one of restitution or impulse, not both",
-                ))
-            }
-        };
-        if let Some(d) = o.duration {
-            crate::params::positive("duration", d, "s")?;
-        }
-        (ball, Contact { friction, impulse })
+/// The ball and contact of a row: the setup's, or with the row's overrides.
+fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error> {
+    if o.is_empty() {
+        return Ok((setup.ball, setup.contact));
+    }
+    let b = setup.ball;
+    let ball = Ball::new(
+        o.mass.unwrap_or(b.mass),
+        o.radius.unwrap_or(b.radius),
+        o.alpha.unwrap_or(b.alpha),
+    )?;
+    let friction = match o.mu {
+        Some(mu) => Friction::constant(mu)?,
+        None => setup.contact.friction,
     };
-    let (cm, frame) = match &input.incoming {
-        Incoming::Cm(s) => (*s, None),
-        Incoming::Lab(lab) => {
-            let f = Frame::new(lab, ball.radius)?;
-            (f.to_cm(lab), Some(f))
+    let impulse = match (o.restitution, o.impulse) {
+        (Some(e), None) => ImpulseRule::restitution(e)?,
+        (None, Some(p)) => ImpulseRule::explicit(p)?,
+        (None, None) => setup.contact.impulse,
+        (Some(e), Some(p)) => {
+            return Err(Error::invalid(
+                "restitution",
+                format!("{e} together with impulse = {p}"),
+                "one of restitution or impulse, not both",
+            ))
         }
     };
-    Ok((Collision::new(ball, contact, setup.effects, cm)?, frame))
+    if let Some(d) = o.duration {
+        crate::params::positive("duration", d, "s")?;
+    }
+    Ok((ball, Contact { friction, impulse }))
 }
 
-/// Resolves one collision with the setup's method. The closed form skips the checks
-/// (they hold to round-off by construction) and computes the stick time only when
-/// sliding stops.
+/// The centre-of-mass state of a row, with the lab frame for lab rows.
+fn cm_of(radius: f64, input: &BatchInput) -> Result<(CmState, Option<Frame>), Error> {
+    Ok(match &input.incoming {
+        Incoming::Cm(s) => (*s, None),
+        Incoming::Lab(lab) => {
+            let f = Frame::new(lab, radius)?;
+            (f.to_cm(lab), Some(f))
+        }
+    })
+}
+
+/// Resolves one collision with the setup's method. The closed form
+/// ([`ClosedFormBatch`]: the same numbers as [`crate::ClosedForm`]) skips the checks (they hold to
+/// round-off by construction) and computes the stick time only when sliding stops.
 pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Error> {
-    let (c, frame) = collision_of(setup, input)?;
+    resolve_with(setup, None, input)
+}
+
+/// The closed-form kernel of the setup's own parameters, when the method is the closed form.
+fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
+    (setup.settings.method == Method::ClosedForm)
+        .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
+}
+
+fn resolve_with(
+    setup: &BatchSetup,
+    shared: Option<&ClosedFormBatch>,
+    input: &BatchInput,
+) -> Result<BatchOutput, Error> {
+    let (ball, contact) = params_of(setup, &input.overrides)?;
+    let (cm, frame) = cm_of(ball.radius, input)?;
     let profile = &setup.profile;
     let time_scale = input.overrides.duration.unwrap_or(profile.duration());
     let mut out = if setup.settings.method == Method::ClosedForm {
-        let cf = ClosedForm::new(&c);
-        let stick_time = (cf.sticks && c.collides()).then(|| {
-            time_scale * profile.time_at_cumulative(cf.stick_impulse.unwrap_or(0.0) / c.impulse)
+        let own;
+        let kernel = match shared {
+            Some(k) if input.overrides.is_empty() => k,
+            _ => {
+                own = ClosedFormBatch::new(ball, contact, setup.effects);
+                &own
+            }
+        };
+        let r = kernel.resolve(&cm)?;
+        let collision = r.impulse > 0.0;
+        let stick_time = (r.sticks && collision).then(|| {
+            time_scale * profile.time_at_cumulative(r.stick_impulse.unwrap_or(0.0) / r.impulse)
         });
         BatchOutput {
-            collision: c.collides(),
-            impulse: c.impulse,
-            s0: c.s0,
-            theta: c.theta(),
-            sticks: cf.sticks,
+            collision,
+            impulse: r.impulse,
+            s0: r.s0,
+            theta: r.theta,
+            sticks: r.sticks,
             stick_time,
-            stick_impulse: if c.collides() { cf.stick_impulse } else { None },
-            tangential_impulse: cf.tangential_impulse,
-            s_out: cf.s_out,
-            heat: cf.heat,
-            heat_sliding: cf.heat_sliding,
-            out: cf.out,
+            stick_impulse: if collision { r.stick_impulse } else { None },
+            tangential_impulse: r.tangential_impulse,
+            s_out: r.s_out,
+            heat: r.heat,
+            heat_sliding: r.heat_sliding,
+            out: r.out,
             lab: None,
             closed_form_error: 0.0,
             rhs_evaluations: 0,
         }
     } else {
+        let c = Collision::new(ball, contact, setup.effects, cm)?;
         let o = solve(&c, profile, &setup.settings, None)?;
         BatchOutput {
             collision: o.collision,
@@ -283,7 +305,11 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 /// assert!(o.sticks && o.theta.is_none() && o.stick_time == Some(0.0));
 /// ```
 pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<BatchOutput, Error>> {
-    inputs.par_iter().map(|i| resolve(setup, i)).collect()
+    let kernel = shared_kernel(setup);
+    inputs
+        .par_iter()
+        .map(|i| resolve_with(setup, kernel.as_ref(), i))
+        .collect()
 }
 
 /// Closed form of centre-of-mass states sharing the setup's ball and contact, one core, into
@@ -292,12 +318,12 @@ pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<Ba
 pub fn closed_form_into(
     setup: &BatchSetup,
     states: &[CmState],
-    out: &mut [(ClosedForm, Option<f64>)],
+    out: &mut [Resolved],
 ) -> Result<(), Error> {
     assert_eq!(states.len(), out.len(), "one output per state");
+    let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
     for (s, o) in states.iter().zip(out.iter_mut()) {
-        let c = Collision::new(setup.ball, setup.contact, setup.effects, *s)?;
-        *o = (ClosedForm::new(&c), c.theta());
+        *o = kernel.resolve(s)?;
     }
     Ok(())
 }
@@ -657,6 +683,7 @@ pub fn run_csv<R: Read, W: Write>(
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
     let method = setup.settings.method;
+    let kernel = shared_kernel(setup);
     let mut w = output;
     let io = |e: std::io::Error| Error::io("batch output", e);
     w.write_all(cols.output_header(method).join(",").as_bytes())
@@ -694,7 +721,8 @@ pub fn run_csv<R: Read, W: Write>(
             .zip(lines[..n].par_iter())
             .map(|(rec, &line)| {
                 let input = cols.parse(rec)?;
-                let out = resolve(setup, &input).map_err(|e| e.to_string())?;
+                let out =
+                    resolve_with(setup, kernel.as_ref(), &input).map_err(|e| e.to_string())?;
                 let id = cols.id.and_then(|i| rec.get(i));
                 let mut text = String::with_capacity(400);
                 format_row(line, id, &out, method, &mut text)?;
