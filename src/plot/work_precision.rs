@@ -18,6 +18,8 @@ pub const ZERO_ERROR_AT: f64 = 1e-17;
 
 /// Width and height (px) of one panel.
 const PANEL: (u32, u32) = (470, 430);
+/// Smallest width (px): the title strip's text.
+const MIN_WIDTH: u32 = 1120;
 /// Height (px) of the title strip.
 const HEADER: u32 = 70;
 
@@ -53,8 +55,9 @@ fn layout(rows: &[StudyRow]) -> (Vec<&str>, Vec<&str>) {
 /// The figure's size (px) for these rows.
 pub fn size(rows: &[StudyRow]) -> (u32, u32) {
     let (scenes, profiles) = layout(rows);
+    // At least wide enough for the title lines.
     (
-        PANEL.0 * profiles.len().max(1) as u32,
+        (PANEL.0 * profiles.len().max(1) as u32).max(MIN_WIDTH),
         HEADER + PANEL.1 * scenes.len().max(1) as u32,
     )
 }
@@ -325,7 +328,10 @@ mod tests {
             r.profile = "hertz".into();
         }
         rows.extend(other);
-        assert_eq!(size(&rows), (2 * PANEL.0, HEADER + PANEL.1));
+        assert_eq!(
+            size(&rows),
+            ((2 * PANEL.0).max(MIN_WIDTH), HEADER + PANEL.1)
+        );
         let mut svg = String::new();
         {
             let root = SVGBackend::with_string(&mut svg, size(&rows)).into_drawing_area();
