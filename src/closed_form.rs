@@ -254,7 +254,7 @@ impl ClosedFormBatch {
     }
 
     /// The closed form of one incoming state; the errors of [`Collision::new`].
-    #[inline]
+    #[inline(always)]
     pub fn resolve(&self, s: &CmState) -> Result<Resolved, Error> {
         if !s.is_finite() {
             return Err(self.invalid(s));

@@ -72,7 +72,7 @@ impl SlidingLaw {
     }
 
     /// Sliding after normal impulse `p` (N s).
-    #[inline]
+    #[inline(always)]
     pub fn at(&self, p: f64) -> Sliding {
         let (s0, k) = (self.s0, self.k);
         if s0 == 0.0 {

@@ -77,11 +77,13 @@ impl CmState {
             + (r * ex).cross(&(-m * self.u_cm))
     }
 
-    /// True when every component is finite.
+    /// True when every component is finite. Branch-free: x * 0 is 0 for a finite x and NaN
+    /// for an infinite or NaN one, so the sum of the nine products is 0 exactly when all
+    /// are finite.
+    #[inline]
     pub fn is_finite(&self) -> bool {
-        self.u_cm.iter().all(|x| x.is_finite())
-            && self.omega_a.iter().all(|x| x.is_finite())
-            && self.omega_b.iter().all(|x| x.is_finite())
+        let zero = |v: &Vector3<f64>| v.x * 0.0 + v.y * 0.0 + v.z * 0.0;
+        zero(&self.u_cm) + zero(&self.omega_a) + zero(&self.omega_b) == 0.0
     }
 }
 
@@ -124,4 +126,30 @@ pub struct LabMotion {
     pub velocity: Vector3<f64>,
     /// Angular velocity (rad/s).
     pub spin: Vector3<f64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn is_finite_catches_every_component() {
+        let ok = CmState::new(
+            Vector3::new(1.0, -2.0, 1e300),
+            Vector3::new(0.0, -0.0, 5e-324),
+            Vector3::new(-1e308, 3.0, 4.0),
+        );
+        assert!(ok.is_finite());
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for i in 0..9 {
+                let mut s = ok;
+                match i / 3 {
+                    0 => s.u_cm[i % 3] = bad,
+                    1 => s.omega_a[i % 3] = bad,
+                    _ => s.omega_b[i % 3] = bad,
+                }
+                assert!(!s.is_finite(), "{bad} at {i}");
+            }
+        }
+    }
 }
