@@ -62,7 +62,8 @@ pub fn size(rows: &[StudyRow]) -> (u32, u32) {
     )
 }
 
-/// The time axis range (s): all finite times, padded by a factor 1.6 each way.
+/// The time axis range (s): all finite times, padded by a factor 1.6 below and 40 above
+/// (room for the legends above the lines).
 fn time_range(rows: &[StudyRow]) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for r in rows {
@@ -75,7 +76,7 @@ fn time_range(rows: &[StudyRow]) -> (f64, f64) {
     if !(lo.is_finite() && hi > 0.0) {
         return (1e-9, 1.0);
     }
-    (lo / 1.6, hi * 1.6)
+    (lo / 1.6, hi * 40.0)
 }
 
 /// The x position of an error: errors of exactly 0 at [`ZERO_ERROR_AT`]; errors above 1
