@@ -17,8 +17,11 @@
 //! [`ClosedForm::at_impulse`] gives it.
 
 use crate::collision::Collision;
+use crate::effects::Effects;
+use crate::error::Error;
 use crate::friction::{Sliding, SlidingLaw};
-use crate::state::CmState;
+use crate::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::state::{planar_length, slip_angle, CmState};
 use nalgebra::Vector2;
 
 /// The state after part of the impulse.
@@ -77,6 +80,7 @@ impl ClosedForm {
     /// assert!((out.u_cm.y - (v / 2.0 - mu * u * v / s)).abs() < 1e-15); // eq 67
     /// assert!((out.u_cm.z - mu * u * u / s).abs() < 1e-15);            // eq 68
     /// ```
+    #[inline]
     pub fn new(c: &Collision) -> Self {
         let ball = c.ball;
         let m = ball.mass;
@@ -124,6 +128,7 @@ impl ClosedForm {
     }
 
     /// The exact state after normal impulse `p` (N s), 0 <= p <= P.
+    #[inline]
     pub fn at_impulse(&self, p: f64) -> Partial {
         let sliding = match self.law {
             Some(l) => l.at(p),
@@ -133,24 +138,276 @@ impl ClosedForm {
                 heat: 0.0,
             },
         };
-        let m = self.mass;
-        let j = sliding.tangential_impulse;
-        let e = self.direction;
-        let mut s = self.incoming;
-        s.u_cm.x -= p / m;
-        s.u_cm.y -= j / m * e.x;
-        s.u_cm.z -= j / m * e.y;
-        let dy = j * self.spin_per_impulse * e.y;
-        let dz = -j * self.spin_per_impulse * e.x;
-        s.omega_a.y += dy;
-        s.omega_b.y += dy;
-        s.omega_a.z += dz;
-        s.omega_b.z += dz;
+        let s = apply_impulses(
+            self.incoming,
+            self.direction,
+            self.mass,
+            self.spin_per_impulse,
+            p,
+            sliding.tangential_impulse,
+        );
         Partial { state: s, sliding }
     }
 
     /// Whether eq 57 (S(tau) >= 0) fails: only possible with `stick = false`.
     pub fn violates_eq57(&self) -> bool {
         self.s_out < 0.0
+    }
+}
+
+/// Eqs 24-26 and 31-33: the state after normal impulse `p` and tangential impulse `j`
+/// (N s) along -e on A (m/s, rad/s).
+#[inline]
+fn apply_impulses(
+    mut s: CmState,
+    e: Vector2<f64>,
+    m: f64,
+    spin_per_impulse: f64,
+    p: f64,
+    j: f64,
+) -> CmState {
+    s.u_cm.x -= p / m;
+    s.u_cm.y -= j / m * e.x;
+    s.u_cm.z -= j / m * e.y;
+    let dy = j * spin_per_impulse * e.y;
+    let dz = -j * spin_per_impulse * e.x;
+    s.omega_a.y += dy;
+    s.omega_b.y += dy;
+    s.omega_a.z += dz;
+    s.omega_b.z += dz;
+    s
+}
+
+/// The closed form of many centre-of-mass states that share balls, contact and effects:
+/// the batch fast path. The same formulas as [`ClosedForm::new`] (the same results, bit for
+/// bit), without the intermediate [`Collision`] and [`ClosedForm`] records (reference
+/// scales, the law kept for [`ClosedForm::at_impulse`]), which a batch does not need.
+///
+/// ```
+/// # use billiard_contact::*; use billiard_contact::effects::Effects;
+/// # use billiard_contact::closed_form::ClosedFormBatch; use nalgebra::Vector3;
+/// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+/// let contact = Contact { friction: Friction::constant(0.06).unwrap(),
+///                         impulse: ImpulseRule::restitution(1.0).unwrap() };
+/// let batch = ClosedFormBatch::new(ball, contact, Effects::default());
+/// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
+/// let r = batch.resolve(&s).unwrap();
+/// assert_eq!(r.impulse, 2.0 * 0.17 * 0.5);               // eq 52
+/// // eq 25 with J = mu P (p_stick = m S(0) / (2 mu (1 + 1/alpha)) = 0.202 > P = 0.17):
+/// assert!((r.out.u_cm.y - (0.25 - 0.06 * 2.0 * 0.5)).abs() < 1e-15);
+/// assert!(!r.sticks && r.theta == Some(0.0));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosedFormBatch {
+    ball: Ball,
+    rule: ImpulseRule,
+    /// The friction acting (`None`: off, or mu = 0).
+    friction: Option<Friction>,
+    stick: bool,
+    contact: Contact,
+    effects: Effects,
+    /// k = 2 (1 + 1/alpha) / m (1/kg).
+    k: f64,
+    /// 1 / (alpha m r).
+    spin_per_impulse: f64,
+}
+
+/// The closed-form outcome of one state ([`ClosedFormBatch::resolve`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Resolved {
+    /// Outgoing centre-of-mass state.
+    pub out: CmState,
+    /// Impulse P (N s); 0 when the balls do not approach.
+    pub impulse: f64,
+    /// S(0) (m/s).
+    pub s0: f64,
+    /// theta (rad); `None` when S(0) = 0.
+    pub theta: Option<f64>,
+    /// Whether sliding stops during contact.
+    pub sticks: bool,
+    /// p_stick (N s), as [`ClosedForm::stick_impulse`] (`None` without a collision).
+    pub stick_impulse: Option<f64>,
+    /// Tangential impulse J >= 0 (N s).
+    pub tangential_impulse: f64,
+    /// Outgoing sliding speed, signed along e0 (m/s).
+    pub s_out: f64,
+    /// Sliding heat H_sfr (J).
+    pub heat_sliding: f64,
+    /// Total heat H (J), eq 50.
+    pub heat: f64,
+}
+
+impl ClosedFormBatch {
+    /// The shared parameters of a batch.
+    pub fn new(ball: Ball, contact: Contact, effects: Effects) -> Self {
+        let f = contact.friction;
+        ClosedFormBatch {
+            ball,
+            rule: contact.impulse,
+            friction: (effects.friction && !f.is_zero()).then_some(f),
+            stick: effects.stick,
+            contact,
+            effects,
+            k: ball.slip_rate_per_friction_impulse(),
+            spin_per_impulse: 1.0 / (ball.alpha * ball.mass * ball.radius),
+        }
+    }
+
+    /// The closed form of one incoming state; the errors of [`Collision::new`].
+    #[inline(always)]
+    pub fn resolve(&self, s: &CmState) -> Result<Resolved, Error> {
+        if !s.is_finite() {
+            return Err(self.invalid(s));
+        }
+        let m = self.ball.mass;
+        let u0 = s.u_cm.x;
+        let p = self.rule.impulse(m, u0)?;
+        let slip = s.slip(self.ball.radius);
+        let s0 = planar_length(slip);
+        let theta = (s0 > 0.0).then(|| slip_angle(slip));
+        let law = match self.friction {
+            Some(f) if p > 0.0 => Some(SlidingLaw::new(f, s0, self.k, self.stick)),
+            _ => None,
+        };
+        let stick_impulse = law.and_then(|l| l.stick_impulse());
+        if p <= 0.0 {
+            return Ok(Resolved {
+                out: *s,
+                impulse: p,
+                s0,
+                theta,
+                sticks: false,
+                stick_impulse,
+                tangential_impulse: 0.0,
+                s_out: s0,
+                heat_sliding: 0.0,
+                heat: 0.0,
+            });
+        }
+        let (j, s_out, heat_sliding) = match law {
+            Some(l) => {
+                let sl = l.at(p);
+                (sl.tangential_impulse, sl.slip, sl.heat)
+            }
+            None => (0.0, s0, 0.0),
+        };
+        let e = if s0 > 0.0 {
+            slip / s0
+        } else {
+            Vector2::zeros()
+        };
+        Ok(Resolved {
+            out: apply_impulses(*s, e, m, self.spin_per_impulse, p, j),
+            impulse: p,
+            s0,
+            theta,
+            sticks: self.stick && law.is_some() && stick_impulse.is_some_and(|ps| ps <= p),
+            stick_impulse,
+            tangential_impulse: j,
+            s_out,
+            heat_sliding,
+            heat: heat_sliding + p * (2.0 * u0 - p / m),
+        })
+    }
+
+    /// The error [`Collision::new`] gives for this state (out of line).
+    #[cold]
+    #[inline(never)]
+    fn invalid(&self, s: &CmState) -> Error {
+        match Collision::new(self.ball, self.contact, self.effects, *s) {
+            Err(e) => e,
+            Ok(_) => Error::invalid("incoming.cm", "a non-finite state", "finite components"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// The batch kernel gives ClosedForm::new's numbers bit for bit, over states that
+    /// slide through, stick, start without slip and separate, for constant and
+    /// speed-dependent friction, with and without the stick rule, and friction off.
+    #[test]
+    fn batch_kernel_equals_closed_form() {
+        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+        let frictions = [
+            Friction::constant(0.06).unwrap(),
+            Friction::speed_dependent(9.951e-3, 0.108, 1.088).unwrap(),
+            Friction::constant(0.0).unwrap(),
+        ];
+        let rules = [
+            ImpulseRule::restitution(0.9).unwrap(),
+            ImpulseRule::restitution(1.0).unwrap(),
+        ];
+        let effects = [
+            Effects::default(),
+            Effects {
+                stick: false,
+                ..Effects::default()
+            },
+            Effects {
+                friction: false,
+                ..Effects::default()
+            },
+        ];
+        let mut seen_stick = 0;
+        for f in frictions {
+            for rule in rules {
+                for fx in effects {
+                    let contact = Contact {
+                        friction: f,
+                        impulse: rule,
+                    };
+                    let batch = ClosedFormBatch::new(ball, contact, fx);
+                    for i in 0..400 {
+                        let a = i as f64 * 0.37;
+                        let mut st = CmState::new(
+                            Vector3::new(1.5 * a.sin(), 0.5 * (0.7 * a).cos(), 0.1 * a.cos()),
+                            Vector3::new(5.0 * a.cos(), 30.0 * (1.1 * a).sin(), -7.0 * a.sin()),
+                            Vector3::new(0.0, 2.0 * a.sin(), 0.0),
+                        );
+                        if i % 50 == 0 {
+                            // no slip at all
+                            st.u_cm.y = 0.0;
+                            st.u_cm.z = 0.0;
+                            st.omega_a = Vector3::zeros();
+                            st.omega_b = Vector3::zeros();
+                        }
+                        let c = Collision::new(ball, contact, fx, st).unwrap();
+                        let cf = ClosedForm::new(&c);
+                        let r = batch.resolve(&st).unwrap();
+                        assert_eq!(r.out, cf.out, "{i}");
+                        assert_eq!(r.impulse, c.impulse);
+                        assert_eq!(r.s0, c.s0);
+                        assert_eq!(r.theta, c.theta());
+                        assert_eq!(r.sticks, cf.sticks);
+                        assert_eq!(r.stick_impulse, cf.stick_impulse);
+                        assert_eq!(r.tangential_impulse, cf.tangential_impulse);
+                        assert_eq!(r.s_out, cf.s_out);
+                        assert_eq!(r.heat_sliding, cf.heat_sliding);
+                        assert_eq!(r.heat, cf.heat);
+                        seen_stick += usize::from(r.sticks);
+                    }
+                }
+            }
+        }
+        assert!(seen_stick > 100, "{seen_stick}");
+        let batch = ClosedFormBatch::new(
+            ball,
+            Contact {
+                friction: frictions[0],
+                impulse: rules[0],
+            },
+            Effects::default(),
+        );
+        let bad = CmState::new(
+            Vector3::new(1.0, f64::NAN, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        );
+        let e = batch.resolve(&bad).unwrap_err().to_string();
+        assert!(e.contains("incoming.cm.u[1]"), "{e}");
     }
 }

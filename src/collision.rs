@@ -4,7 +4,7 @@
 use crate::effects::Effects;
 use crate::error::Error;
 use crate::params::{Ball, Contact, Friction};
-use crate::state::CmState;
+use crate::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
 /// Natural scales of a collision (CONTRACTS.md): errors are reported relative to them and
@@ -61,41 +61,40 @@ impl Collision {
     /// assert_eq!(c.impulse, 2.0 * 0.17 * 0.5); // eq 52
     /// assert_eq!(c.s0, 0.5); // 2 V
     /// ```
+    #[inline]
     pub fn new(
         ball: Ball,
         contact: Contact,
         effects: Effects,
         incoming: CmState,
     ) -> Result<Self, Error> {
-        for (name, v) in [
-            ("u", incoming.u_cm),
-            ("omega_a", incoming.omega_a),
-            ("omega_b", incoming.omega_b),
-        ] {
-            for (i, x) in v.iter().enumerate() {
-                if !x.is_finite() {
-                    return Err(Error::invalid(
-                        format!("incoming.cm.{name}[{i}]"),
-                        x,
-                        "a finite number",
-                    ));
-                }
-            }
+        if !incoming.is_finite() {
+            return Err(non_finite_component(&incoming));
         }
         let u0 = incoming.u_cm.x;
         let impulse = contact.impulse.impulse(ball.mass, u0)?;
         let slip = incoming.slip(ball.radius);
-        let s0 = slip.x.hypot(slip.y);
+        let s0 = planar_length(slip);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
         let r = ball.radius;
-        // |v| without overflow of the squares (nalgebra's norm gives inf above ~1e154).
-        let norm = |v: &nalgebra::Vector3<f64>| v.x.hypot(v.y).hypot(v.z);
-        let speed = u0
-            .abs()
-            .max(s0)
-            .max(norm(&incoming.u_cm))
-            .max(r * norm(&incoming.omega_a))
-            .max(r * norm(&incoming.omega_b));
+        // One square root for the three norms (sqrt is monotone, so the maximum is the
+        // same); |U(0)| <= |U| needs no term of its own. Where the squares overflow (above
+        // ~1e154) the norms are taken with hypot instead.
+        let mut speed = s0.max(
+            incoming
+                .u_cm
+                .norm_squared()
+                .max(r * r * incoming.omega_a.norm_squared())
+                .max(r * r * incoming.omega_b.norm_squared())
+                .sqrt(),
+        );
+        if !speed.is_finite() {
+            let norm = |v: &nalgebra::Vector3<f64>| v.x.hypot(v.y).hypot(v.z);
+            speed = s0
+                .max(norm(&incoming.u_cm))
+                .max(r * norm(&incoming.omega_a))
+                .max(r * norm(&incoming.omega_b));
+        }
         let m = ball.mass;
         // Every scale the checks and the integrator divide by must be finite and, for balls
         // in motion, normal (the fuzz harness found r = 1e308 with m v r = inf, and r = 1e-300
@@ -153,4 +152,23 @@ impl Collision {
     pub fn theta(&self) -> Option<f64> {
         self.incoming.theta(self.ball.radius)
     }
+}
+
+/// The error for the first non-finite component of an incoming state (kept out of line: the
+/// common path of [`Collision::new`] is a few dozen floating-point operations).
+#[cold]
+#[inline(never)]
+fn non_finite_component(incoming: &CmState) -> Error {
+    for (name, v) in [
+        ("u", incoming.u_cm),
+        ("omega_a", incoming.omega_a),
+        ("omega_b", incoming.omega_b),
+    ] {
+        for (i, x) in v.iter().enumerate() {
+            if !x.is_finite() {
+                return Error::invalid(format!("incoming.cm.{name}[{i}]"), x, "a finite number");
+            }
+        }
+    }
+    Error::invalid("incoming.cm", "a finite state", "a non-finite component")
 }

@@ -32,6 +32,7 @@
 
 use crate::params::Friction;
 use crate::profile::ForceProfile;
+use crate::state::planar_length;
 use nalgebra::{SVector, Vector2};
 
 /// Number of components of the sliding state.
@@ -192,7 +193,7 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
         let st = SlidingState(*y);
         let n = self.impulse * self.profile.shape(clamp_time(st.time()));
         let slip = st.slip();
-        let speed = slip.x.hypot(slip.y);
+        let speed = planar_length(slip);
         // Past the stop (only inside the step that crosses it) both the direction and a
         // speed-dependent mu continue smoothly in the signed slip: mu(|S|) would put a kink
         // at S = 0 inside that step, costing rejected steps and slow event location. At the
@@ -202,9 +203,9 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
         let (e, s_mu) = match self.direction {
             Direction::CurrentSlip if speed > self.slip_floor => {
                 if slip.dot(&self.e0) < 0.0 {
-                    (-slip / speed, -speed)
+                    (-slip * (1.0 / speed), -speed)
                 } else {
-                    (slip / speed, speed)
+                    (slip * (1.0 / speed), speed)
                 }
             }
             Direction::CurrentSlip => (self.e0, slip.dot(&self.e0)),

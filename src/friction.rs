@@ -49,6 +49,7 @@ pub struct SlidingLaw {
 impl SlidingLaw {
     /// The law for friction `friction`, initial sliding speed `s0` >= 0 (m/s), slip rate
     /// `k` = 2 (1 + 1/alpha) / m (1/kg), and the `stick` effect.
+    #[inline]
     pub fn new(friction: Friction, s0: f64, k: f64, stick: bool) -> Self {
         let p_stick = if s0 == 0.0 {
             0.0
@@ -71,6 +72,7 @@ impl SlidingLaw {
     }
 
     /// Sliding after normal impulse `p` (N s).
+    #[inline(always)]
     pub fn at(&self, p: f64) -> Sliding {
         let (s0, k) = (self.s0, self.k);
         if s0 == 0.0 {
@@ -125,6 +127,7 @@ impl Friction {
     /// G = ln(1 + x) / (a c) = [ln(1 + x) / x] (e^(cS) - 1) / ((a + b) c),
     /// x = a (e^(cS) - 1) / (a + b), which tends to the a = 0 law as a -> 0, and for
     /// cS > 700 (e^(cS) overflows) as (cS + ln(a / (a + b)) + ln(1 + b e^(-cS) / a)) / (a c).
+    #[inline]
     pub fn slide_potential(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => s / mu,

@@ -1,6 +1,7 @@
 #![doc = "billiard-contact: the contact phase of billiard-ball collisions (Peskin 2020)."]
 #![warn(missing_docs)]
 
+pub mod batch;
 pub mod check;
 pub mod closed_form;
 pub mod collision;
@@ -32,3 +33,4 @@ pub mod plot;
 pub mod report;
 pub mod runner;
 pub mod scene;
+pub mod study;

@@ -35,6 +35,59 @@ struct Cli {
 enum Command {
     /// Run a scene (the built-in default scene when none is given).
     Run(RunArgs),
+    /// Work-precision study: error against time per contact for every profile and method;
+    /// writes DIR/work_precision.csv, .svg and .png.
+    WorkPrecision(StudyArgs),
+    /// Resolve one collision per row of a CSV file (see README, "Batch").
+    Batch(BatchArgs),
+}
+
+#[derive(Args)]
+struct StudyArgs {
+    /// Scene file (TOML); the built-in default scene when omitted. Its balls, friction,
+    /// impulse and duration are used with every profile.
+    scene: Option<PathBuf>,
+    /// Directory for work_precision.csv, .svg and .png (created if missing).
+    #[arg(long, value_name = "DIR", default_value = ".")]
+    out: PathBuf,
+    /// Profiles (comma-separated): half-sine, hertz, sine-power, rectangle, tabulated.
+    #[arg(long, value_delimiter = ',', value_name = "P,...")]
+    profiles: Option<Vec<String>>,
+    /// Timed samples per setting (the median is reported).
+    #[arg(long, value_name = "N", default_value_t = 9)]
+    repeats: usize,
+    /// Leave out the companion scene in which sliding stops during contact.
+    #[arg(long)]
+    no_sticking: bool,
+    /// Only redraw the figure from DIR/work_precision.csv (e.g. after the peers' script
+    /// appended its rows).
+    #[arg(long)]
+    replot: bool,
+}
+
+#[derive(Args)]
+struct BatchArgs {
+    /// Input CSV, one collision per row.
+    input: PathBuf,
+    /// Output CSV (written beside it and renamed into place when complete).
+    #[arg(long, value_name = "OUTPUT.csv")]
+    out: PathBuf,
+    /// Method: closed-form (default), rk4, dopri5, dop853.
+    #[arg(long, value_name = "M", default_value = "closed-form")]
+    method: String,
+    /// Relative tolerance of dopri5 / dop853 (atol = rtol); default: the scene's.
+    #[arg(long, value_name = "X")]
+    rtol: Option<f64>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+    /// Scene giving balls, friction, impulse rule, profile and effects (default: the
+    /// built-in default scene); rows may override some of them.
+    #[arg(long, value_name = "SCENE")]
+    scene: Option<PathBuf>,
+    /// Rows per chunk (memory holds one chunk).
+    #[arg(long, value_name = "N", default_value_t = billiard_contact::batch::DEFAULT_CHUNK_ROWS)]
+    chunk: usize,
 }
 
 #[derive(Args, Clone, Default)]
@@ -98,6 +151,8 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Some(Command::Run(args)) => run(&args),
+        Some(Command::WorkPrecision(args)) => work_precision(&args),
+        Some(Command::Batch(args)) => batch(&args),
         None => run(&cli.run),
     };
     match result {
@@ -227,4 +282,142 @@ fn write_plot(path: &std::path::Path, table: &TableOutcome, scene: &Scene) -> Re
             .map_err(|e| Error::io(path, e))?;
         file.commit()
     }
+}
+
+fn progress_bar(len: u64, template: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(len),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(template)
+            .expect("a valid progress template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
+fn work_precision(args: &StudyArgs) -> Result<(), Error> {
+    use billiard_contact::plot::work_precision as figure;
+    use billiard_contact::study::{self, ProfileKind, StudyOptions};
+    let csv_path = args.out.join("work_precision.csv");
+    let svg = args.out.join("work_precision.svg");
+    let png = args.out.join("work_precision.png");
+    if args.replot {
+        let file = std::fs::File::open(&csv_path).map_err(|e| Error::io(&csv_path, e))?;
+        let rows = study::read_csv(std::io::BufReader::new(file), &csv_path)?;
+        figure::write(&rows, &svg, &png)?;
+        print!("{}", study::summary(&rows));
+        println!("\nwrote {} and {}", svg.display(), png.display());
+        return Ok(());
+    }
+    let scene = match &args.scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::default_scene(),
+    };
+    let mut options = StudyOptions::default();
+    if let Some(list) = &args.profiles {
+        options.profiles = list
+            .iter()
+            .map(|p| p.trim().parse::<ProfileKind>())
+            .collect::<Result<_, _>>()?;
+    }
+    if args.repeats == 0 {
+        return Err(Error::invalid("--repeats", 0, "at least 1"));
+    }
+    options.repeats = args.repeats;
+    options.sticking_scene = !args.no_sticking;
+    std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
+    let start = std::time::Instant::now();
+    let mut bar: Option<indicatif::ProgressBar> = None;
+    let rows = study::run_study(scene, &options, |done, total, row| {
+        let b = bar.get_or_insert_with(|| {
+            progress_bar(total as u64, "{elapsed:>4} [{bar:40}] {pos}/{len} {msg}")
+        });
+        b.set_position(done as u64);
+        b.set_message(format!("{} {}", row.profile, row.method));
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let mut file = AtomicFile::create(&csv_path)?;
+    study::write_csv(&mut file, &rows)?;
+    file.commit()?;
+    figure::write(&rows, &svg, &png)?;
+    print!("{}", study::summary(&rows));
+    for r in rows.iter().filter(|r| !r.note.is_empty()) {
+        eprintln!(
+            "warning: {} {} {:?} failed: {}",
+            r.profile, r.method, r.rtol, r.note
+        );
+    }
+    println!(
+        "\nwrote {}, {} and {} in {:.1} s",
+        csv_path.display(),
+        svg.display(),
+        png.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn batch(args: &BatchArgs) -> Result<(), Error> {
+    use billiard_contact::batch::{run_csv, BatchSetup};
+    let scene = match &args.scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::default_scene(),
+    };
+    let method = args.method.parse::<Method>()?;
+    let base = scene.solver;
+    let rtol = args.rtol.unwrap_or(base.rtol);
+    let atol = if args.rtol.is_some() { rtol } else { base.atol };
+    let mut settings = SolverSettings::new(method, rtol, atol, base.steps)?;
+    settings.breakpoints = base.breakpoints;
+    if args.threads == Some(0) {
+        return Err(Error::invalid("--threads", 0, "at least 1"));
+    }
+    if args.chunk == 0 {
+        return Err(Error::invalid("--chunk", 0, "at least 1"));
+    }
+    let setup = BatchSetup::from_scene(&scene, settings);
+    let input = std::fs::File::open(&args.input).map_err(|e| Error::io(&args.input, e))?;
+    let size = input.metadata().map(|m| m.len()).unwrap_or(0);
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.threads {
+        pool = pool.num_threads(n);
+    }
+    let pool = pool
+        .build()
+        .map_err(|e| Error::io("thread pool", std::io::Error::other(e.to_string())))?;
+    let bar = progress_bar(size, "{elapsed:>4} [{bar:40}] {bytes}/{total_bytes} {msg}");
+    let start = std::time::Instant::now();
+    let out = AtomicFile::create(&args.out)?;
+    let (out, summary) = pool.install(|| {
+        run_csv(
+            &setup,
+            std::io::BufReader::with_capacity(1 << 16, input),
+            &args.input,
+            out,
+            args.chunk,
+            |rows, bytes| {
+                bar.set_position(bytes);
+                bar.set_message(format!("{rows} rows"));
+            },
+        )
+    })?;
+    out.commit()?;
+    bar.finish_and_clear();
+    let secs = start.elapsed().as_secs_f64();
+    eprintln!(
+        "{} rows ({} collisions, {} stick) in {:.2} s ({:.0} rows/s, {} threads, {}) -> {}",
+        summary.rows,
+        summary.collisions,
+        summary.sticks,
+        secs,
+        summary.rows as f64 / secs.max(1e-9),
+        pool.current_num_threads(),
+        method,
+        args.out.display()
+    );
+    Ok(())
 }

@@ -90,6 +90,7 @@ impl Ball {
     }
 
     /// The factor k = 2 (1 + 1/alpha) / m (1/kg) of eq 22: dS/dt = -mu f k.
+    #[inline]
     pub fn slip_rate_per_friction_impulse(&self) -> f64 {
         2.0 * (1.0 + 1.0 / self.alpha) / self.mass
     }
@@ -204,36 +205,43 @@ impl ImpulseRule {
     /// Returns 0 for balls that do not approach (u0 <= 0) under a restitution rule;
     /// an explicit impulse requires u0 > 0 and m u0 <= P <= 2 m u0 (eq 56), with a
     /// relative slack of 1e-12 for round-off in the caller's arithmetic.
+    #[inline]
     pub fn impulse(&self, mass: f64, u0: f64) -> Result<f64, Error> {
         match *self {
             ImpulseRule::Restitution(e) => Ok(if u0 > 0.0 { (1.0 + e) * mass * u0 } else { 0.0 }),
             ImpulseRule::Explicit(p) => {
-                if u0 <= 0.0 {
-                    return Err(Error::invalid(
-                        "contact.impulse",
-                        p,
-                        format!(
-                            "no impulse: the balls do not approach (normal speed U(0) = {u0} m/s <= 0)"
-                        ),
-                    ));
-                }
-                let lo = mass * u0;
-                let hi = 2.0 * mass * u0;
+                let (lo, hi) = (mass * u0, 2.0 * mass * u0);
                 let slack = 1e-12 * hi;
-                if p < lo - slack || p > hi + slack {
-                    return Err(Error::invalid(
-                        "contact.impulse",
-                        p,
-                        format!(
-                            "between m U(0) = {lo} and 2 m U(0) = {hi} N s (eq 56: below, the balls pass \
-                             through each other; above, the collision creates energy)"
-                        ),
-                    ));
+                if u0 <= 0.0 || p < lo - slack || p > hi + slack {
+                    return Err(explicit_impulse_error(p, mass, u0));
                 }
                 Ok(p)
             }
         }
     }
+}
+
+/// Why an explicit impulse does not fit the approach speed (out of line: the common path
+/// of [`ImpulseRule::impulse`] is a multiplication).
+#[cold]
+#[inline(never)]
+fn explicit_impulse_error(p: f64, mass: f64, u0: f64) -> Error {
+    if u0 <= 0.0 {
+        return Error::invalid(
+            "contact.impulse",
+            p,
+            format!("no impulse: the balls do not approach (normal speed U(0) = {u0} m/s <= 0)"),
+        );
+    }
+    let (lo, hi) = (mass * u0, 2.0 * mass * u0);
+    Error::invalid(
+        "contact.impulse",
+        p,
+        format!(
+            "between m U(0) = {lo} and 2 m U(0) = {hi} N s (eq 56: below, the balls pass \
+             through each other; above, the collision creates energy)"
+        ),
+    )
 }
 
 /// Contact parameters: friction and the impulse rule.

@@ -1,6 +1,8 @@
 //! Figures (SVG and PNG) drawn with `plotters` without system fonts: the DejaVu Sans font is
 //! embedded and registered once under the family name `sans-serif`.
 
+pub mod work_precision;
+
 use std::sync::Once;
 
 pub mod paths;

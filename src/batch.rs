@@ -1,0 +1,746 @@
+//! Many collisions at once: one per row of a CSV file (streamed in chunks, so memory does
+//! not grow with the number of rows) or of an in-memory slice, resolved in parallel over
+//! rows with rayon.
+//!
+//! The balls, friction, impulse rule, profile and effects come from a scene (the built-in
+//! default scene when none is given); a row may override some of them. Rows carry the
+//! incoming state either in the paper's centre-of-mass frame or in the lab frame.
+//!
+//! # Input columns
+//!
+//! Header names as below; a trailing unit in parentheses (`u_x (m/s)`) is ignored; column
+//! order is free; empty cells are "not given". Exactly one of the two frames:
+//!
+//! | columns | meaning |
+//! |---|---|
+//! | `u_x, u_y, u_z` | centre-of-mass frame: velocity of ball A (m/s), line of centres +x, B has -u |
+//! | `omega_a_x .. omega_a_z`, `omega_b_x .. omega_b_z` | spins (rad/s), optional, default 0 |
+//! | `a_px, a_py, a_pz`, `b_px, b_py, b_pz` | lab frame: centres (m), touching |
+//! | `a_vx, a_vy, a_vz`, `b_vx, b_vy, b_vz` | lab velocities (m/s) |
+//! | `a_wx, a_wy, a_wz`, `b_wx, b_wy, b_wz` | lab spins (rad/s), optional, default 0 |
+//! | `up_x, up_y, up_z` | lab `up`, optional, default (0, 0, 1) |
+//!
+//! Optional in both: `id` (copied to the output), and per-row overrides of the scene:
+//! `mass` (kg), `radius` (m), `alpha`, `mu` (constant), `restitution` or `impulse` (N s),
+//! `duration` (s; the outgoing state does not depend on it, the stick time scales with it).
+//!
+//! # Output columns
+//!
+//! `line` (the input line), `id` (when the input has it), `collision`, `impulse` (N s),
+//! `s0` (m/s), `theta` (rad, empty when S(0) = 0), `sticks`, `stick_time` (s, empty when
+//! sliding does not stop), `stick_impulse` (N s, empty when undefined), `tangential_impulse`
+//! (N s), `s_out` (m/s), `heat`, `heat_sliding` (J), the outgoing centre-of-mass state
+//! `u_x, u_y, u_z, omega_a_x .. omega_b_z`; with lab input also `a_vx .. a_wz, b_vx .. b_wz`
+//! (outgoing lab velocities and spins) and `throw_angle_deg` (empty when undefined); with
+//! a time-stepping method also `closed_form_error` and `rhs_evaluations`.
+
+use crate::closed_form::{ClosedFormBatch, Resolved};
+use crate::collision::Collision;
+use crate::effects::Effects;
+use crate::error::Error;
+use crate::frame::{Frame, LabScene};
+use crate::integrate::{Method, SolverSettings};
+use crate::outcome::solve;
+use crate::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::profile::{ForceProfile, Profile};
+use crate::scene::{Incoming, Scene};
+use crate::state::{CmState, LabBall, LabMotion};
+use nalgebra::Vector3;
+use rayon::prelude::*;
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+
+/// Rows read, resolved and written per chunk by default: the memory held at any time.
+pub const DEFAULT_CHUNK_ROWS: usize = 16_384;
+
+/// What every row shares: the scene's parameters and the method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatchSetup {
+    /// The balls.
+    pub ball: Ball,
+    /// Friction and impulse rule.
+    pub contact: Contact,
+    /// Effects.
+    pub effects: Effects,
+    /// Normal-force profile (its duration is the default duration).
+    pub profile: Profile,
+    /// Method and tolerances.
+    pub settings: SolverSettings,
+}
+
+impl BatchSetup {
+    /// The parameters of `scene`, solved with `settings`.
+    pub fn from_scene(scene: &Scene, settings: SolverSettings) -> Self {
+        BatchSetup {
+            ball: scene.ball,
+            contact: scene.contact,
+            effects: scene.effects,
+            profile: scene.profile.clone(),
+            settings,
+        }
+    }
+}
+
+/// Per-row overrides of the setup (`None`: the setup's value).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Overrides {
+    /// Mass (kg).
+    pub mass: Option<f64>,
+    /// Radius (m).
+    pub radius: Option<f64>,
+    /// I = alpha m r^2.
+    pub alpha: Option<f64>,
+    /// Constant friction coefficient.
+    pub mu: Option<f64>,
+    /// Restitution e (P = (1 + e) m U(0)).
+    pub restitution: Option<f64>,
+    /// Explicit impulse P (N s).
+    pub impulse: Option<f64>,
+    /// Contact duration (s).
+    pub duration: Option<f64>,
+}
+
+impl Overrides {
+    fn is_empty(&self) -> bool {
+        *self == Overrides::default()
+    }
+}
+
+/// One collision of a batch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BatchInput {
+    /// Incoming state, centre-of-mass or lab frame.
+    pub incoming: Incoming,
+    /// Overrides of the setup.
+    pub overrides: Overrides,
+}
+
+impl BatchInput {
+    /// A centre-of-mass state with the setup's parameters.
+    pub fn cm(state: CmState) -> Self {
+        BatchInput {
+            incoming: Incoming::Cm(state),
+            overrides: Overrides::default(),
+        }
+    }
+}
+
+/// The result of one collision.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BatchOutput {
+    /// Whether the balls approached and collided.
+    pub collision: bool,
+    /// Impulse P (N s).
+    pub impulse: f64,
+    /// S(0) (m/s).
+    pub s0: f64,
+    /// theta (rad); `None` when S(0) = 0.
+    pub theta: Option<f64>,
+    /// Whether sliding stopped during contact.
+    pub sticks: bool,
+    /// When sliding stopped (s).
+    pub stick_time: Option<f64>,
+    /// p_stick (N s) (CONTRACTS.md: also when sliding would stop after the contact).
+    pub stick_impulse: Option<f64>,
+    /// Tangential impulse J >= 0 (N s).
+    pub tangential_impulse: f64,
+    /// Outgoing sliding speed, signed along e0 (m/s).
+    pub s_out: f64,
+    /// Total heat H (J).
+    pub heat: f64,
+    /// Sliding heat H_sfr (J).
+    pub heat_sliding: f64,
+    /// Outgoing centre-of-mass state.
+    pub out: CmState,
+    /// Outgoing lab motions of A and B, and the throw angle (degrees), for lab input.
+    pub lab: Option<(LabMotion, LabMotion, Option<f64>)>,
+    /// Distance to the closed form (time stepping; 0 for the closed form).
+    pub closed_form_error: f64,
+    /// Right-hand-side evaluations (time stepping).
+    pub rhs_evaluations: u64,
+}
+
+/// The ball and contact of a row: the setup's, or with the row's overrides.
+fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error> {
+    if o.is_empty() {
+        return Ok((setup.ball, setup.contact));
+    }
+    let b = setup.ball;
+    let ball = Ball::new(
+        o.mass.unwrap_or(b.mass),
+        o.radius.unwrap_or(b.radius),
+        o.alpha.unwrap_or(b.alpha),
+    )?;
+    let friction = match o.mu {
+        Some(mu) => Friction::constant(mu)?,
+        None => setup.contact.friction,
+    };
+    let impulse = match (o.restitution, o.impulse) {
+        (Some(e), None) => ImpulseRule::restitution(e)?,
+        (None, Some(p)) => ImpulseRule::explicit(p)?,
+        (None, None) => setup.contact.impulse,
+        (Some(e), Some(p)) => {
+            return Err(Error::invalid(
+                "restitution",
+                format!("{e} together with impulse = {p}"),
+                "one of restitution or impulse, not both",
+            ))
+        }
+    };
+    if let Some(d) = o.duration {
+        crate::params::positive("duration", d, "s")?;
+    }
+    Ok((ball, Contact { friction, impulse }))
+}
+
+/// The centre-of-mass state of a row, with the lab frame for lab rows.
+fn cm_of(radius: f64, input: &BatchInput) -> Result<(CmState, Option<Frame>), Error> {
+    Ok(match &input.incoming {
+        Incoming::Cm(s) => (*s, None),
+        Incoming::Lab(lab) => {
+            let f = Frame::new(lab, radius)?;
+            (f.to_cm(lab), Some(f))
+        }
+    })
+}
+
+/// Resolves one collision with the setup's method. The closed form
+/// ([`ClosedFormBatch`]: the same numbers as [`crate::ClosedForm`]) skips the checks (they hold to
+/// round-off by construction) and computes the stick time only when sliding stops.
+pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Error> {
+    resolve_with(setup, None, input)
+}
+
+/// The closed-form kernel of the setup's own parameters, when the method is the closed form.
+fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
+    (setup.settings.method == Method::ClosedForm)
+        .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
+}
+
+fn resolve_with(
+    setup: &BatchSetup,
+    shared: Option<&ClosedFormBatch>,
+    input: &BatchInput,
+) -> Result<BatchOutput, Error> {
+    let (ball, contact) = params_of(setup, &input.overrides)?;
+    let (cm, frame) = cm_of(ball.radius, input)?;
+    let profile = &setup.profile;
+    let time_scale = input.overrides.duration.unwrap_or(profile.duration());
+    let mut out = if setup.settings.method == Method::ClosedForm {
+        let own;
+        let kernel = match shared {
+            Some(k) if input.overrides.is_empty() => k,
+            _ => {
+                own = ClosedFormBatch::new(ball, contact, setup.effects);
+                &own
+            }
+        };
+        let r = kernel.resolve(&cm)?;
+        let collision = r.impulse > 0.0;
+        let stick_time = (r.sticks && collision).then(|| {
+            time_scale * profile.time_at_cumulative(r.stick_impulse.unwrap_or(0.0) / r.impulse)
+        });
+        BatchOutput {
+            collision,
+            impulse: r.impulse,
+            s0: r.s0,
+            theta: r.theta,
+            sticks: r.sticks,
+            stick_time,
+            stick_impulse: if collision { r.stick_impulse } else { None },
+            tangential_impulse: r.tangential_impulse,
+            s_out: r.s_out,
+            heat: r.heat,
+            heat_sliding: r.heat_sliding,
+            out: r.out,
+            lab: None,
+            closed_form_error: 0.0,
+            rhs_evaluations: 0,
+        }
+    } else {
+        let c = Collision::new(ball, contact, setup.effects, cm)?;
+        let o = solve(&c, profile, &setup.settings, None)?;
+        BatchOutput {
+            collision: o.collision,
+            impulse: o.impulse,
+            s0: o.s0,
+            theta: o.theta,
+            sticks: o.sticks,
+            stick_time: o.stick_time.map(|t| t / profile.duration() * time_scale),
+            stick_impulse: o.stick_impulse,
+            tangential_impulse: o.tangential_impulse,
+            s_out: o.s_out,
+            heat: o.heat,
+            heat_sliding: o.heat_sliding,
+            out: o.out,
+            lab: None,
+            closed_form_error: o.check.closed_form_error,
+            rhs_evaluations: o.stats.rhs_evaluations,
+        }
+    };
+    if let (Some(f), Incoming::Lab(lab)) = (frame, &input.incoming) {
+        let (a, b) = f.to_lab(&out.out);
+        let throw = f.throw_angle_deg(&(b.velocity - lab.b.velocity));
+        out.lab = Some((a, b, throw));
+    }
+    Ok(out)
+}
+
+/// Resolves a slice of collisions in parallel (rayon's current pool), in order: element i
+/// of the result belongs to `inputs[i]`.
+///
+/// ```
+/// use billiard_contact::batch::{resolve_slice, BatchInput, BatchSetup};
+/// use billiard_contact::{scene::Scene, CmState, Method, SolverSettings};
+/// use nalgebra::Vector3;
+/// let setup = BatchSetup::from_scene(
+///     &Scene::default_scene(),
+///     SolverSettings { method: Method::ClosedForm, ..Default::default() },
+/// );
+/// let head_on = CmState::new(Vector3::new(1.0, 0.0, 0.0), Vector3::zeros(), Vector3::zeros());
+/// let out = resolve_slice(&setup, &[BatchInput::cm(head_on)]);
+/// let o = out[0].as_ref().unwrap();
+/// assert_eq!(o.out.u_cm.x, -1.0); // eq 24, P = 2 m U(0)
+/// // S(0) = 0: the surfaces never slide (CONTRACTS.md: sticks at t = 0, theta undefined).
+/// assert!(o.sticks && o.theta.is_none() && o.stick_time == Some(0.0));
+/// ```
+pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<BatchOutput, Error>> {
+    let kernel = shared_kernel(setup);
+    inputs
+        .par_iter()
+        .map(|i| resolve_with(setup, kernel.as_ref(), i))
+        .collect()
+}
+
+/// Closed form of centre-of-mass states sharing the setup's ball and contact, one core, into
+/// `out` (same length as `states`): the fast path the 50 ns target is measured on
+/// (outgoing state, impulse, S(0), theta, stick flag and p_stick; CONTRACTS.md).
+pub fn closed_form_into(
+    setup: &BatchSetup,
+    states: &[CmState],
+    out: &mut [Resolved],
+) -> Result<(), Error> {
+    assert_eq!(states.len(), out.len(), "one output per state");
+    let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
+    for (s, o) in states.iter().zip(out.iter_mut()) {
+        *o = kernel.resolve(s)?;
+    }
+    Ok(())
+}
+
+/// Positions of the input columns.
+#[derive(Debug, Clone, Default)]
+struct Columns {
+    id: Option<usize>,
+    cm: Option<CmColumns>,
+    lab: Option<LabColumns>,
+    overrides: [Option<usize>; 7],
+}
+
+#[derive(Debug, Clone)]
+struct CmColumns {
+    u: [usize; 3],
+    omega_a: [Option<usize>; 3],
+    omega_b: [Option<usize>; 3],
+}
+
+#[derive(Debug, Clone)]
+struct LabColumns {
+    a: [[Option<usize>; 3]; 3],
+    b: [[Option<usize>; 3]; 3],
+    up: [Option<usize>; 3],
+}
+
+const OVERRIDES: [&str; 7] = [
+    "mass",
+    "radius",
+    "alpha",
+    "mu",
+    "restitution",
+    "impulse",
+    "duration",
+];
+
+/// The header cell without a trailing `(unit)`.
+fn bare(cell: &str) -> &str {
+    let c = cell.trim().trim_start_matches('\u{feff}');
+    match c.find('(') {
+        Some(i) if c.ends_with(')') => c[..i].trim_end(),
+        _ => c,
+    }
+}
+
+impl Columns {
+    fn from_header(header: &csv::StringRecord) -> Result<Self, String> {
+        let names: Vec<&str> = header.iter().map(bare).collect();
+        let mut seen = std::collections::HashSet::new();
+        for n in &names {
+            if !n.is_empty() && !seen.insert(*n) {
+                return Err(format!("column `{n}` appears twice"));
+            }
+        }
+        let find = |n: &str| names.iter().position(|h| *h == n);
+        let xyz = |prefix: &str| {
+            [
+                find(&format!("{prefix}x")),
+                find(&format!("{prefix}y")),
+                find(&format!("{prefix}z")),
+            ]
+        };
+        let mut cols = Columns {
+            id: find("id"),
+            ..Default::default()
+        };
+        for (slot, n) in cols.overrides.iter_mut().zip(OVERRIDES) {
+            *slot = find(n);
+        }
+        let u = xyz("u_");
+        let any_cm = u.iter().any(Option::is_some);
+        let lab_names = ["a_p", "a_v", "b_p", "b_v"];
+        let any_lab = lab_names.iter().any(|p| xyz(p).iter().any(Option::is_some));
+        match (any_cm, any_lab) {
+            (true, true) => {
+                return Err("both centre-of-mass (u_x, ...) and lab (a_px, ...) columns: give one frame".into())
+            }
+            (false, false) => {
+                return Err("no state columns: give u_x, u_y, u_z (centre-of-mass frame) or a_px .. b_vz (lab frame)".into())
+            }
+            (true, false) => {
+                let mut req = [0; 3];
+                for (k, c) in u.iter().enumerate() {
+                    req[k] = c.ok_or_else(|| format!("missing column `u_{}`", ["x", "y", "z"][k]))?;
+                }
+                cols.cm = Some(CmColumns {
+                    u: req,
+                    omega_a: xyz("omega_a_"),
+                    omega_b: xyz("omega_b_"),
+                });
+            }
+            (false, true) => {
+                for p in lab_names {
+                    for (k, c) in xyz(p).iter().enumerate() {
+                        if c.is_none() {
+                            return Err(format!("missing column `{p}{}`", ["x", "y", "z"][k]));
+                        }
+                    }
+                }
+                cols.lab = Some(LabColumns {
+                    a: [xyz("a_p"), xyz("a_v"), xyz("a_w")],
+                    b: [xyz("b_p"), xyz("b_v"), xyz("b_w")],
+                    up: xyz("up_"),
+                });
+            }
+        }
+        Ok(cols)
+    }
+
+    fn parse(&self, rec: &csv::StringRecord) -> Result<BatchInput, String> {
+        let num = |i: Option<usize>, name: &dyn Fn() -> String| -> Result<Option<f64>, String> {
+            let Some(i) = i else { return Ok(None) };
+            let cell = rec.get(i).unwrap_or("").trim();
+            if cell.is_empty() {
+                return Ok(None);
+            }
+            let v: f64 = cell
+                .parse()
+                .map_err(|_| format!("{} = `{cell}` is not a number", name()))?;
+            if !v.is_finite() {
+                return Err(format!("{} = {cell}: expected a finite number", name()));
+            }
+            Ok(Some(v))
+        };
+        let vec3 = |cols: [Option<usize>; 3],
+                    prefix: &str,
+                    default: Option<[f64; 3]>|
+         -> Result<Vector3<f64>, String> {
+            let mut v = [0.0; 3];
+            for k in 0..3 {
+                let axis = ["x", "y", "z"][k];
+                v[k] = match (num(cols[k], &|| format!("{prefix}{axis}"))?, default) {
+                    (Some(x), _) => x,
+                    (None, Some(d)) => d[k],
+                    (None, None) => return Err(format!("{prefix}{axis} is empty")),
+                };
+            }
+            Ok(Vector3::from(v))
+        };
+        let incoming = if let Some(cm) = &self.cm {
+            Incoming::Cm(CmState::new(
+                vec3(cm.u.map(Some), "u_", None)?,
+                vec3(cm.omega_a, "omega_a_", Some([0.0; 3]))?,
+                vec3(cm.omega_b, "omega_b_", Some([0.0; 3]))?,
+            ))
+        } else {
+            let lab = self.lab.as_ref().expect("one frame");
+            let ball = |c: &[[Option<usize>; 3]; 3], n: &str| -> Result<LabBall, String> {
+                Ok(LabBall {
+                    position: vec3(c[0], &format!("{n}_p"), None)?,
+                    velocity: vec3(c[1], &format!("{n}_v"), None)?,
+                    spin: vec3(c[2], &format!("{n}_w"), Some([0.0; 3]))?,
+                })
+            };
+            Incoming::Lab(LabScene {
+                a: ball(&lab.a, "a")?,
+                b: ball(&lab.b, "b")?,
+                up: vec3(lab.up, "up_", Some([0.0, 0.0, 1.0]))?,
+            })
+        };
+        let mut o = [None; 7];
+        for (k, slot) in o.iter_mut().enumerate() {
+            *slot = num(self.overrides[k], &|| OVERRIDES[k].to_string())?;
+        }
+        Ok(BatchInput {
+            incoming,
+            overrides: Overrides {
+                mass: o[0],
+                radius: o[1],
+                alpha: o[2],
+                mu: o[3],
+                restitution: o[4],
+                impulse: o[5],
+                duration: o[6],
+            },
+        })
+    }
+
+    /// The output header for this input and method.
+    fn output_header(&self, method: Method) -> Vec<&'static str> {
+        let mut h = vec!["line"];
+        if self.id.is_some() {
+            h.push("id");
+        }
+        h.extend(OUTPUT_COLUMNS);
+        if self.lab.is_some() {
+            h.extend(LAB_OUTPUT_COLUMNS);
+        }
+        if method != Method::ClosedForm {
+            h.extend(["closed_form_error", "rhs_evaluations"]);
+        }
+        h
+    }
+}
+
+/// Output columns after `line` and `id`, for every input.
+pub const OUTPUT_COLUMNS: [&str; 20] = [
+    "collision",
+    "impulse",
+    "s0",
+    "theta",
+    "sticks",
+    "stick_time",
+    "stick_impulse",
+    "tangential_impulse",
+    "s_out",
+    "heat",
+    "heat_sliding",
+    "u_x",
+    "u_y",
+    "u_z",
+    "omega_a_x",
+    "omega_a_y",
+    "omega_a_z",
+    "omega_b_x",
+    "omega_b_y",
+    "omega_b_z",
+];
+
+/// Output columns for lab-frame input.
+pub const LAB_OUTPUT_COLUMNS: [&str; 13] = [
+    "a_vx",
+    "a_vy",
+    "a_vz",
+    "a_wx",
+    "a_wy",
+    "a_wz",
+    "b_vx",
+    "b_vy",
+    "b_vz",
+    "b_wx",
+    "b_wy",
+    "b_wz",
+    "throw_angle_deg",
+];
+
+/// What a streamed batch did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BatchSummary {
+    /// Rows resolved.
+    pub rows: u64,
+    /// Rows where the balls collided.
+    pub collisions: u64,
+    /// Rows where sliding stopped during contact.
+    pub sticks: u64,
+    /// The most rows held in memory at once (at most the chunk size).
+    pub max_rows_in_memory: usize,
+}
+
+/// Formats one output row (with its newline) into `line_out`; every float must be finite.
+/// Rows are formatted by the workers, so the single writer only copies bytes.
+fn format_row(
+    line: u64,
+    id: Option<&str>,
+    o: &BatchOutput,
+    method: Method,
+    line_out: &mut String,
+) -> Result<(), String> {
+    use std::fmt::Write as _;
+    fn num(s: &mut String, name: &str, v: f64) -> Result<(), String> {
+        if !v.is_finite() {
+            return Err(format!("non-finite result: {name} = {v}"));
+        }
+        let _ = write!(s, ",{v:?}");
+        Ok(())
+    }
+    fn opt(s: &mut String, name: &str, v: Option<f64>) -> Result<(), String> {
+        match v {
+            Some(x) => num(s, name, x),
+            None => {
+                s.push(',');
+                Ok(())
+            }
+        }
+    }
+    let s = line_out;
+    s.clear();
+    let _ = write!(s, "{line}");
+    if let Some(id) = id {
+        s.push(',');
+        if id.contains([',', '"', '\n', '\r']) {
+            s.push('"');
+            s.push_str(&id.replace('"', "\"\""));
+            s.push('"');
+        } else {
+            s.push_str(id);
+        }
+    }
+    let _ = write!(s, ",{}", o.collision);
+    num(s, "impulse", o.impulse)?;
+    num(s, "s0", o.s0)?;
+    opt(s, "theta", o.theta)?;
+    let _ = write!(s, ",{}", o.sticks);
+    opt(s, "stick_time", o.stick_time)?;
+    opt(s, "stick_impulse", o.stick_impulse)?;
+    let st = &o.out;
+    let scalars = [
+        o.tangential_impulse,
+        o.s_out,
+        o.heat,
+        o.heat_sliding,
+        st.u_cm.x,
+        st.u_cm.y,
+        st.u_cm.z,
+        st.omega_a.x,
+        st.omega_a.y,
+        st.omega_a.z,
+        st.omega_b.x,
+        st.omega_b.y,
+        st.omega_b.z,
+    ];
+    for (name, v) in OUTPUT_COLUMNS[7..].iter().zip(scalars) {
+        num(s, name, v)?;
+    }
+    if let Some((a, b, throw)) = &o.lab {
+        let v = [a.velocity, a.spin, b.velocity, b.spin];
+        for (name, x) in LAB_OUTPUT_COLUMNS
+            .iter()
+            .zip(v.iter().flat_map(|v| v.iter()))
+        {
+            num(s, name, *x)?;
+        }
+        opt(s, "throw_angle_deg", *throw)?;
+    }
+    if method != Method::ClosedForm {
+        num(s, "closed_form_error", o.closed_form_error)?;
+        let _ = write!(s, ",{}", o.rhs_evaluations);
+    }
+    s.push('\n');
+    Ok(())
+}
+
+/// Streams a batch: reads CSV rows from `input` (`input_name` in errors), resolves them
+/// `chunk_rows` at a time in parallel (rayon's current pool), writes the results to `output`
+/// in input order, and calls `progress(rows_done, bytes_read)` after each chunk. Memory holds
+/// at most one chunk of rows. Errors name the input line; the output is then incomplete
+/// and the caller discards it (the command writes through an atomic file).
+pub fn run_csv<R: Read, W: Write>(
+    setup: &BatchSetup,
+    input: R,
+    input_name: &Path,
+    output: W,
+    chunk_rows: usize,
+    mut progress: impl FnMut(u64, u64),
+) -> Result<(W, BatchSummary), Error> {
+    let chunk_rows = chunk_rows.max(1);
+    let path = PathBuf::from(input_name);
+    let bad = |line: u64, message: String| Error::BatchInput {
+        path: path.clone(),
+        line,
+        message,
+    };
+    let mut rd = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(input);
+    let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
+    let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
+    let method = setup.settings.method;
+    let kernel = shared_kernel(setup);
+    let mut w = output;
+    let io = |e: std::io::Error| Error::io("batch output", e);
+    w.write_all(cols.output_header(method).join(",").as_bytes())
+        .and_then(|_| w.write_all(b"\n"))
+        .map_err(io)?;
+    let mut summary = BatchSummary::default();
+    // Reused buffers: their size is bounded by the chunk, not by the file.
+    let mut records: Vec<csv::StringRecord> = Vec::with_capacity(chunk_rows);
+    let mut lines: Vec<u64> = Vec::with_capacity(chunk_rows);
+    let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(chunk_rows);
+    loop {
+        let mut n = 0;
+        while n < chunk_rows {
+            if records.len() <= n {
+                records.push(csv::StringRecord::new());
+                lines.push(0);
+            }
+            let more = rd.read_record(&mut records[n]).map_err(|e| {
+                let line = e.position().map(|p| p.line()).unwrap_or(0);
+                bad(line, e.to_string())
+            })?;
+            if !more {
+                break;
+            }
+            lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
+            n += 1;
+        }
+        if n == 0 {
+            break;
+        }
+        summary.max_rows_in_memory = summary.max_rows_in_memory.max(records.len());
+        results.clear();
+        records[..n]
+            .par_iter()
+            .zip(lines[..n].par_iter())
+            .map(|(rec, &line)| {
+                let input = cols.parse(rec)?;
+                let out =
+                    resolve_with(setup, kernel.as_ref(), &input).map_err(|e| e.to_string())?;
+                let id = cols.id.and_then(|i| rec.get(i));
+                let mut text = String::with_capacity(400);
+                format_row(line, id, &out, method, &mut text)?;
+                Ok((text, out.collision, out.sticks))
+            })
+            .collect_into_vec(&mut results);
+        for (k, r) in results.iter().enumerate() {
+            let (text, collision, sticks) = r.as_ref().map_err(|m| bad(lines[k], m.clone()))?;
+            w.write_all(text.as_bytes()).map_err(io)?;
+            summary.rows += 1;
+            summary.collisions += u64::from(*collision);
+            summary.sticks += u64::from(*sticks);
+        }
+        progress(summary.rows, rd.position().byte());
+        if n < chunk_rows {
+            break;
+        }
+    }
+    w.flush().map_err(io)?;
+    Ok((w, summary))
+}

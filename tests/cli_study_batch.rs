@@ -1,0 +1,109 @@
+//! The `work-precision` and `batch` commands end to end: files written, header contract,
+//! figure, atomic output, exit codes.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("bc-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn work_precision_writes_csv_svg_png() {
+    let dir = temp_dir("wp");
+    let out = bin()
+        .args([
+            "work-precision",
+            "--profiles",
+            "half-sine,rectangle",
+            "--repeats",
+            "1",
+        ])
+        .args(["--no-sticking", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines.next().unwrap().starts_with(
+        "profile,method,rtol,steps,error,stick_time_error,rhs_evaluations,accepted_steps,seconds_per_contact,"
+    ));
+    // 2 profiles x (closed form + 12 rk4 + 2 x 11 adaptive), no breakpoint rows.
+    assert_eq!(lines.count(), 2 * (1 + 12 + 22));
+    let svg = std::fs::read_to_string(dir.join("work_precision.svg")).unwrap();
+    assert!(svg.contains("half-sine") && svg.contains("rectangle"));
+    let png = std::fs::read(dir.join("work_precision.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let summary = String::from_utf8_lossy(&out.stdout);
+    assert!(summary.contains("error<=1e-9"), "{summary}");
+    // Redraw from the CSV alone.
+    std::fs::remove_file(dir.join("work_precision.png")).unwrap();
+    let re = bin()
+        .args(["work-precision", "--replot", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(re.status.success());
+    assert!(dir.join("work_precision.png").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn batch_writes_atomically_and_names_bad_lines() {
+    let dir = temp_dir("batch");
+    let input = dir.join("in.csv");
+    std::fs::write(&input, "id,u_x,u_y,u_z\na,1.0,0.2,0\nb,-0.5,0.1,0\n").unwrap();
+    let output = dir.join("out.csv");
+    let ok = bin()
+        .arg("batch")
+        .arg(&input)
+        .arg("--out")
+        .arg(&output)
+        .args(["--threads", "2"])
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let text = std::fs::read_to_string(&output).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows.len(), 3);
+    assert!(rows[1].starts_with("2,a,true,"));
+    // Separating balls: no collision, no impulse.
+    assert!(rows[2].starts_with("3,b,false,0.0,"), "{}", rows[2]);
+
+    // A bad line: exit 2, the line named, the previous output untouched.
+    std::fs::write(&input, "u_x,u_y,u_z\n1,0,0\n1,x,0\n").unwrap();
+    let bad = bin()
+        .arg("batch")
+        .arg(&input)
+        .arg("--out")
+        .arg(&output)
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("in.csv:3:"), "{err}");
+    assert_eq!(std::fs::read_to_string(&output).unwrap(), text);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
