@@ -63,6 +63,7 @@ impl SlidingState {
     const H: usize = 8;
 
     /// The state at the start of contact: scaled slip `slip0`, all changes 0.
+    #[inline]
     pub fn initial(slip0: Vector2<f64>) -> Self {
         let mut y = SVector::zeros();
         y[Self::SY] = slip0.x;
@@ -71,35 +72,43 @@ impl SlidingState {
     }
 
     /// Scaled time s.
+    #[inline]
     pub fn time(&self) -> f64 {
         self.0[Self::T]
     }
     /// Sets the scaled time.
+    #[inline]
     pub fn set_time(&mut self, s: f64) {
         self.0[Self::T] = s;
     }
     /// Scaled change of (U, V, W).
+    #[inline]
     pub fn delta_u(&self) -> [f64; 3] {
         [self.0[Self::DU], self.0[Self::DV], self.0[Self::DW]]
     }
     /// Scaled change of (Omega_y, Omega_z) of Omega = Omega^A + Omega^B.
+    #[inline]
     pub fn delta_omega_yz(&self) -> [f64; 2] {
         [self.0[Self::DOY], self.0[Self::DOZ]]
     }
     /// Scaled slip (S cos theta, S sin theta).
+    #[inline]
     pub fn slip(&self) -> Vector2<f64> {
         Vector2::new(self.0[Self::SY], self.0[Self::SZ])
     }
     /// Sets the scaled slip (to zero when the surfaces stick).
+    #[inline]
     pub fn set_slip(&mut self, slip: Vector2<f64>) {
         self.0[Self::SY] = slip.x;
         self.0[Self::SZ] = slip.y;
     }
     /// Scaled sliding heat H_sfr.
+    #[inline]
     pub fn heat(&self) -> f64 {
         self.0[Self::H]
     }
     /// Scaled change of U.
+    #[inline]
     pub fn set_delta_u_normal(&mut self, du: f64) {
         self.0[Self::DU] = du;
     }
@@ -111,14 +120,17 @@ pub struct NormalState(pub SVector<f64, NORMAL_DIM>);
 
 impl NormalState {
     /// At scaled time `s` with scaled change of U `du`.
+    #[inline]
     pub fn new(s: f64, du: f64) -> Self {
         NormalState(SVector::from([s, du]))
     }
     /// Scaled time s.
+    #[inline]
     pub fn time(&self) -> f64 {
         self.0[0]
     }
     /// Scaled change of U.
+    #[inline]
     pub fn delta_u(&self) -> f64 {
         self.0[1]
     }

@@ -618,8 +618,9 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                             run.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
                         run.slip_consistency = run.slip_consistency.max(consistency(&st, &slip0));
                         // Near the stop the slip's direction is round-off (SLIP_ROUND_OFF):
-                        // the trace keeps the last angle measured above that floor.
-                        if slip.norm() > rhs.slip_floor {
+                        // the trace keeps the last angle measured above that floor. Only a
+                        // trace reads it.
+                        if run.sink.is_some() && slip.norm() > rhs.slip_floor {
                             run.theta_last = Some(crate::state::slip_angle(slip));
                         }
                         if run.steps_mode {
@@ -680,7 +681,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         // the angle of slip / S, measured once the slip is clear of
                         // round-off again (an angle kept from near the stop is noise).
                         let slip = SlidingState(*v).slip();
-                        if slip.norm() > rhs.slip_floor {
+                        if run.sink.is_some() && slip.norm() > rhs.slip_floor {
                             let along = if slip.dot(&e0) < 0.0 { -slip } else { slip };
                             run.theta_last = Some(crate::state::slip_angle(along));
                         }

@@ -76,7 +76,12 @@ fn num(r: &csv::StringRecord, i: usize) -> f64 {
     r[i].parse().unwrap()
 }
 
-/// Closed-form rows equal the library's closed form bit for bit, in input order, with
+/// Rounding allowed between the batch kernel and `ClosedForm` (multiplication by a
+/// reciprocal against division: a few ulps of the scale).
+const ULPS: f64 = 8.0;
+
+/// Closed-form rows equal the library's closed form to a few ulps (the batch kernel
+/// multiplies by precomputed reciprocals where `ClosedForm` divides), in input order, with
 /// the id carried and the unit suffix of the header ignored; chunks of 7 rows on two
 /// threads change nothing.
 #[test]
@@ -97,17 +102,20 @@ fn closed_form_rows_match_the_closed_form() {
         let c = Collision::new(s.ball, s.contact, s.effects, *state).unwrap();
         let cf = ClosedForm::new(&c);
         let out = [cf.out.u_cm, cf.out.omega_a, cf.out.omega_b];
+        let scale = [c.scales.speed, c.scales.spin, c.scales.spin];
         for (k, name) in ["u_", "omega_a_", "omega_b_"].iter().enumerate() {
             for (j, axis) in ["x", "y", "z"].iter().enumerate() {
-                assert_eq!(
-                    num(r, col(&h, &format!("{name}{axis}"))),
-                    out[k][j],
-                    "row {i} {name}{axis}"
+                let got = num(r, col(&h, &format!("{name}{axis}")));
+                assert!(
+                    (got - out[k][j]).abs() <= ULPS * f64::EPSILON * scale[k],
+                    "row {i} {name}{axis}: {got} vs {}",
+                    out[k][j]
                 );
             }
         }
         assert_eq!(num(r, col(&h, "impulse")), c.impulse);
-        assert_eq!(num(r, col(&h, "heat")), cf.heat);
+        let heat = num(r, col(&h, "heat"));
+        assert!((heat - cf.heat).abs() <= ULPS * f64::EPSILON * c.scales.energy);
         assert_eq!(&r[col(&h, "sticks")], cf.sticks.to_string().as_str());
         sticks += usize::from(cf.sticks);
         separate += usize::from(!c.collides());
