@@ -9,15 +9,11 @@
 //! cargo run --release --example default_hertz
 //! ```
 
-use billiard_contact::integrate::Sampling;
-use billiard_contact::output::AtomicFile;
+mod common;
+
 use billiard_contact::profile::{ForceProfile, Hertz, Profile};
-use billiard_contact::report::summary;
-use billiard_contact::runner::run_scene;
 use billiard_contact::scene::Scene;
-use billiard_contact::trace::CsvTrace;
 use billiard_contact::Error;
-use std::path::Path;
 use std::process::ExitCode;
 
 /// Largest accepted distance from the closed form (velocities over v_ref, spins over
@@ -26,55 +22,16 @@ use std::process::ExitCode;
 /// global error is about ten times rtol (1.3e-9 measured for the sine-power pulse at the
 /// default rtol 1e-10).
 const TOLERANCE: f64 = 1e-8;
-/// theta must stay constant while sliding (eq 23), to this (scaled by v_ref).
-const THETA_TOLERANCE: f64 = 1e-12;
 
 fn run() -> Result<(), Error> {
-    let mut scene = Scene::default_scene();
-    let duration = scene.profile.duration();
-    let profile = Profile::Hertz(Hertz::new(duration));
-    scene.profile = profile;
-    scene.name = format!("{}, hertz pulse", scene.name);
-
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/traces");
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-    let path = dir.join("default_hertz.csv");
-    let mut trace = CsvTrace::new(AtomicFile::create(&path)?)?;
-    let result = run_scene(&scene, &scene.solver, Some((&mut trace, Sampling::Steps)))?;
-    let rows = trace.rows();
-    trace.finish()?.commit()?;
-
-    print!("{}", summary(&scene, &result));
-    println!("  trace: {rows} rows in {}", path.display());
-
-    let check = &result.outcome.check;
-    if check.closed_form_error > TOLERANCE {
-        return Err(Error::invalid(
-            "check.closed_form_error",
-            check.closed_form_error,
-            format!("<= {TOLERANCE:e} for the hertz pulse"),
-        ));
-    }
-    if check.theta_drift > THETA_TOLERANCE {
-        return Err(Error::invalid(
-            "check.theta_drift",
-            check.theta_drift,
-            format!("<= {THETA_TOLERANCE:e}"),
-        ));
-    }
-    println!(
-        "  ok: closed-form error {:.1e} <= {TOLERANCE:e}, theta drift {:.1e}",
-        check.closed_form_error, check.theta_drift
-    );
-    Ok(())
+    let duration = Scene::default_scene().profile.duration();
+    common::run_default_with(
+        Profile::Hertz(Hertz::new(duration)),
+        "default_hertz",
+        TOLERANCE,
+    )
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run())
 }

@@ -10,13 +10,10 @@
 //! cargo run --release --example default_tabulated
 //! ```
 
-use billiard_contact::integrate::Sampling;
-use billiard_contact::output::AtomicFile;
+mod common;
+
 use billiard_contact::profile::{ForceProfile, Profile, Tabulated};
-use billiard_contact::report::summary;
-use billiard_contact::runner::run_scene;
 use billiard_contact::scene::Scene;
-use billiard_contact::trace::CsvTrace;
 use billiard_contact::Error;
 use std::path::Path;
 use std::process::ExitCode;
@@ -25,56 +22,17 @@ use std::process::ExitCode;
 /// v_ref / r): the force is linear between the table's points, which are breakpoints
 /// the integrator steps to, so the result is exact up to round-off.
 const TOLERANCE: f64 = 1e-13;
-/// theta must stay constant while sliding (eq 23), to this (scaled by v_ref).
-const THETA_TOLERANCE: f64 = 1e-12;
 
 fn run() -> Result<(), Error> {
-    let mut scene = Scene::default_scene();
-    let duration = scene.profile.duration();
+    let duration = Scene::default_scene().profile.duration();
     let table = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/profiles/measured_pulse.csv");
-    let profile = Profile::Tabulated(Tabulated::from_csv_file(&table, Some(duration))?);
-    scene.profile = profile;
-    scene.name = format!("{}, tabulated pulse", scene.name);
-
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/traces");
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-    let path = dir.join("default_tabulated.csv");
-    let mut trace = CsvTrace::new(AtomicFile::create(&path)?)?;
-    let result = run_scene(&scene, &scene.solver, Some((&mut trace, Sampling::Steps)))?;
-    let rows = trace.rows();
-    trace.finish()?.commit()?;
-
-    print!("{}", summary(&scene, &result));
-    println!("  trace: {rows} rows in {}", path.display());
-
-    let check = &result.outcome.check;
-    if check.closed_form_error > TOLERANCE {
-        return Err(Error::invalid(
-            "check.closed_form_error",
-            check.closed_form_error,
-            format!("<= {TOLERANCE:e} for the tabulated pulse"),
-        ));
-    }
-    if check.theta_drift > THETA_TOLERANCE {
-        return Err(Error::invalid(
-            "check.theta_drift",
-            check.theta_drift,
-            format!("<= {THETA_TOLERANCE:e}"),
-        ));
-    }
-    println!(
-        "  ok: closed-form error {:.1e} <= {TOLERANCE:e}, theta drift {:.1e}",
-        check.closed_form_error, check.theta_drift
-    );
-    Ok(())
+    common::run_default_with(
+        Profile::Tabulated(Tabulated::from_csv_file(&table, Some(duration))?),
+        "default_tabulated",
+        TOLERANCE,
+    )
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run())
 }
