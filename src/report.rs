@@ -439,7 +439,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  heat H            {:.9e} J (sliding {:.9e} J)",
         o.heat, o.heat_sliding
     );
-    let fmt = |v: &Vector3<f64>| format!("[{:+.9}, {:+.9}, {:+.9}]", v.x, v.y, v.z);
+    let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     let _ = writeln!(s, "  centre-of-mass frame, out:");
     let _ = writeln!(s, "    U        {} m/s", fmt(&o.out.u_cm));
     let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&o.out.omega_a));
@@ -479,7 +479,7 @@ fn table_summary(t: &TableOutcome) -> String {
     use std::fmt::Write;
     let p = &t.table.params;
     let mut s = String::new();
-    let fmt = |v: &Vector3<f64>| format!("[{:+.6}, {:+.6}, {:+.6}]", v.x, v.y, v.z);
+    let fmt = |v: &Vector3<f64>| vec3_text(v, 6);
     let _ = writeln!(
         s,
         "  table (cloth mu {}, restitution {}, g {} m/s^2): until both roll, {:.6} s",
@@ -543,4 +543,18 @@ fn table_summary(t: &TableOutcome) -> String {
         t.check.energy_increase, t.check.momentum_error
     );
     s
+}
+
+/// `[+x, +y, +z]` with `prec` decimals; a component that rounds to zero prints as +0 (not
+/// as -0.000000000 for a round-off remainder of -1e-17).
+fn vec3_text(v: &Vector3<f64>, prec: usize) -> String {
+    let one = |x: f64| {
+        let s = format!("{x:+.prec$}");
+        if s[1..].chars().all(|c| c == '0' || c == '.') {
+            format!("{:+.prec$}", 0.0)
+        } else {
+            s
+        }
+    };
+    format!("[{}, {}, {}]", one(v.x), one(v.y), one(v.z))
 }
