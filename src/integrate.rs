@@ -474,6 +474,16 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
+    /// Records a non-finite accepted state as the run's error; true when it was one (the
+    /// observer then stops the solver).
+    fn flag_non_finite<const N: usize>(&mut self, v: &SVector<f64, N>) -> bool {
+        if v.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        self.error = Some(non_finite("state", v));
+        true
+    }
+
     fn emit<P: ForceProfile + ?Sized>(
         &mut self,
         units: &Units<'_, P>,
@@ -603,8 +613,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                     let mut crossed = None;
                     let mut observer = |v: &SVector<f64, SLIDING_DIM>| -> bool {
                         let st = SlidingState(*v);
-                        if !v.iter().all(|x| x.is_finite()) {
-                            run.error = Some(non_finite("state", v));
+                        if run.flag_non_finite(v) {
                             return true;
                         }
                         // A slip within round-off of zero has stopped: a step that lands
@@ -673,8 +682,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                 Phase::Frozen => {
                     let rhs = sliding_rhs(Direction::Frozen);
                     let mut observer = |v: &SVector<f64, SLIDING_DIM>| -> bool {
-                        if !v.iter().all(|x| x.is_finite()) {
-                            run.error = Some(non_finite("state", v));
+                        if run.flag_non_finite(v) {
                             return true;
                         }
                         // Past the stop the signed slip S < 0 runs along -e0: theta is
@@ -716,8 +724,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                         st
                     };
                     let mut observer = |v: &SVector<f64, NORMAL_DIM>| -> bool {
-                        if !v.iter().all(|x| x.is_finite()) {
-                            run.error = Some(non_finite("state", v));
+                        if run.flag_non_finite(v) {
                             return true;
                         }
                         if run.steps_mode {
