@@ -29,6 +29,12 @@ pub use outcome::{solve, Outcome};
 pub use params::{Ball, Contact, Friction, ImpulseRule};
 pub use profile::{ForceProfile, Profile};
 pub use state::{CmState, LabBall, LabMotion};
+pub use nalgebra;
+pub use report::Report;
+pub use runner::{run_scene, SceneOutcome};
+pub use scene::{Incoming, Scene};
+pub use trace::{CsvTrace, TraceRow, TraceSink};
+#[cfg(feature = "plots")]
 pub mod plot;
 pub mod report;
 pub mod runner;
