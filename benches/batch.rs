@@ -2,7 +2,7 @@
 //! dop853 rows at 1 and 2 threads, and the streamed CSV path (parse, resolve, write).
 
 use billiard_contact::batch::{resolve_slice, run_csv, BatchInput, BatchSetup, DEFAULT_CHUNK_ROWS};
-use billiard_contact::scene::Scene;
+use billiard_contact::Scene;
 use billiard_contact::{Method, SolverSettings};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::path::Path;

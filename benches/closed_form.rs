@@ -6,8 +6,8 @@
 //! theta by atan2). `resolve` adds the stick time and the output record per row.
 
 use billiard_contact::batch::{closed_form_into, resolve, BatchInput, BatchSetup};
-use billiard_contact::closed_form::ClosedFormBatch;
-use billiard_contact::scene::Scene;
+use billiard_contact::details::ClosedFormBatch;
+use billiard_contact::Scene;
 use billiard_contact::{CmState, Method, SolverSettings};
 use criterion::{black_box, criterion_group, Criterion, Throughput};
 use nalgebra::Vector3;

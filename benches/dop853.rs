@@ -4,7 +4,7 @@
 //! One `solve` per iteration: closed form, integration with stick-event watch, and checks.
 
 use billiard_contact::profile::{HalfSine, Hertz, Profile, SinePower};
-use billiard_contact::scene::Scene;
+use billiard_contact::Scene;
 use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
 use criterion::{black_box, criterion_group, Criterion};
 

@@ -7,12 +7,12 @@
 //! `stun_cut_sticks.toml` (10 degree stun cut: sliding stops during contact, so `stick`
 //! adds the event location). `cargo bench --bench effects`; the README quotes the numbers.
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, SolverSettings};
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
-use billiard_contact::table::TableOutcome;
+use billiard_contact::run_scene;
+use billiard_contact::table_phase::TableOutcome;
+use billiard_contact::Effects;
+use billiard_contact::Scene;
 use billiard_contact::{solve, Friction};
+use billiard_contact::{Method, SolverSettings};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use std::path::Path;
 use std::time::Duration;

@@ -12,8 +12,8 @@
 mod common;
 
 use billiard_contact::profile::{ForceProfile, HalfSine, Profile};
-use billiard_contact::scene::Scene;
 use billiard_contact::Error;
+use billiard_contact::Scene;
 use std::process::ExitCode;
 
 /// Largest accepted distance from the closed form (velocities over v_ref, spins over

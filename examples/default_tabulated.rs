@@ -13,8 +13,8 @@
 mod common;
 
 use billiard_contact::profile::{ForceProfile, Profile, Tabulated};
-use billiard_contact::scene::Scene;
 use billiard_contact::Error;
+use billiard_contact::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 

@@ -21,12 +21,12 @@
 //! slower than a second) and summarised at the end. `tests/fuzz_smoke.rs` runs the same
 //! harness on a few thousand inputs in `cargo test`.
 
-use billiard_contact::integrate::{Method, SolverSettings};
+use billiard_contact::formats::report::Report;
 use billiard_contact::profile::{parse_table, ForceProfile, Profile, Tabulated};
-use billiard_contact::report::Report;
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
+use billiard_contact::run_scene;
 use billiard_contact::Error;
+use billiard_contact::Scene;
+use billiard_contact::{Method, SolverSettings};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 

@@ -3,14 +3,14 @@
 //! Exit codes: 0 success, 1 the run failed (integrator gave up, non-finite result, I/O
 //! while writing), 2 bad input (scene, profile table, options).
 
-use billiard_contact::integrate::{Method, Sampling, SolverSettings};
-use billiard_contact::output::AtomicFile;
-use billiard_contact::report::{summary, Report};
-use billiard_contact::runner::{run_scene, SceneOutcome};
-use billiard_contact::scene::Scene;
-use billiard_contact::table::TableOutcome;
-use billiard_contact::trace::CsvTrace;
+use billiard_contact::formats::atomic_file::AtomicFile;
+use billiard_contact::formats::report::{summary, Report};
+use billiard_contact::formats::trace::CsvTrace;
+use billiard_contact::table_phase::TableOutcome;
 use billiard_contact::Error;
+use billiard_contact::Scene;
+use billiard_contact::{run_scene, SceneOutcome};
+use billiard_contact::{Method, Sampling, SolverSettings};
 use clap::{Args, Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
@@ -237,12 +237,13 @@ fn run(args: &RunArgs) -> Result<(), Error> {
     };
     if let Some(table) = &outcome.table {
         if let Some(path) = &args.path {
-            let rows = billiard_contact::path::path_rows(
+            let rows = billiard_contact::formats::ball_paths::path_rows(
                 table,
                 args.path_samples
-                    .unwrap_or(billiard_contact::path::DEFAULT_PATH_SAMPLES),
+                    .unwrap_or(billiard_contact::formats::ball_paths::DEFAULT_PATH_SAMPLES),
             );
-            billiard_contact::path::write_path(AtomicFile::create(path)?, &rows)?.commit()?;
+            billiard_contact::formats::ball_paths::write_path(AtomicFile::create(path)?, &rows)?
+                .commit()?;
         }
         if let Some(path) = &args.plot {
             write_plot(path, table, &scene)?;
@@ -299,15 +300,15 @@ fn progress_bar(len: u64, template: &str) -> indicatif::ProgressBar {
 
 fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     use billiard_contact::plot::work_precision as figure;
-    use billiard_contact::study::{self, ProfileKind, StudyOptions};
+    use billiard_contact::work_precision::{self, ProfileKind, StudyOptions};
     let csv_path = args.out.join("work_precision.csv");
     let svg = args.out.join("work_precision.svg");
     let png = args.out.join("work_precision.png");
     if args.replot {
         let file = std::fs::File::open(&csv_path).map_err(|e| Error::io(&csv_path, e))?;
-        let rows = study::read_csv(std::io::BufReader::new(file), &csv_path)?;
+        let rows = work_precision::read_csv(std::io::BufReader::new(file), &csv_path)?;
         figure::write(&rows, &svg, &png)?;
-        print!("{}", study::summary(&rows));
+        print!("{}", work_precision::summary(&rows));
         println!("\nwrote {} and {}", svg.display(), png.display());
         return Ok(());
     }
@@ -330,7 +331,7 @@ fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
     let start = std::time::Instant::now();
     let mut bar: Option<indicatif::ProgressBar> = None;
-    let rows = study::run_study(scene, &options, |done, total, row| {
+    let rows = work_precision::run_study(scene, &options, |done, total, row| {
         let b = bar.get_or_insert_with(|| {
             progress_bar(total as u64, "{elapsed:>4} [{bar:40}] {pos}/{len} {msg}")
         });
@@ -341,10 +342,10 @@ fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         b.finish_and_clear();
     }
     let mut file = AtomicFile::create(&csv_path)?;
-    study::write_csv(&mut file, &rows)?;
+    work_precision::write_csv(&mut file, &rows)?;
     file.commit()?;
     figure::write(&rows, &svg, &png)?;
-    print!("{}", study::summary(&rows));
+    print!("{}", work_precision::summary(&rows));
     for r in rows.iter().filter(|r| !r.note.is_empty()) {
         eprintln!(
             "warning: {} {} {:?} failed: {}",

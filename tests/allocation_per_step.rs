@@ -4,7 +4,7 @@
 //! accepts; anything per step would show up as thousands.
 
 use billiard_contact::profile::{HalfSine, Profile};
-use billiard_contact::scene::Scene;
+use billiard_contact::Scene;
 use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

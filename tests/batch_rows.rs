@@ -3,9 +3,9 @@
 //! design (memory bounded by the chunk, order kept, errors naming the line).
 
 use billiard_contact::batch::{resolve_slice, run_csv, BatchInput, BatchSetup};
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::{Incoming, Scene};
+use billiard_contact::run_scene;
 use billiard_contact::{ClosedForm, CmState, Collision, Method, SolverSettings};
+use billiard_contact::{Incoming, Scene};
 use nalgebra::Vector3;
 use std::io::Read;
 use std::path::Path;

@@ -577,7 +577,7 @@ fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
 /// empty only when S(0) = 0.
 #[test]
 fn trace_csv_follows_the_contract() {
-    assert_eq!(billiard_contact::trace::HEADER, TRACE_HEADER);
+    assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
     let n = SAMPLES.to_string();
     for path in scenes() {
         let sc = read_scene(&path);

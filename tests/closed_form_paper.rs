@@ -8,14 +8,14 @@
 
 mod common;
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, SolverSettings};
 use billiard_contact::profile::HalfSine;
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
+use billiard_contact::run_scene;
+use billiard_contact::Effects;
+use billiard_contact::Scene;
 use billiard_contact::{
     solve, Ball, ClosedForm, CmState, Collision, Contact, Friction, ImpulseRule,
 };
+use billiard_contact::{Method, SolverSettings};
 use common::{amax, resolve, theta_cm, Balls, Expected, Law, Pair, Rng, Rule};
 use nalgebra::Vector3;
 use std::path::Path;

@@ -8,10 +8,10 @@
 
 mod common;
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, SolverSettings};
 use billiard_contact::profile::{ForceProfile, HalfSine, Hertz, Rectangle, SinePower, Tabulated};
+use billiard_contact::Effects;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Outcome};
+use billiard_contact::{Method, SolverSettings};
 use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
 use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, OutputType, System};

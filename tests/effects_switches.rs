@@ -6,11 +6,11 @@
 
 mod common;
 
-use billiard_contact::integrate::Sampling;
-use billiard_contact::report::{summary, Report};
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
-use billiard_contact::trace::TraceRow;
+use billiard_contact::formats::report::{summary, Report};
+use billiard_contact::formats::trace::TraceRow;
+use billiard_contact::run_scene;
+use billiard_contact::Sampling;
+use billiard_contact::Scene;
 use common::{cue, lab_scene, M, R};
 use std::path::Path;
 

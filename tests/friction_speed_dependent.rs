@@ -12,11 +12,11 @@
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, Sampling, SolverSettings};
+use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
-use billiard_contact::trace::TraceRow;
+use billiard_contact::Effects;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
+use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;
 
 const M: f64 = 0.17;

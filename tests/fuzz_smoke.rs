@@ -7,11 +7,11 @@
 #[allow(dead_code)]
 mod fuzz;
 
-use billiard_contact::integrate::{Method, SolverSettings};
+use billiard_contact::formats::report::Report;
 use billiard_contact::profile::{parse_table, Profile, Tabulated};
-use billiard_contact::report::Report;
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
+use billiard_contact::run_scene;
+use billiard_contact::Scene;
+use billiard_contact::{Method, SolverSettings};
 use std::path::Path;
 
 #[test]

@@ -11,8 +11,8 @@
 #[path = "common/hard.rs"]
 mod common;
 
+use billiard_contact::formats::trace::{CsvTrace, TraceRow, TraceSink};
 use billiard_contact::profile::HalfSine;
-use billiard_contact::trace::{CsvTrace, TraceRow, TraceSink};
 use billiard_contact::{solve, CmState, Error, ImpulseRule, Method, Sampling, SolverSettings};
 use common::*;
 use nalgebra::Vector3;

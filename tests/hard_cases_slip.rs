@@ -15,8 +15,8 @@
 #[path = "common/hard.rs"]
 mod common;
 
+use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
-use billiard_contact::trace::TraceRow;
 use billiard_contact::{solve, CmState, ImpulseRule, Method, Sampling};
 use common::*;
 use nalgebra::Vector3;

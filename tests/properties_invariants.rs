@@ -18,16 +18,16 @@
 #[path = "common/hard.rs"]
 mod common;
 
-use billiard_contact::effects::Effects;
-use billiard_contact::frame::LabScene;
+use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::{Incoming, Scene};
-use billiard_contact::trace::TraceRow;
+use billiard_contact::run_scene;
+use billiard_contact::Effects;
+use billiard_contact::LabScene;
 use billiard_contact::{
     solve, Ball, CmState, Collision, Contact, ForceProfile, Friction, ImpulseRule, LabBall, Method,
     Profile, Sampling, SolverSettings,
 };
+use billiard_contact::{Incoming, Scene};
 use common::Exact;
 use nalgebra::{Rotation3, Unit, Vector3};
 use proptest::prelude::*;

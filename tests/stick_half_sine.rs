@@ -9,11 +9,11 @@
 
 mod common;
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, Sampling, SolverSettings};
+use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
-use billiard_contact::trace::TraceRow;
+use billiard_contact::Effects;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
+use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 

@@ -5,10 +5,10 @@
 
 mod common;
 
-use billiard_contact::runner::run_scene;
-use billiard_contact::state::LabBall;
-use billiard_contact::table::{cloth_impact, roll_out, Phase, Table, TableParams};
+use billiard_contact::run_scene;
+use billiard_contact::table_phase::{cloth_impact, roll_out, Phase, Table, TableParams};
 use billiard_contact::Ball;
+use billiard_contact::LabBall;
 use common::{cue, lab_scene, M, R};
 use nalgebra::Vector3;
 
@@ -407,7 +407,7 @@ fn energy_never_increases_and_momentum_changes_only_by_the_cloth() {
                 "{cut} {cloth}: {:?}",
                 t.check
             );
-            let rows = billiard_contact::path::path_rows(&t, 400);
+            let rows = billiard_contact::formats::ball_paths::path_rows(&t, 400);
             let e = |s: &LabBall| {
                 0.5 * M * s.velocity.norm_squared()
                     + 0.5 * b.inertia() * s.spin.norm_squared()
@@ -446,7 +446,7 @@ fn energy_never_increases_and_momentum_changes_only_by_the_cloth() {
 /// The table needs a level line of centres and balls on the cloth; clear errors otherwise.
 #[test]
 fn table_requires_a_lab_scene_with_both_balls_on_the_cloth() {
-    use billiard_contact::scene::Scene;
+    use billiard_contact::Scene;
     use std::path::Path;
     let base = lab_scene(
         [1.0, 0.0, 0.0],
@@ -544,7 +544,7 @@ fn rolling_resistance_and_spin_decay() {
 /// and spins alike) deflects the same.
 #[test]
 fn any_up_direction_gives_the_same_roll_out() {
-    use billiard_contact::scene::Scene;
+    use billiard_contact::Scene;
     use std::path::Path;
     let (va, wa) = cue(1.5, 30f64.to_radians(), 1.0);
     let rot = |v: [f64; 3]| [v[0], v[2], -v[1]];

@@ -10,11 +10,11 @@
 
 mod common;
 
-use billiard_contact::effects::Effects;
-use billiard_contact::integrate::{Method, Sampling, SolverSettings};
+use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::{HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated};
-use billiard_contact::trace::TraceRow;
+use billiard_contact::Effects;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
+use billiard_contact::{Method, Sampling, SolverSettings};
 use common::Rng;
 use nalgebra::Vector3;
 use std::path::PathBuf;

@@ -12,9 +12,9 @@
 //! towards +y, so with up = +z the throw is positive; mirrored shots and an upside-down
 //! `up` flip it; rotating the whole shot about `up` does not change it.
 
-use billiard_contact::integrate::{Method, SolverSettings};
-use billiard_contact::runner::{run_scene, SceneOutcome};
-use billiard_contact::scene::Scene;
+use billiard_contact::Scene;
+use billiard_contact::{run_scene, SceneOutcome};
+use billiard_contact::{Method, SolverSettings};
 use std::path::Path;
 
 const M: f64 = 0.17;

@@ -1,14 +1,14 @@
 //! What the per-profile examples share: run the default scene with a given profile, write
 //! the trace with the library's CSV writer, print the summary, and check the result.
 
-use billiard_contact::integrate::Sampling;
-use billiard_contact::output::AtomicFile;
+use billiard_contact::formats::atomic_file::AtomicFile;
+use billiard_contact::formats::report::summary;
+use billiard_contact::formats::trace::CsvTrace;
 use billiard_contact::profile::Profile;
-use billiard_contact::report::summary;
-use billiard_contact::runner::run_scene;
-use billiard_contact::scene::Scene;
-use billiard_contact::trace::CsvTrace;
+use billiard_contact::run_scene;
 use billiard_contact::Error;
+use billiard_contact::Sampling;
+use billiard_contact::Scene;
 use std::path::Path;
 use std::process::ExitCode;
 

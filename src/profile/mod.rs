@@ -33,7 +33,7 @@ pub use sine_power::SinePower;
 pub use tabulated::{parse_table, Tabulated};
 
 use crate::error::Error;
-use crate::params::positive;
+use crate::model::params::positive;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! `ClosedForm`), exact profile integrals, and scene builders.
 #![allow(dead_code)]
 
-use billiard_contact::effects::Effects;
+use billiard_contact::Effects;
 use billiard_contact::{
     solve, Ball, CmState, Collision, Contact, ForceProfile, Friction, ImpulseRule, Method, Outcome,
     SolverSettings,

@@ -1,6 +1,6 @@
 //! Scene builders (lab scenes on a level table) shared by the integration tests.
 
-use billiard_contact::scene::Scene;
+use billiard_contact::Scene;
 use std::path::Path;
 
 /// Pool ball: mass (kg), radius (m).

@@ -9,7 +9,7 @@
 
 use super::FONT;
 use crate::error::Error;
-use crate::table::{Phase, RollOut, TableOutcome};
+use crate::table_phase::{Phase, RollOut, TableOutcome};
 use nalgebra::Vector3;
 use plotters::coord::Shift;
 use plotters::prelude::*;

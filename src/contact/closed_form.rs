@@ -1,7 +1,7 @@
 //! The exact solution: eqs 24-35 with the impulse of eq 52 / 56, extended by the stick rule
 //! and the S(0) = 0 case (ERRATA.md, gaps 1-3).
 //!
-//! With J the tangential impulse ([`crate::friction`]; J = mu min(P, p_stick) for
+//! With J the tangential impulse ([`crate::contact::friction`]; J = mu min(P, p_stick) for
 //! constant mu) and e = (0, cos theta, sin theta):
 //!
 //! ```text
@@ -16,12 +16,12 @@
 //! While sliding, the state at time t is this solution at P = p(t) (ERRATA.md, gap 3);
 //! [`ClosedForm::at_impulse`] gives it.
 
-use crate::collision::Collision;
-use crate::effects::Effects;
+use crate::contact::friction::{Sliding, SlidingLaw};
 use crate::error::Error;
-use crate::friction::{Sliding, SlidingLaw};
-use crate::params::{Ball, Contact, Friction, ImpulseRule};
-use crate::state::{planar_length, slip_angle, CmState};
+use crate::model::collision::Collision;
+use crate::model::effects::Effects;
+use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::model::state::{planar_length, slip_angle, CmState};
 use nalgebra::Vector2;
 
 /// The state after part of the impulse.
@@ -65,7 +65,7 @@ impl ClosedForm {
     /// Solves a collision exactly. No allocation; a few dozen floating-point operations.
     ///
     /// ```
-    /// # use billiard_contact::*; use billiard_contact::effects::Effects; use nalgebra::Vector3;
+    /// # use billiard_contact::*; use nalgebra::Vector3;
     /// // The paper's special case (eqs 59-72): rolling ball (u, v) striking a ball at rest.
     /// let (m, r, mu, u, v) = (0.17, 0.028575, 0.06, 1.0, 0.5);
     /// let ball = Ball::new(m, r, 0.4).unwrap();
@@ -185,8 +185,8 @@ fn apply_impulses(
 /// for [`ClosedForm::at_impulse`]), which a batch does not need.
 ///
 /// ```
-/// # use billiard_contact::*; use billiard_contact::effects::Effects;
-/// # use billiard_contact::closed_form::ClosedFormBatch; use nalgebra::Vector3;
+/// # use billiard_contact::*;
+/// # use billiard_contact::details::ClosedFormBatch; use nalgebra::Vector3;
 /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
 /// let contact = Contact { friction: Friction::constant(0.06).unwrap(),
 ///                         impulse: ImpulseRule::restitution(1.0).unwrap() };

@@ -34,17 +34,17 @@
 //! (outgoing lab velocities and spins) and `throw_angle_deg` (empty when undefined); with
 //! a time-stepping method also `closed_form_error` and `rhs_evaluations`.
 
-use crate::closed_form::{ClosedFormBatch, Resolved};
-use crate::collision::Collision;
-use crate::effects::Effects;
+use crate::contact::closed_form::{ClosedFormBatch, Resolved};
+use crate::contact::outcome::solve;
 use crate::error::Error;
-use crate::frame::{Frame, LabScene};
-use crate::integrate::{Method, SolverSettings};
-use crate::outcome::solve;
-use crate::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::formats::scene::{Incoming, Scene};
+use crate::integrator::{Method, SolverSettings};
+use crate::model::collision::Collision;
+use crate::model::effects::Effects;
+use crate::model::frame::{Frame, LabScene};
+use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::profile::{ForceProfile, Profile};
-use crate::scene::{Incoming, Scene};
-use crate::state::{CmState, LabBall, LabMotion};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 use std::io::{Read, Write};
@@ -188,7 +188,7 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
         }
     };
     if let Some(d) = o.duration {
-        crate::params::positive("duration", d, "s")?;
+        crate::model::params::positive("duration", d, "s")?;
     }
     Ok((ball, Contact { friction, impulse }))
 }
@@ -291,7 +291,7 @@ fn resolve_with(
 ///
 /// ```
 /// use billiard_contact::batch::{resolve_slice, BatchInput, BatchSetup};
-/// use billiard_contact::{scene::Scene, CmState, Method, SolverSettings};
+/// use billiard_contact::{Scene, CmState, Method, SolverSettings};
 /// use nalgebra::Vector3;
 /// let setup = BatchSetup::from_scene(
 ///     &Scene::default_scene(),

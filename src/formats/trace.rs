@@ -6,7 +6,7 @@
 //! sticking, S is 0 and theta is the last sliding value; theta is empty when S(0) = 0.
 
 use crate::error::Error;
-use crate::state::CmState;
+use crate::model::state::CmState;
 use std::io::Write;
 
 /// One row of a trace.

@@ -1,10 +1,10 @@
 //! One collision to resolve: balls, contact, effects and the incoming centre-of-mass state,
 //! with the quantities every method derives from them (impulse, slip, reference scales).
 
-use crate::effects::Effects;
 use crate::error::Error;
-use crate::params::{Ball, Contact, Friction};
-use crate::state::{planar_length, CmState};
+use crate::model::effects::Effects;
+use crate::model::params::{Ball, Contact, Friction};
+use crate::model::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
 /// Natural scales of a collision (CONTRACTS.md): errors are reported relative to them and
@@ -50,9 +50,8 @@ impl Collision {
     /// rule (an explicit impulse needs approaching balls and m U(0) <= P <= 2 m U(0)).
     ///
     /// ```
-    /// use billiard_contact::{Ball, Collision, CmState, Contact, Friction, ImpulseRule};
-    /// use billiard_contact::effects::Effects;
-    /// use nalgebra::Vector3;
+    /// use billiard_contact::{Ball, Collision, CmState, Contact, Effects, Friction, ImpulseRule};
+    /// use billiard_contact::nalgebra::Vector3;
     /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
     /// let contact = Contact { friction: Friction::constant(0.06).unwrap(),
     ///                         impulse: ImpulseRule::restitution(1.0).unwrap() };

@@ -1,9 +1,9 @@
 //! Verification of a run: conservation laws, the energy balance of eq 50, and the distance
 //! to the closed form, all scaled by the collision's reference scales (CONTRACTS.md).
 
-use crate::closed_form::ClosedForm;
-use crate::collision::Collision;
-use crate::state::CmState;
+use crate::contact::closed_form::ClosedForm;
+use crate::model::collision::Collision;
+use crate::model::state::CmState;
 use nalgebra::Vector3;
 use serde::Serialize;
 

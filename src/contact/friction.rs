@@ -22,7 +22,7 @@
 //! With the effect `stick = false` friction keeps acting along the initial direction
 //! (the paper's formulas literally) and the signed slip goes negative, with mu(|S|).
 
-use crate::params::Friction;
+use crate::model::params::Friction;
 
 /// The state of sliding after a normal impulse p.
 #[derive(Debug, Clone, Copy, PartialEq)]

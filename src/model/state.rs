@@ -1,6 +1,6 @@
 //! States of the two balls: the centre-of-mass state of the paper and a lab-frame ball.
 
-use crate::params::Ball;
+use crate::model::params::Ball;
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 

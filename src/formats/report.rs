@@ -6,13 +6,13 @@
 //! optional keys of extensions (`lab_out`, `table`, and in `table` each ball's
 //! `direction_deg`, `deflection_deg` and `rest`) are left out when they do not apply.
 
-use crate::check::Checks;
+use crate::apps::runner::SceneOutcome;
+use crate::contact::check::Checks;
 use crate::error::Error;
+use crate::formats::scene::Scene;
+use crate::model::state::CmState;
 use crate::profile::ForceProfile;
-use crate::runner::SceneOutcome;
-use crate::scene::Scene;
-use crate::state::CmState;
-use crate::table::{RollOut, TableOutcome};
+use crate::table_phase::{RollOut, TableOutcome};
 use nalgebra::Vector3;
 use serde::{ser, Serialize, Serializer};
 

@@ -1,13 +1,13 @@
 //! Resolving one collision with a chosen method: the outcome and its verification.
 
-use crate::check::{checks, Checks};
-use crate::closed_form::ClosedForm;
-use crate::collision::Collision;
+use crate::contact::check::{checks, Checks};
+use crate::contact::closed_form::ClosedForm;
 use crate::error::Error;
-use crate::integrate::{integrate, Method, Sampling, SolverSettings, Stats};
+use crate::formats::trace::{TraceRow, TraceSink};
+use crate::integrator::{integrate, Method, Sampling, SolverSettings, Stats};
+use crate::model::collision::Collision;
+use crate::model::state::CmState;
 use crate::profile::ForceProfile;
-use crate::state::CmState;
-use crate::trace::{TraceRow, TraceSink};
 use nalgebra::Vector2;
 
 /// The outcome of a collision, with its checks.
@@ -55,7 +55,7 @@ pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 /// Resolves a collision with `settings.method`, optionally streaming a trace.
 ///
 /// ```
-/// # use billiard_contact::*; use billiard_contact::effects::Effects;
+/// # use billiard_contact::*;
 /// # use billiard_contact::profile::HalfSine; use nalgebra::Vector3;
 /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
 /// let contact = Contact { friction: Friction::constant(0.06).unwrap(),

@@ -39,22 +39,22 @@
 //! # height = 0.0         # cloth height along up (m); default: r below the balls' centres
 //! ```
 
-use crate::collision::Collision;
-use crate::effects::Effects;
 use crate::error::Error;
-use crate::frame::{Frame, LabScene};
-use crate::integrate::{Method, SolverSettings, DEFAULT_RTOL, DEFAULT_STEPS};
-use crate::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::integrator::{Method, SolverSettings, DEFAULT_RTOL, DEFAULT_STEPS};
+use crate::model::collision::Collision;
+use crate::model::effects::Effects;
+use crate::model::frame::{Frame, LabScene};
+use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
-use crate::state::{CmState, LabBall};
-use crate::table::{Table, TableParams};
+use crate::table_phase::{Table, TableParams};
 use nalgebra::Vector3;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
 /// The built-in default scene (`data/scenes/default.toml`): the paper's rolling ball
 /// striking a ball at rest, at a 30 degree cut.
-pub const DEFAULT_SCENE: &str = include_str!("../data/scenes/default.toml");
+pub const DEFAULT_SCENE: &str = include_str!("../../data/scenes/default.toml");
 
 /// The incoming state as a scene gives it.
 #[derive(Debug, Clone, Copy, PartialEq)]

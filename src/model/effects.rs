@@ -6,10 +6,10 @@
 //!
 //! | effect | equations (code) | parameters | outputs | trace |
 //! |---|---|---|---|---|
-//! | `normal-impulse` (always) | eq 14, [`crate::dynamics::NormalRhs`] | `[contact]` restitution / impulse, profile | `impulse`, `cm_out.u` | `U`, `f`, `p` |
-//! | `friction` | eqs 15-23, 47-49, [`crate::dynamics::SlidingRhs`], [`crate::friction`] | `contact.mu` | `s0`, `theta`, `s_out`, `tangential_impulse`, `heat_sliding`, `check.theta_drift` | `V`, `W`, spins, `S`, `theta`, `H_sfr` |
-//! | `stick` | the stop of sliding, [`crate::integrate`] event, [`crate::friction::SlidingLaw`] | none | `sticks`, `stick_time`, `stick_impulse`; off: eq 57 `warnings` | the stop row |
-//! | `table` | [`crate::table`] | `[table]` | `table` | `--path` CSV, `--plot` |
+//! | `normal-impulse` (always) | eq 14, [`crate::integrator::rhs::NormalRhs`] | `[contact]` restitution / impulse, profile | `impulse`, `cm_out.u` | `U`, `f`, `p` |
+//! | `friction` | eqs 15-23, 47-49, [`crate::integrator::rhs::SlidingRhs`], [`crate::contact::friction`] | `contact.mu` | `s0`, `theta`, `s_out`, `tangential_impulse`, `heat_sliding`, `check.theta_drift` | `V`, `W`, spins, `S`, `theta`, `H_sfr` |
+//! | `stick` | the stop of sliding, [`crate::integrator`] event, [`crate::contact::friction::SlidingLaw`] | none | `sticks`, `stick_time`, `stick_impulse`; off: eq 57 `warnings` | the stop row |
+//! | `table` | [`crate::table_phase`] | `[table]` | `table` | `--path` CSV, `--plot` |
 
 use serde::{Deserialize, Serialize};
 
@@ -63,7 +63,7 @@ impl Effects {
     /// The effects a run with ball-ball friction `friction` actually simulates: as
     /// [`Effects::names`], without `friction` and `stick` when mu is zero at every speed
     /// (then only eq 14 is integrated).
-    pub fn simulated(&self, friction: &crate::params::Friction) -> Vec<&'static str> {
+    pub fn simulated(&self, friction: &crate::model::params::Friction) -> Vec<&'static str> {
         let mut names = self.names();
         if friction.is_zero() {
             names.retain(|n| *n != "friction" && *n != "stick");
@@ -118,7 +118,7 @@ pub const CATALOGUE: [EffectInfo; 4] = [
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Friction;
+    use crate::model::params::Friction;
 
     #[test]
     fn every_name_is_catalogued_and_zero_friction_is_not_simulated() {

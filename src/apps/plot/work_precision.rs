@@ -1,13 +1,13 @@
 //! The work-precision diagram: error of the outgoing state (log x) against wall time per
 //! contact (log y), one line per method, one panel per profile, one row of panels per
 //! scene. Each panel's legend gives the observed order p (error ~ evaluations^-p,
-//! [`crate::study::Series::observed_order`]). Errors of exactly 0 (the closed form, and
+//! [`crate::apps::work_precision::Series::observed_order`]). Errors of exactly 0 (the closed form, and
 //! runs that are exact to round-off) are drawn at 1e-17 as hollow markers (CONTRACTS.md).
 
 use super::FONT;
+use crate::apps::work_precision::{series, StudyRow};
 use crate::error::Error;
-use crate::output::AtomicFile;
-use crate::study::{series, StudyRow};
+use crate::formats::atomic_file::AtomicFile;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::io::Write;
@@ -291,7 +291,7 @@ pub fn write(rows: &[StudyRow], svg: &Path, png: &Path) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::Stats;
+    use crate::integrator::Stats;
 
     fn row(method: &str, error: f64, t: f64, bp: bool) -> StudyRow {
         StudyRow {

@@ -55,8 +55,8 @@
 //! modelled).
 
 use crate::error::{finite, Error};
-use crate::params::Ball;
-use crate::state::LabBall;
+use crate::model::params::Ball;
+use crate::model::state::LabBall;
 use nalgebra::Vector3;
 use serde::Serialize;
 
@@ -106,7 +106,7 @@ impl TableParams {
     /// Validated parameters (see the fields for the accepted ranges).
     ///
     /// ```
-    /// use billiard_contact::table::TableParams;
+    /// use billiard_contact::table_phase::TableParams;
     /// let p = TableParams::new(0.2, 0.0, 9.81, 0.0, 0.0, None).unwrap();
     /// assert_eq!(p, TableParams::default());
     /// assert!(TableParams::new(0.2, 1.0, 9.81, 0.0, 0.0, None).is_err()); // bounces forever
@@ -263,7 +263,7 @@ pub fn cloth_slip(
 /// cloth: 5/7 v_h + 2/7 r w x n for a solid ball.
 ///
 /// ```
-/// use billiard_contact::{table::rolling_velocity, Ball};
+/// use billiard_contact::{table_phase::rolling_velocity, Ball};
 /// use nalgebra::Vector3;
 /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
 /// // A stun ball (no spin) ends rolling at 5/7 of its speed.
@@ -487,7 +487,7 @@ impl RollOut {
 /// resistance, until it rests): module docs, steps 1-3.
 ///
 /// ```
-/// use billiard_contact::{table::{roll_out, Table, TableParams}, Ball, LabBall};
+/// use billiard_contact::{table_phase::{roll_out, Table, TableParams}, Ball, LabBall};
 /// use nalgebra::Vector3;
 /// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
 /// let up = Vector3::z();

@@ -1,14 +1,14 @@
 //! Running a scene: the collision in the centre-of-mass frame, the outcome, and its lab
 //! form.
 
+use crate::contact::outcome::{solve, Outcome};
 use crate::error::Error;
-use crate::frame::Frame;
-use crate::integrate::{Sampling, SolverSettings};
-use crate::outcome::{solve, Outcome};
-use crate::scene::Scene;
-use crate::state::LabMotion;
-use crate::table::TableOutcome;
-use crate::trace::TraceSink;
+use crate::formats::scene::Scene;
+use crate::formats::trace::TraceSink;
+use crate::integrator::{Sampling, SolverSettings};
+use crate::model::frame::Frame;
+use crate::model::state::LabMotion;
+use crate::table_phase::TableOutcome;
 use nalgebra::{Matrix3, Vector3};
 
 /// The outcome of a scene, with the lab-frame motions for lab scenes.
@@ -40,8 +40,10 @@ pub fn run_scene(
         Some(f) => {
             let (a, b) = f.to_lab(&outcome.out);
             let (a0, b0) = match &scene.incoming {
-                crate::scene::Incoming::Lab(l) => (l.a.velocity, l.b.velocity),
-                crate::scene::Incoming::Cm(_) => unreachable!("a frame comes from a lab scene"),
+                crate::formats::scene::Incoming::Lab(l) => (l.a.velocity, l.b.velocity),
+                crate::formats::scene::Incoming::Cm(_) => {
+                    unreachable!("a frame comes from a lab scene")
+                }
             };
             let m = scene.ball.mass;
             let dp = (m * (a.velocity + b.velocity) - m * (a0 + b0)).amax();
@@ -77,7 +79,7 @@ pub fn run_scene(
 /// The effect `table`: both balls from separation until they roll (`None` when off).
 fn run_table(
     scene: &Scene,
-    collision: &crate::collision::Collision,
+    collision: &crate::model::collision::Collision,
     lab_out: Option<(LabMotion, LabMotion)>,
     warnings: &mut Vec<String>,
 ) -> Result<Option<TableOutcome>, Error> {
@@ -91,10 +93,11 @@ fn run_table(
         }
         return Ok(None);
     };
-    let (crate::scene::Incoming::Lab(lab), Some((a, b))) = (&scene.incoming, lab_out) else {
+    let (crate::formats::scene::Incoming::Lab(lab), Some((a, b))) = (&scene.incoming, lab_out)
+    else {
         unreachable!("Scene::cloth accepts lab scenes only");
     };
-    let start = |p: nalgebra::Vector3<f64>, m: LabMotion| crate::state::LabBall {
+    let start = |p: nalgebra::Vector3<f64>, m: LabMotion| crate::model::state::LabBall {
         position: p,
         velocity: m.velocity,
         spin: m.spin,

@@ -30,9 +30,9 @@
 //! stop (only inside the step that crosses it) it continues the paper's formula, so that
 //! the step that crosses is smooth and the event function slip . e0 changes sign there.
 
-use crate::params::Friction;
+use crate::model::params::Friction;
+use crate::model::state::planar_length;
 use crate::profile::ForceProfile;
-use crate::state::planar_length;
 use nalgebra::{SVector, Vector2};
 
 /// Number of components of the sliding state.

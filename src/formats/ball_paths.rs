@@ -10,8 +10,8 @@
 //! are exact (piecewise constant accelerations), not integrated.
 
 use crate::error::Error;
-use crate::state::LabBall;
-use crate::table::{Phase, RollOut, TableOutcome};
+use crate::model::state::LabBall;
+use crate::table_phase::{Phase, RollOut, TableOutcome};
 use std::io::Write;
 
 /// Default number of intervals of the path.

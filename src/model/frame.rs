@@ -6,7 +6,7 @@
 //! spins are the same in both frames (the frames do not rotate relative to each other).
 
 use crate::error::Error;
-use crate::state::{CmState, LabBall, LabMotion};
+use crate::model::state::{CmState, LabBall, LabMotion};
 use nalgebra::{Matrix3, Vector3};
 
 /// Relative tolerance on |p_B - p_A| = 2r.

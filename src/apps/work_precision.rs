@@ -5,7 +5,7 @@
 //! ladder of tolerances with atol = rtol on the scaled variables), one run measures
 //!
 //! - `error`: the largest scaled deviation of the outgoing state from the closed form
-//!   ([`crate::check::Checks::closed_form_error`], CONTRACTS.md scales);
+//!   ([`crate::contact::check::Checks::closed_form_error`], CONTRACTS.md scales);
 //! - `stick_time_error`: |t_stick - t_stick exact| / duration where sliding stops (`None`
 //!   otherwise; a stop the integrator missed counts as a stop at the end of the contact);
 //! - the work done ([`Stats`]);
@@ -21,13 +21,13 @@
 //! issue 3) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
 //! appended by the peers' script (`benches/peers/scipy_contact.py`), for the figure.
 
+use crate::contact::outcome::{solve, Outcome};
 use crate::error::Error;
-use crate::integrate::{Method, SolverSettings, Stats};
-use crate::outcome::{solve, Outcome};
+use crate::formats::scene::Scene;
+use crate::integrator::{Method, SolverSettings, Stats};
 use crate::profile::{
     parse_table, ForceProfile, HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated,
 };
-use crate::scene::Scene;
 use std::hint::black_box;
 use std::io::{Read, Write};
 use std::path::Path;
@@ -60,11 +60,11 @@ pub const EXTRA_COLUMNS: [&str; 6] = [
 ];
 
 /// The built-in companion scene in which sliding stops during contact.
-pub const STICKING_SCENE: &str = include_str!("../data/scenes/stun_cut_sticks.toml");
+pub const STICKING_SCENE: &str = include_str!("../../data/scenes/stun_cut_sticks.toml");
 
 /// The table the `tabulated` profile uses unless the scene has its own
 /// (`data/profiles/measured_pulse.csv`, stretched to the scene's duration).
-pub const MEASURED_PULSE: &str = include_str!("../data/profiles/measured_pulse.csv");
+pub const MEASURED_PULSE: &str = include_str!("../../data/profiles/measured_pulse.csv");
 
 /// The profiles of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -1,0 +1,8 @@
+//! Applications built on the contact: running a scene, batches of collisions, the
+//! work-precision study and the figures.
+
+pub mod batch;
+#[cfg(feature = "plots")]
+pub mod plot;
+pub mod runner;
+pub mod work_precision;

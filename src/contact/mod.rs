@@ -1,0 +1,7 @@
+//! The contact: the closed form (eqs 24-35, 52, 56 with the stick rule), the sliding law
+//! (constant or speed-dependent friction), the checks of a run, and its outcome.
+
+pub(crate) mod check;
+pub(crate) mod closed_form;
+pub(crate) mod friction;
+pub(crate) mod outcome;

@@ -1,0 +1,10 @@
+//! File formats: the scene (TOML), the JSON report and text summary, the trace CSV, the ball
+//! path CSV, and files written whole or not at all.
+
+pub mod atomic_file;
+pub mod ball_paths;
+pub mod report;
+pub mod scene;
+pub mod trace;
+
+pub use atomic_file::AtomicFile;
