@@ -29,9 +29,9 @@ fn bench(cr: &mut Criterion) {
     let tau = scene.profile.duration();
     let mut g = cr.benchmark_group("dop853");
     for p in [
-        Profile::HalfSine(HalfSine::new(tau)),
+        Profile::HalfSine(HalfSine::new(tau).unwrap()),
         Profile::SinePower(SinePower::new(tau, 1.5).unwrap()),
-        Profile::Hertz(Hertz::new(tau)),
+        Profile::Hertz(Hertz::new(tau).unwrap()),
     ] {
         for method in [Method::Dop853, Method::Dopri5] {
             let Some(s) = loosest(&c, &p, method, 1e-10) else {
@@ -65,7 +65,7 @@ mod closed_form;
 fn cpu_time() {
     let scene = Scene::default_scene();
     let (c, _) = scene.collision().unwrap();
-    let p = Profile::HalfSine(HalfSine::new(scene.profile.duration()));
+    let p = Profile::HalfSine(HalfSine::new(scene.profile.duration()).unwrap());
     let s = loosest(&c, &p, Method::Dop853, 1e-10).expect("dop853 reaches 1e-10");
     let n = 200_000;
     let (wall, cpu) = closed_form::per_call(n, || {

@@ -247,3 +247,123 @@ pub fn finite(field: &str, value: f64) -> Result<f64, Error> {
         Err(Error::invalid(field, value, "a finite number"))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::Method;
+    use crate::model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
+    use crate::model::state::LabBall;
+    use nalgebra::Vector3;
+
+    fn at(p: [f64; 3]) -> LabBall {
+        LabBall {
+            position: Vector3::from(p),
+            velocity: Vector3::new(1.0, 0.0, 0.0),
+            spin: Vector3::zeros(),
+        }
+    }
+
+    /// Balls 7 cm apart with r = 3 cm: NotTouching with a 1 cm gap, and the message the
+    /// lab frame gave as an InvalidParameter before it had its own variant.
+    #[test]
+    fn balls_apart_are_not_touching() {
+        let scene = LabScene {
+            a: at([0.0; 3]),
+            b: at([0.07, 0.0, 0.0]),
+            up: Vector3::z(),
+        };
+        let e = Frame::new(&scene, 0.03).unwrap_err();
+        let Error::NotTouching {
+            gap,
+            distance,
+            contact_distance,
+            ..
+        } = e
+        else {
+            panic!("{e:?}");
+        };
+        assert!((distance - 0.07).abs() < 1e-15);
+        assert_eq!(contact_distance, 0.06);
+        assert!((gap - 0.01).abs() < 1e-15);
+        let old = Error::invalid(
+            "incoming.lab.b.position",
+            format!("[0.07, 0, 0] (|p_B - p_A| = {distance} m)"),
+            format!(
+                "the balls must touch: |p_B - p_A| = 2r = 0.06 m within a relative \
+                 {TOUCH_TOLERANCE:e}"
+            ),
+        );
+        assert_eq!(e.to_string(), old.to_string());
+        assert!(e.is_bad_input());
+    }
+
+    /// Exit codes: the variants that replaced an InvalidParameter or an Io (kind Other)
+    /// stay bad input (2); the integrator's failures stay failed runs (1).
+    #[test]
+    fn exit_codes_of_the_new_variants() {
+        let plot = Error::Plot {
+            path: "fig.png".into(),
+            message: "drawing the figure: backend".into(),
+        };
+        assert!(plot.is_bad_input());
+        assert_eq!(plot.to_string(), "fig.png: drawing the figure: backend");
+        for e in [
+            Error::StepSizeTooSmall {
+                method: Method::Dopri5,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+            },
+            Error::TooManySteps {
+                method: Method::Dop853,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+                steps: 100_000,
+            },
+            Error::Stiff {
+                method: Method::Dop853,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+            },
+        ] {
+            assert!(!e.is_bad_input(), "{e}");
+            let m = e.to_string();
+            assert!(m.contains("failed at t/duration = 5.000000e-1"), "{m}");
+            assert!(m.contains("segment from t/duration = 2.500000e-1"), "{m}");
+            assert!(!m.contains('\n'), "{m}");
+        }
+    }
+
+    /// A second global thread pool is refused: ThreadPool, bad input as the `--threads`
+    /// failure it stands for, with rayon's message.
+    #[test]
+    fn thread_pool_failure() {
+        // The first call may or may not find the global pool initialised (another test
+        // may have used it); the second always does.
+        let _ = rayon::ThreadPoolBuilder::new().build_global();
+        let source = rayon::ThreadPoolBuilder::new()
+            .build_global()
+            .expect_err("the global pool exists");
+        let message = source.to_string();
+        let e = Error::from(source);
+        assert!(matches!(e, Error::ThreadPool { .. }));
+        assert_eq!(e.to_string(), format!("thread pool: {message}"));
+        assert!(e.is_bad_input());
+    }
+
+    #[test]
+    fn invalid_names_field_value_and_range() {
+        let e = finite("balls.mass", f64::NAN).unwrap_err();
+        let Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } = &e
+        else {
+            panic!("{e:?}");
+        };
+        assert_eq!((field.as_str(), value.as_str()), ("balls.mass", "NaN"));
+        assert_eq!(expected, "a finite number");
+        assert_eq!(e.to_string(), "balls.mass = NaN: a finite number");
+    }
+}

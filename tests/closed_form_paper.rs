@@ -256,7 +256,7 @@ fn solve_closed_form_method_matches_first_principles() {
         method: Method::ClosedForm,
         ..Default::default()
     };
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for _ in 0..STATES / 4 {
         let case = random_case(&mut rng);
@@ -366,7 +366,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
         let mut expected = c.incoming;
         expected.u_cm.x -= want.impulse / b.m;
         assert_eq!(cf.out, expected);
-        let o = solve(&c, &HalfSine::new(TAU), &settings, None).unwrap();
+        let o = solve(&c, &HalfSine::new(TAU).unwrap(), &settings, None).unwrap();
         assert!(o.sticks);
         assert_eq!(o.stick_time, Some(0.0));
         assert_eq!(o.stick_impulse, Some(0.0));
@@ -655,7 +655,7 @@ fn without_stick_effect_the_paper_formulas_apply_and_eq_57_is_flagged() {
     assert!(cf.violates_eq57());
     let o = solve(
         &c,
-        &HalfSine::new(TAU),
+        &HalfSine::new(TAU).unwrap(),
         &SolverSettings {
             method: Method::ClosedForm,
             ..Default::default()

@@ -129,7 +129,7 @@ fn time_stepping_converges_to_the_quadrature_answer() {
         let w = (o.out.omega_a - exact.omega_a).amax() / c.scales.spin;
         d.max(w)
     };
-    let profile = HalfSine::new(2.5e-4);
+    let profile = HalfSine::new(2.5e-4).unwrap();
     let cf = solve(
         &c,
         &profile,
@@ -185,7 +185,7 @@ fn sliding_speed_follows_the_quadrature_along_the_pulse() {
     let mut rows: Vec<TraceRow> = Vec::new();
     solve(
         &c,
-        &HalfSine::new(2.5e-4),
+        &HalfSine::new(2.5e-4).unwrap(),
         &st,
         Some((&mut rows, Sampling::Uniform(40))),
     )
@@ -214,7 +214,7 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
             method,
             ..Default::default()
         };
-        let o = solve(&c, &HalfSine::new(2.5e-4), &st, None).unwrap();
+        let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &st, None).unwrap();
         assert!(o.sticks);
         let found = o.stick_impulse.unwrap();
         assert!(
@@ -233,7 +233,7 @@ fn b_zero_reduces_exactly_to_constant_mu() {
     for u in [[1.0, 1.0, 0.0], [1.0, 0.1, 0.0]] {
         let sd = collision(u, Friction::speed_dependent(0.06, 0.0, C).unwrap());
         let cm = collision(u, Friction::constant(0.06).unwrap());
-        let profile = HalfSine::new(2.5e-4);
+        let profile = HalfSine::new(2.5e-4).unwrap();
         let st = SolverSettings::default();
         let (a, b) = (
             solve(&sd, &profile, &st, None).unwrap(),

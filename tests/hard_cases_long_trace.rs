@@ -104,7 +104,7 @@ fn a_million_samples_in_constant_memory() {
         M,
         R,
     );
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::ClosedForm, Method::Rk4, Method::Dop853] {
         let s = SolverSettings {
             method,

@@ -232,10 +232,10 @@ impl Case {
 
     fn profile(&self) -> Profile {
         match &self.profile {
-            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau)),
-            ProfileKind::Hertz => Profile::Hertz(Hertz::new(self.tau)),
+            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau).unwrap()),
+            ProfileKind::Hertz => Profile::Hertz(Hertz::new(self.tau).unwrap()),
             ProfileKind::SinePower(n) => Profile::SinePower(SinePower::new(self.tau, *n).unwrap()),
-            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(self.tau)),
+            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(self.tau).unwrap()),
             ProfileKind::Table(pts) => Profile::Tabulated(
                 Tabulated::new(pts, Some(self.tau), Path::new("random.csv")).unwrap(),
             ),

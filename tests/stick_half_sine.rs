@@ -163,7 +163,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
     let (_, p, p_stick) = shot.exact();
     assert!(p_stick < p, "{}: must stick", shot.what);
     let q = p_stick / p;
-    let o = solve(&c, &HalfSine::new(TAU), settings, None).unwrap();
+    let o = solve(&c, &HalfSine::new(TAU).unwrap(), settings, None).unwrap();
     assert!(o.sticks, "{}", shot.what);
     let t = o.stick_time.unwrap() / TAU;
     let dp = (p_fraction(t) - q).abs();
@@ -245,7 +245,13 @@ fn closed_form_method_reports_the_exact_stick_time() {
         .chain(spinning(&[1e-10, 0.2, 0.5, 0.999]))
     {
         let (_, p, p_stick) = shot.exact();
-        let o = solve(&shot.collision(), &HalfSine::new(TAU), &settings, None).unwrap();
+        let o = solve(
+            &shot.collision(),
+            &HalfSine::new(TAU).unwrap(),
+            &settings,
+            None,
+        )
+        .unwrap();
         let t = o.stick_time.unwrap() / TAU;
         let exact = t_exact(p_stick / p);
         assert!(
@@ -270,7 +276,7 @@ fn the_stop_is_one_trace_row() {
             let mut rows: Vec<TraceRow> = Vec::new();
             let o = solve(
                 &shot.collision(),
-                &HalfSine::new(TAU),
+                &HalfSine::new(TAU).unwrap(),
                 &dop853(),
                 Some((&mut rows, sampling)),
             )

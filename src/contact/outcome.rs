@@ -63,7 +63,7 @@ pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 /// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
 /// let c = Collision::new(ball, contact, Effects::default(), s).unwrap();
 /// let settings = SolverSettings { rtol: 1e-12, atol: 1e-12, ..Default::default() };
-/// let o = solve(&c, &HalfSine::new(2.5e-4), &settings, None).unwrap();
+/// let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &settings, None).unwrap();
 /// assert!(o.check.closed_form_error < 1e-10);
 /// assert!((o.out.u_cm.x + 0.5).abs() < 1e-10); // eq 24 with P = 2 m U(0)
 /// ```

@@ -224,3 +224,99 @@ impl<'a> Segments<'a> {
         Some(t)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::stages::tests::{stun, TAU};
+    use crate::integrator::Method;
+    use crate::profile::HalfSine;
+
+    fn dopri5() -> SolverSettings {
+        SolverSettings::new(Method::Dopri5, 1e-10, 1e-10, 1000).unwrap()
+    }
+
+    #[test]
+    fn refuses_balls_that_do_not_approach() {
+        let c = stun(-0.5, 0.1);
+        assert!(!c.collides());
+        let p = HalfSine::new(TAU).unwrap();
+        match integrate(&c, &p, &dopri5(), None) {
+            Err(Error::InvalidParameter { field, .. }) => assert_eq!(field, "collision.impulse"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn refuses_the_closed_form() {
+        let p = HalfSine::new(TAU).unwrap();
+        let s = SolverSettings::new(Method::ClosedForm, 1e-10, 1e-10, 1000).unwrap();
+        match integrate(&stun(0.5, 0.1), &p, &s, None) {
+            Err(Error::InvalidParameter { field, value, .. }) => {
+                assert_eq!(
+                    (field.as_str(), value.as_str()),
+                    ("solver.method", "closed-form")
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// A profile whose force is NaN in the second half of the contact.
+    struct Broken;
+    impl ForceProfile for Broken {
+        fn duration(&self) -> f64 {
+            TAU
+        }
+        fn shape(&self, s: f64) -> f64 {
+            if s > 0.5 {
+                f64::NAN
+            } else {
+                1.0
+            }
+        }
+        fn cumulative(&self, s: f64) -> f64 {
+            s.clamp(0.0, 1.0)
+        }
+    }
+
+    /// rk4 accepts the NaN state: NonFinite. The adaptive methods reject every step whose
+    /// stages reach the NaN (its error estimate is NaN) and shrink the step towards
+    /// s = 1/2 until it underflows: StepSizeTooSmall there.
+    #[test]
+    fn a_nan_force_is_an_error() {
+        let rk4 = SolverSettings::new(Method::Rk4, 1e-10, 1e-10, 1000).unwrap();
+        match integrate(&stun(0.5, 0.1), &Broken, &rk4, None) {
+            Err(Error::NonFinite { field, value }) => {
+                assert_eq!(field, "state");
+                assert!(value.is_nan());
+            }
+            other => panic!("{other:?}"),
+        }
+        for method in [Method::Dopri5, Method::Dop853] {
+            let s = SolverSettings::new(method, 1e-10, 1e-10, 1000).unwrap();
+            match integrate(&stun(0.5, 0.1), &Broken, &s, None) {
+                Err(Error::StepSizeTooSmall {
+                    method: m,
+                    scaled_time,
+                    segment_start,
+                }) => {
+                    assert_eq!(m, method);
+                    assert!((scaled_time - 0.5).abs() < 1e-12, "{scaled_time}");
+                    assert!(segment_start < scaled_time);
+                }
+                other => panic!("{method}: {other:?}"),
+            }
+        }
+    }
+
+    /// Sticking from the start (S(0) = 0): no sliding stage, the stop at t = 0.
+    #[test]
+    fn no_initial_sliding_sticks_at_zero() {
+        let p = HalfSine::new(TAU).unwrap();
+        let r = integrate(&stun(0.5, 0.0), &p, &dopri5(), None).unwrap();
+        assert!(r.sticks);
+        assert_eq!((r.stick_time, r.stick_impulse), (Some(0.0), Some(0.0)));
+        assert_eq!(r.s_out, 0.0);
+    }
+}

@@ -193,3 +193,82 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         Ok(full(&end))
     }
 }
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+    use crate::integrator::settings::SolverSettings;
+    use crate::model::effects::Effects;
+    use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+    use crate::model::state::CmState;
+    use crate::profile::HalfSine;
+    use nalgebra::Vector3;
+    use std::f64::consts::PI;
+
+    pub(crate) const M: f64 = 0.17;
+    const R: f64 = 0.028575;
+    const ALPHA: f64 = 0.4;
+    const MU: f64 = 0.06;
+    pub(crate) const TAU: f64 = 2.5e-4;
+
+    /// A stun shot, U(0) = `u` (m/s), V(0) = `v` (m/s), no spin, e = 1: S(0) = 2V.
+    pub(crate) fn stun(u: f64, v: f64) -> Collision {
+        let ball = Ball::new(M, R, ALPHA).unwrap();
+        let contact = Contact {
+            friction: Friction::constant(MU).unwrap(),
+            impulse: ImpulseRule::restitution(1.0).unwrap(),
+        };
+        let s = CmState::new(Vector3::new(u, v, 0.0), Vector3::zeros(), Vector3::zeros());
+        Collision::new(ball, contact, Effects::default(), s).unwrap()
+    }
+
+    fn step_sliding(c: &Collision) -> (SlidingState, StopReason) {
+        let profile = HalfSine::new(TAU).unwrap();
+        let problem = Problem::new(c, &profile);
+        let mut stepper = Stepper::new(&SolverSettings::default()).unwrap();
+        let mut rec = Recorder::new(None, c.theta());
+        let y0 = SlidingState::initial(problem.slip0);
+        problem
+            .step(ContactStage::Sliding, y0, 1.0, &mut stepper, &mut rec)
+            .unwrap()
+    }
+
+    /// A small cut sticks: the sliding stage stops at the stop of sliding and says so.
+    /// Reference (eq 22): dS/dp = -2 mu (1 + 1/alpha) / m, so S(0) = 2V reaches 0 at
+    /// p_stick = m 2V / (2 mu (1 + 1/alpha)); for the half-sine p(t) = P sin^2(pi t / (2 tau)),
+    /// so t_stick = (2 tau / pi) asin(sqrt(p_stick / P)).
+    #[test]
+    fn sliding_stage_reports_the_stop() {
+        let (u, v) = (0.5, 0.02);
+        let (y, reason) = step_sliding(&stun(u, v));
+        let big_p = 2.0 * M * u;
+        let p_stick = M * 2.0 * v / (2.0 * MU * (1.0 + 1.0 / ALPHA));
+        let t_stick = 2.0 * TAU / PI * (p_stick / big_p).sqrt().asin();
+        let StopReason::SlidingStopped { time, impulse } = reason else {
+            panic!("{reason:?}");
+        };
+        assert!(
+            (impulse - p_stick).abs() < 1e-10 * big_p,
+            "{impulse} vs {p_stick}"
+        );
+        assert!((time - t_stick).abs() < 1e-10 * TAU, "{time} vs {t_stick}");
+        // The state returned is the located stop: inside the contact, slip ~ 0.
+        assert!(y.time() < 1.0 && (y.time() * TAU - t_stick).abs() < 1e-6 * TAU);
+        assert!(y.slip().norm() < 1e-9 * (2.0 * v) / c_speed(u, v));
+    }
+
+    /// v_ref of a stun shot: max(S(0), |U(0)|).
+    fn c_speed(u: f64, v: f64) -> f64 {
+        (2.0 * v).max(u.hypot(v))
+    }
+
+    /// A wide cut slides throughout (p_stick = 0.2 N s > P = 0.17 N s): the stage reaches
+    /// the end of the segment.
+    #[test]
+    fn sliding_stage_without_stop_reaches_the_end() {
+        let (y, reason) = step_sliding(&stun(0.5, 0.25));
+        assert_eq!(reason, StopReason::ReachedEnd);
+        assert_eq!(y.time(), 1.0);
+        assert!(y.slip().norm() > 0.0);
+    }
+}

@@ -430,3 +430,125 @@ impl<const N: usize, R: ScaledRhs<N>, O: FnMut(&SVector<f64, N>) -> bool>
         (**self).solout(x, y, dy)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// y' = y^2, y(0) = 1 (component 1; component 0 is the time): y = 1 / (1 - s) blows up
+    /// at s = 1.
+    struct BlowUp;
+    impl ScaledRhs<2> for BlowUp {
+        fn derivative(&self, y: &SVector<f64, 2>, dy: &mut SVector<f64, 2>) {
+            *dy = SVector::from([1.0, y[1] * y[1]]);
+        }
+    }
+
+    /// The adaptive methods shrink their steps towards the singularity until they are below
+    /// the floor of 10 eps s: StepSizeTooSmall, near s = 1, naming the method and the
+    /// segment.
+    #[test]
+    fn a_blow_up_is_a_step_size_too_small() {
+        for method in [Method::Dopri5, Method::Dop853] {
+            let settings = SolverSettings::new(method, 1e-10, 1e-10, 1000).unwrap();
+            let mut stepper = Stepper::new(&settings).unwrap();
+            let y0 = SVector::from([0.25, 4.0 / 3.0]);
+            let e = stepper.advance(&BlowUp, 0.25, y0, 2.0, 0.0, &mut |_: &SVector<f64, 2>| {
+                false
+            });
+            match e {
+                Err(Error::StepSizeTooSmall {
+                    method: m,
+                    scaled_time,
+                    segment_start,
+                }) => {
+                    assert_eq!(m, method);
+                    assert_eq!(segment_start, 0.25);
+                    assert!((scaled_time - 1.0).abs() < 1e-6, "{scaled_time}");
+                }
+                Err(e) => panic!("{method}: {e}"),
+                Ok(a) => panic!("{method}: reached {:?}", a.y),
+            }
+        }
+    }
+
+    /// Each failure of ode_solvers has its own variant.
+    #[test]
+    fn failures_map_to_variants() {
+        let m = Method::Dop853;
+        let e = failure(
+            m,
+            0.1,
+            IntegrationError::MaxNumStepReached { x: 0.2, n_step: 7 },
+        );
+        assert!(matches!(
+            e,
+            Error::TooManySteps {
+                method: Method::Dop853,
+                scaled_time: 0.2,
+                segment_start: 0.1,
+                steps: 7
+            }
+        ));
+        let e = failure(m, 0.1, IntegrationError::StiffnessDetected { x: 0.3 });
+        assert!(matches!(
+            e,
+            Error::Stiff {
+                method: Method::Dop853,
+                scaled_time: 0.3,
+                segment_start: 0.1
+            }
+        ));
+        let e = failure(m, 0.1, IntegrationError::StepSizeUnderflow { x: 0.4 });
+        assert!(matches!(
+            e,
+            Error::StepSizeTooSmall {
+                scaled_time: 0.4,
+                ..
+            }
+        ));
+    }
+
+    /// rk4 takes its share of the steps, rounded up, and snaps to the span's end: on
+    /// y' = y^2 from s = 0 (y = 1) to 1/2 the exact value is 2.
+    #[test]
+    fn rk4_share_of_steps() {
+        let settings = SolverSettings::new(Method::Rk4, 1e-10, 1e-10, 1000).unwrap();
+        let mut stepper = Stepper::new(&settings).unwrap();
+        let y0 = SVector::from([0.0, 1.0]);
+        let a = stepper
+            .advance(&BlowUp, 0.0, y0, 0.5, 0.0, &mut |_: &SVector<f64, 2>| false)
+            .unwrap();
+        assert_eq!(stepper.stats.accepted_steps, 500);
+        assert_eq!(a.y[0], 0.5);
+        assert!((a.y[1] - 2.0).abs() < 1e-10, "{}", a.y[1]);
+    }
+
+    /// A span far below the adaptive methods' floor is one RK4 step; a negligible one is
+    /// no step at all.
+    #[test]
+    fn round_off_spans() {
+        let settings = SolverSettings::new(Method::Dop853, 1e-10, 1e-10, 1000).unwrap();
+        let mut stepper = Stepper::new(&settings).unwrap();
+        let y0 = SVector::from([0.5, 2.0]);
+        let b = 0.5 + 1e-14;
+        let a = stepper
+            .advance(&BlowUp, 0.5, y0, b, 0.0, &mut |_: &SVector<f64, 2>| false)
+            .unwrap();
+        assert_eq!(stepper.stats.accepted_steps, 1);
+        assert_eq!(a.y[0], b);
+        let y0 = SVector::from([0.5, 2.0]);
+        let a = stepper
+            .advance(
+                &BlowUp,
+                0.5,
+                y0,
+                0.5 + f64::EPSILON,
+                0.0,
+                &mut |_: &SVector<f64, 2>| false,
+            )
+            .unwrap();
+        assert_eq!(stepper.stats.accepted_steps, 1);
+        assert_eq!(a.y[1], 2.0);
+    }
+}

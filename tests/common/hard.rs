@@ -230,7 +230,7 @@ pub fn default_collision() -> Collision {
 /// Right-hand-side evaluations of the default scene with `settings`: the cost unit of the
 /// hard cases (each must stay within 20 times it).
 pub fn default_cost(settings: &SolverSettings) -> u64 {
-    let profile = billiard_contact::profile::HalfSine::new(TAU);
+    let profile = billiard_contact::profile::HalfSine::new(TAU).unwrap();
     let o = solve(&default_collision(), &profile, settings, None).unwrap();
     o.stats.rhs_evaluations
 }
