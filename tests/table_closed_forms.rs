@@ -95,7 +95,7 @@ fn impact_that_sticks_rolls_at_once() {
 }
 
 /// A ball with no vertical velocity: hop_time = hop_height = 0 and an impact with zero
-/// impulses at t = 0 (CONTRACTS).
+/// impulses at t = 0 (docs/formats.md).
 #[test]
 fn no_vertical_velocity_means_an_empty_impact() {
     let r = roll_out(
