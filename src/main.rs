@@ -85,6 +85,10 @@ struct BatchArgs {
     /// built-in default scene); rows may override some of them.
     #[arg(long, value_name = "SCENE")]
     scene: Option<PathBuf>,
+    /// Smoothed time variable for hertz and fractional sine-power pulses (default: the
+    /// scene's, true).
+    #[arg(long, value_name = "BOOL")]
+    time_transform: Option<bool>,
     /// Rows per chunk (memory holds one chunk).
     #[arg(long, value_name = "N", default_value_t = billiard_contact::batch::DEFAULT_CHUNK_ROWS)]
     chunk: usize,
@@ -116,6 +120,10 @@ struct RunArgs {
     /// RK4 steps over the contact (overrides the scene).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     steps: Option<u32>,
+    /// Integrate hertz and fractional sine-power pulses in a smoothed time variable (default
+    /// true; false: steps graded toward the ends instead). Overrides the scene.
+    #[arg(long, value_name = "BOOL")]
+    time_transform: Option<bool>,
     /// Write both balls' paths on the table (lab frame, until both roll) to this CSV
     /// (needs `[effects] table = true`).
     #[arg(long, value_name = "FILE.csv")]
@@ -180,7 +188,8 @@ fn settings(scene: &Scene, args: &RunArgs) -> Result<SolverSettings, Error> {
     let atol = args
         .atol
         .unwrap_or(if args.rtol.is_some() { rtol } else { base.atol });
-    let mut s = SolverSettings::new(method, rtol, atol, args.steps.unwrap_or(base.steps))?;
+    let mut s = SolverSettings::new(method, rtol, atol, args.steps.unwrap_or(base.steps))?
+        .with_time_transform(args.time_transform.unwrap_or(base.time_transform));
     s.breakpoints = base.breakpoints;
     Ok(s)
 }
@@ -372,7 +381,8 @@ fn batch(args: &BatchArgs) -> Result<(), Error> {
     let base = scene.solver;
     let rtol = args.rtol.unwrap_or(base.rtol);
     let atol = if args.rtol.is_some() { rtol } else { base.atol };
-    let mut settings = SolverSettings::new(method, rtol, atol, base.steps)?;
+    let mut settings = SolverSettings::new(method, rtol, atol, base.steps)?
+        .with_time_transform(args.time_transform.unwrap_or(base.time_transform));
     settings.breakpoints = base.breakpoints;
     if args.threads == Some(0) {
         return Err(Error::invalid("--threads", 0, "at least 1"));

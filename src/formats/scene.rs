@@ -26,6 +26,7 @@
 //! rtol = 1e-10
 //! atol = 1e-10           # on the scaled variables (speeds over v_ref); default = rtol
 //! steps = 1000           # rk4 only
+//! time_transform = true  # smoothing change of time variable for hertz, sine-power
 //! [effects]              # optional
 //! friction = true
 //! stick = true
@@ -167,6 +168,7 @@ struct RawSolver {
     rtol: Option<f64>,
     atol: Option<f64>,
     steps: Option<u32>,
+    time_transform: Option<bool>,
 }
 
 impl Scene {
@@ -252,6 +254,7 @@ impl Scene {
                     s.atol.unwrap_or(rtol),
                     s.steps.unwrap_or(DEFAULT_STEPS),
                 )?
+                .with_time_transform(s.time_transform.unwrap_or(true))
             }
         };
         let scene = Scene {

@@ -1,9 +1,12 @@
 //! The driver of a time-stepping run: segments between breakpoints and samples, the stages
 //! of the contact, the result.
 //!
-//! The integration runs in the scaled variables of [`crate::integrator::rhs`]. It proceeds in
-//! segments ending at the profile's breakpoints (kinks or jumps of f: the integrators step
-//! exactly to them) and, with `--samples N`, at the sample times i/N. While the balls slide,
+//! The integration runs in the scaled variables of [`crate::integrator::rhs`], stepping in
+//! the integration variable x of a [`TimeMap`] (the scaled time itself, or a smoothing
+//! change of variable for pulses with algebraic ends). It proceeds in segments ending at the
+//! profile's breakpoints (kinks or jumps of f: the integrators step exactly to them), at the
+//! graded ends of [`GRADED_ENDS`] for algebraic ends without the time transform, and, with
+//! `--samples N`, at the sample times i/N, each mapped to x. While the balls slide,
 //! every accepted step evaluates the event function g = slip . e0; the step that makes it
 //! non-positive has crossed the stop. The stop is then located inside that step by
 //! re-integrating from the step's start, with the same method, to trial times chosen by
@@ -17,6 +20,7 @@ use super::rhs::SlidingState;
 use super::settings::{Sampling, SolverSettings, Stats};
 use super::stages::{ContactStage, Problem, StopReason};
 use super::stepping::Stepper;
+use super::time_map::{TimeMap, GRADED_ENDS};
 use crate::error::Error;
 use crate::formats::trace::TraceSink;
 use crate::model::collision::Collision;
@@ -80,23 +84,26 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         ));
     }
     let mut stepper = Stepper::new(settings)?;
-    let problem = Problem::new(c, profile);
+    let time_map = TimeMap::for_run(profile, settings);
+    let problem = Problem::new(c, profile, time_map);
     let sampling = trace.as_ref().map_or(Sampling::Steps, |t| t.1);
     let mut rec = Recorder::new(trace, c.theta());
     let mut y = SlidingState::initial(problem.slip0);
     let (mut stage, mut stop) = initial_stage(c);
     rec.emit(&problem.units, &y, Some(0.0));
 
-    let breakpoints: &[f64] = if settings.breakpoints {
-        profile.breakpoints()
-    } else {
-        &[]
+    let (kinks, graded): (&[f64], &[f64]) = match settings.breakpoints {
+        false => (&[], &[]),
+        true if time_map.is_identity() && profile.end_power().is_some() => {
+            (profile.breakpoints(), &GRADED_ENDS)
+        }
+        true => (profile.breakpoints(), &[]),
     };
-    let mut segments = Segments::new(breakpoints, sampling);
-    let mut s = 0.0;
-    while s < 1.0 {
-        let end = segments.end_after(s);
-        while y.time() < end {
+    let mut segments = Segments::new([kinks, graded], sampling, time_map);
+    let mut x = 0.0;
+    while x < 1.0 {
+        let end = segments.end_after(x);
+        while y.x() < end {
             let (next, reason) = problem.step(stage, y, end, &mut stepper, &mut rec)?;
             y = next;
             if let StopReason::SlidingStopped { time, impulse } = reason {
@@ -111,8 +118,8 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                 rec.emit(&problem.units, &y, stop.time);
             }
         }
-        s = end;
-        if let Some(t) = segments.sample_reached(s, profile.duration()) {
+        x = end;
+        if let Some(t) = segments.sample_reached(x, profile.duration()) {
             rec.emit(&problem.units, &y, Some(t));
         }
     }
@@ -166,49 +173,56 @@ fn result<P: ForceProfile + ?Sized>(
     }
 }
 
-/// The ends of the segments: the profile's breakpoints and the sample times, in scaled
-/// time.
+/// The ends of the segments: the breakpoints (the profile's kinks, the graded ends) and the
+/// sample times, given in scaled time and mapped to the integration variable.
 struct Segments<'a> {
-    breakpoints: &'a [f64],
-    /// Index of the next breakpoint not yet passed.
-    next_breakpoint: usize,
+    /// Sorted lists of breakpoints in scaled time.
+    lists: [&'a [f64]; 2],
+    /// Index, in each list, of the next breakpoint not yet passed.
+    next: [usize; 2],
+    /// The map from the integration variable to the scaled time.
+    time_map: TimeMap,
     /// Number of sample intervals N (0: no samples).
     samples: u64,
     /// Index i of the next sample time i / N.
     next_sample: u64,
-    /// The sample time among the current segment's candidate ends.
-    sample_time: Option<f64>,
+    /// The integration variable of the sample time among the current segment's candidate
+    /// ends.
+    sample_x: Option<f64>,
 }
 
 impl<'a> Segments<'a> {
-    fn new(breakpoints: &'a [f64], sampling: Sampling) -> Self {
+    fn new(lists: [&'a [f64]; 2], sampling: Sampling, time_map: TimeMap) -> Self {
         Segments {
-            breakpoints,
-            next_breakpoint: 0,
+            lists,
+            next: [0; 2],
+            time_map,
             samples: match sampling {
                 Sampling::Uniform(n) => n.max(1),
                 Sampling::Steps => 0,
             },
             next_sample: 1,
-            sample_time: None,
+            sample_x: None,
         }
     }
 
-    /// The end of the segment that starts at scaled time `s`: the next breakpoint after
-    /// it, the next sample time or the end of the contact, whichever comes first.
-    fn end_after(&mut self, s: f64) -> f64 {
-        let bps = self.breakpoints;
-        while self.next_breakpoint < bps.len() && bps[self.next_breakpoint] <= s {
-            self.next_breakpoint += 1;
-        }
+    /// The end of the segment that starts at integration variable `x`: the next breakpoint
+    /// after it, the next sample time or the end of the contact, whichever comes first.
+    fn end_after(&mut self, x: f64) -> f64 {
+        let map = self.time_map;
         let mut end = 1.0_f64;
-        if let Some(&b) = bps.get(self.next_breakpoint) {
-            end = end.min(b);
+        for (list, next) in self.lists.iter().zip(self.next.iter_mut()) {
+            while *next < list.len() && map.at_time(list[*next]) <= x {
+                *next += 1;
+            }
+            if let Some(&b) = list.get(*next) {
+                end = end.min(map.at_time(b));
+            }
         }
-        self.sample_time =
-            (self.samples > 0).then(|| self.next_sample as f64 / self.samples as f64);
-        if let Some(ts) = self.sample_time {
-            end = end.min(ts);
+        self.sample_x = (self.samples > 0)
+            .then(|| map.at_time(self.next_sample as f64 / self.samples as f64));
+        if let Some(xs) = self.sample_x {
+            end = end.min(xs);
         }
         end
     }
@@ -216,7 +230,7 @@ impl<'a> Segments<'a> {
     /// After the segment ending at `end`: the time (s) of the sample row due there, for a
     /// contact of `duration` (s), if any.
     fn sample_reached(&mut self, end: f64, duration: f64) -> Option<f64> {
-        if self.sample_time != Some(end) {
+        if self.sample_x != Some(end) {
             return None;
         }
         let t = self.next_sample as f64 * duration / self.samples as f64;

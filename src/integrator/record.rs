@@ -15,8 +15,8 @@ pub(super) struct Recorder<'a> {
     sink: Option<&'a mut dyn TraceSink>,
     /// A row per accepted step (else only at the sample times and events).
     steps_mode: bool,
-    /// Scaled time of the last row written (-1 before the first).
-    last_row_time: f64,
+    /// Integration variable of the last row written (-1 before the first).
+    last_row_x: f64,
     /// The first error met while observing (a non-finite state, a failed write).
     error: Option<Error>,
     /// Largest |slip x e0| / v_ref over accepted steps while sliding.
@@ -41,7 +41,7 @@ impl<'a> Recorder<'a> {
         Recorder {
             sink,
             steps_mode: sampling == Sampling::Steps,
-            last_row_time: -1.0,
+            last_row_x: -1.0,
             error: None,
             theta_drift: 0.0,
             slip_consistency: 0.0,
@@ -77,15 +77,15 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    /// Writes the row of `y` at `time` (s; default from its scaled time), unless a row at
-    /// or after its scaled time was written already or an error was recorded.
+    /// Writes the row of `y` at `time` (s; default from its integration variable), unless a
+    /// row at or after it was written already or an error was recorded.
     pub(super) fn emit<P: ForceProfile + ?Sized>(
         &mut self,
         units: &Units<'_, P>,
         y: &SlidingState,
         time: Option<f64>,
     ) {
-        if self.error.is_some() || y.time() <= self.last_row_time {
+        if self.error.is_some() || y.x() <= self.last_row_x {
             return;
         }
         if let Some(sink) = self.sink.as_deref_mut() {
@@ -94,7 +94,7 @@ impl<'a> Recorder<'a> {
                 self.error = Some(e);
             }
         }
-        self.last_row_time = y.time();
+        self.last_row_x = y.x();
     }
 
     /// Whether the trace takes a row per accepted step.

@@ -4,7 +4,8 @@
 //! over v_ref, spins times r / v_ref, heat over m v_ref^2, and pi = P / (m v_ref). With phi
 //! the normalised
 //! profile ([`crate::profile`]), n = pi phi(s) and mu from the current sliding speed,
-//! eqs 14-19 and 20-21, 47 read
+//! eqs 14-19 and 20-21, 47 read (in s; stepping in x with s = g(x), every derivative but
+//! that of x is multiplied by g'(x): [`super::time_map`])
 //!
 //! ```text
 //! dU/ds  = -n                        (14)
@@ -22,15 +23,17 @@
 //! (2V + r Omega_z, 2W - r Omega_y) is carried as well (eqs 20-21): it is the difference of
 //! nearly equal terms when S is small, and carrying it keeps S(t) to full relative
 //! precision, which the stick event needs; that it stays equal to the combination of the
-//! other components is checked. Time is a state (ds/ds = 1) so that the right-hand side
-//! is autonomous: `ode_solvers`' Dop853 has wrong nodes c12, c13 for right-hand sides that
-//! read the time argument.
+//! other components is checked. The integration variable x (the scaled time s itself, or
+//! s = g(x) with the time transform) is a state (dx/dx = 1) so that the right-hand side is
+//! autonomous: `ode_solvers`' Dop853 has wrong nodes c12, c13 for right-hand sides that read
+//! the time argument.
 //!
 //! The friction direction e comes from the current slip at every evaluation (eqs 5-8),
 //! `sign(slip . e0) slip / |slip|`: before sliding stops this is slip / |slip|; past the
 //! stop (only inside the step that crosses it) it continues the paper's formula, so that
 //! the step that crosses is smooth and the event function slip . e0 changes sign there.
 
+use super::time_map::TimeMap;
 use crate::model::params::Friction;
 use crate::model::state::planar_length;
 use crate::profile::ForceProfile;
@@ -41,19 +44,19 @@ pub const SLIDING_DIM: usize = 9;
 /// Number of components of the normal-only state.
 pub const NORMAL_DIM: usize = 2;
 
-/// A right-hand side in scaled, autonomous form (component 0 is the scaled time).
+/// A right-hand side in scaled, autonomous form (component 0 is the integration variable x).
 pub trait ScaledRhs<const N: usize> {
     /// Writes dy/ds at `y`.
     fn derivative(&self, y: &SVector<f64, N>, dy: &mut SVector<f64, N>);
 }
 
-/// The sliding state: s, changes of U, V, W, Omega_y, Omega_z, the slip, and H_sfr, all
-/// scaled.
+/// The sliding state: the integration variable x, changes of U, V, W, Omega_y, Omega_z, the
+/// slip, and H_sfr, all scaled.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlidingState(pub SVector<f64, SLIDING_DIM>);
 
 impl SlidingState {
-    const T: usize = 0;
+    const X: usize = 0;
     const DU: usize = 1;
     const DV: usize = 2;
     const DW: usize = 3;
@@ -72,15 +75,15 @@ impl SlidingState {
         SlidingState(y)
     }
 
-    /// Scaled time s.
+    /// The integration variable x (the scaled time is s = g(x): [`TimeMap`]).
     #[inline]
-    pub fn time(&self) -> f64 {
-        self.0[Self::T]
+    pub fn x(&self) -> f64 {
+        self.0[Self::X]
     }
-    /// Sets the scaled time.
+    /// Sets the integration variable.
     #[inline]
-    pub fn set_time(&mut self, s: f64) {
-        self.0[Self::T] = s;
+    pub fn set_x(&mut self, x: f64) {
+        self.0[Self::X] = x;
     }
     /// Scaled change of (U, V, W).
     #[inline]
@@ -115,19 +118,19 @@ impl SlidingState {
     }
 }
 
-/// The normal-only state: s and the scaled change of U.
+/// The normal-only state: the integration variable x and the scaled change of U.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NormalState(pub SVector<f64, NORMAL_DIM>);
 
 impl NormalState {
-    /// At scaled time `s` with scaled change of U `du`.
+    /// At integration variable `x` with scaled change of U `du`.
     #[inline]
-    pub fn new(s: f64, du: f64) -> Self {
-        NormalState(SVector::from([s, du]))
+    pub fn new(x: f64, du: f64) -> Self {
+        NormalState(SVector::from([x, du]))
     }
-    /// Scaled time s.
+    /// The integration variable x.
     #[inline]
-    pub fn time(&self) -> f64 {
+    pub fn x(&self) -> f64 {
         self.0[0]
     }
     /// Scaled change of U.
@@ -155,11 +158,21 @@ pub enum Direction {
     Frozen,
 }
 
+/// The scaled force n = pi phi(s) g'(x) at integration variable `x`: the profile's force
+/// at the scaled time s = g(x), times the rate ds/dx (1 without the time transform).
+#[inline]
+fn scaled_force<P: ForceProfile + ?Sized>(profile: &P, map: &TimeMap, impulse: f64, x: f64) -> f64 {
+    let (s, rate) = map.time_and_rate(x);
+    impulse * profile.shape(clamp_time(s)) * rate
+}
+
 /// Eqs 14-19 (with 20-21 and 47) while the balls slide.
 #[derive(Debug, Clone, Copy)]
 pub struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
     /// Normal-force profile.
     pub profile: &'a P,
+    /// The integration variable's map to the scaled time.
+    pub time_map: TimeMap,
     /// pi = P / (m v_ref).
     pub impulse: f64,
     /// Friction law (mu of the sliding speed in m/s).
@@ -204,7 +217,7 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
     #[inline]
     fn derivative(&self, y: &SVector<f64, SLIDING_DIM>, dy: &mut SVector<f64, SLIDING_DIM>) {
         let st = SlidingState(*y);
-        let n = self.impulse * self.profile.shape(clamp_time(st.time()));
+        let n = scaled_force(self.profile, &self.time_map, self.impulse, st.x());
         let slip = st.slip();
         let speed = planar_length(slip);
         // Past the stop (only inside the step that crosses it) both the direction and a
@@ -246,6 +259,8 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
 pub struct NormalRhs<'a, P: ForceProfile + ?Sized> {
     /// Normal-force profile.
     pub profile: &'a P,
+    /// The integration variable's map to the scaled time.
+    pub time_map: TimeMap,
     /// pi = P / (m v_ref).
     pub impulse: f64,
 }
@@ -253,7 +268,8 @@ pub struct NormalRhs<'a, P: ForceProfile + ?Sized> {
 impl<P: ForceProfile + ?Sized> ScaledRhs<NORMAL_DIM> for NormalRhs<'_, P> {
     #[inline]
     fn derivative(&self, y: &SVector<f64, NORMAL_DIM>, dy: &mut SVector<f64, NORMAL_DIM>) {
-        *dy = SVector::from([1.0, -self.impulse * self.profile.shape(clamp_time(y[0]))]);
+        let n = scaled_force(self.profile, &self.time_map, self.impulse, y[0]);
+        *dy = SVector::from([1.0, -n]);
     }
 }
 
@@ -269,6 +285,7 @@ mod tests {
         let profile = Rectangle::new(1.0).unwrap();
         let rhs = SlidingRhs {
             profile: &profile,
+            time_map: TimeMap::Identity,
             impulse: 1.3,
             friction: Friction::Constant(0.2),
             speed_scale: 1.0,

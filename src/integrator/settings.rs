@@ -82,10 +82,15 @@ pub struct SolverSettings {
     pub steps: u32,
     /// Step exactly to the profile's breakpoints (default true).
     pub breakpoints: bool,
+    /// Integrate pulses with algebraic ends (`hertz`, `sine-power` with a fractional
+    /// exponent) in a smoothed time variable, s = g(x) with Sidi's sin^m transform (default
+    /// true); off, the steps are graded toward the ends instead (when `breakpoints` is on).
+    /// No effect on other profiles (docs/model.md#the-smoothing-change-of-time-variable).
+    pub time_transform: bool,
 }
 
 impl Default for SolverSettings {
-    /// dop853, rtol 1e-10, atol = rtol, 1000 rk4 steps, breakpoints on.
+    /// dop853, rtol 1e-10, atol = rtol, 1000 rk4 steps, breakpoints on, time transform on.
     fn default() -> Self {
         SolverSettings {
             method: Method::Dop853,
@@ -93,12 +98,14 @@ impl Default for SolverSettings {
             atol: DEFAULT_RTOL,
             steps: DEFAULT_STEPS,
             breakpoints: true,
+            time_transform: true,
         }
     }
 }
 
 impl SolverSettings {
-    /// Validated settings: rtol in [1e-15, 0.1], atol in (0, 0.1], steps in [1, 1e9].
+    /// Validated settings: rtol in [1e-15, 0.1], atol in (0, 0.1], steps in [1, 1e9];
+    /// breakpoints and the time transform on.
     pub fn new(method: Method, rtol: f64, atol: f64, steps: u32) -> Result<Self, Error> {
         if !(rtol.is_finite() && (1e-15..=0.1).contains(&rtol)) {
             return Err(Error::invalid(
@@ -123,7 +130,21 @@ impl SolverSettings {
             atol,
             steps,
             breakpoints: true,
+            time_transform: true,
         })
+    }
+
+    /// The same settings with the smoothing time transform on or off (every value is valid:
+    /// it only chooses how pulses with algebraic ends are stepped).
+    ///
+    /// ```
+    /// use billiard_contact::SolverSettings;
+    /// let graded = SolverSettings::default().with_time_transform(false);
+    /// assert!(!graded.time_transform && SolverSettings::default().time_transform);
+    /// ```
+    pub fn with_time_transform(mut self, on: bool) -> Self {
+        self.time_transform = on;
+        self
     }
 }
 

@@ -8,6 +8,7 @@ use super::rhs::{
 };
 use super::stepping::Stepper;
 use super::stop_event::{locate_stop, STOP_FLOOR};
+use super::time_map::TimeMap;
 use super::units::Units;
 use crate::error::Error;
 use crate::model::collision::Collision;
@@ -46,6 +47,8 @@ pub(super) struct Problem<'a, P: ForceProfile + ?Sized> {
     pub(super) c: &'a Collision,
     pub(super) profile: &'a P,
     pub(super) units: Units<'a, P>,
+    /// The integration variable's map to the scaled time.
+    pub(super) time_map: TimeMap,
     /// pi = P / (m v_ref).
     pi: f64,
     /// Initial sliding direction e0 (unit; zero without sliding).
@@ -57,14 +60,16 @@ pub(super) struct Problem<'a, P: ForceProfile + ?Sized> {
 }
 
 impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
-    /// The scaled problem of collision `c` under force profile `profile`.
-    pub(super) fn new(c: &'a Collision, profile: &'a P) -> Self {
+    /// The scaled problem of collision `c` under force profile `profile`, integrated in the
+    /// variable of `time_map`.
+    pub(super) fn new(c: &'a Collision, profile: &'a P, time_map: TimeMap) -> Self {
         let sc = c.scales;
         let slip0 = c.incoming.slip(c.ball.radius) / sc.speed;
         Problem {
             c,
             profile,
-            units: Units::new(c, profile),
+            units: Units::new(c, profile, time_map),
+            time_map,
             pi: c.impulse / sc.impulse,
             e0: c.direction.unwrap_or_else(Vector2::zeros),
             slip0,
@@ -76,6 +81,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
     fn sliding_rhs(&self, direction: Direction) -> SlidingRhs<'a, P> {
         SlidingRhs {
             profile: self.profile,
+            time_map: self.time_map,
             impulse: self.pi,
             friction: self.c.contact.friction,
             speed_scale: self.c.scales.speed,
@@ -164,7 +170,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         Ok(SlidingState(end))
     }
 
-    /// The normal force alone (no friction, or stuck): only s and U move.
+    /// The normal force alone (no friction, or stuck): only x and U move.
     fn press(
         &self,
         y: SlidingState,
@@ -174,16 +180,17 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
     ) -> Result<SlidingState, Error> {
         let rhs = NormalRhs {
             profile: self.profile,
+            time_map: self.time_map,
             impulse: self.pi,
         };
         let full = |v: &SVector<f64, NORMAL_DIM>| {
             let n = NormalState(*v);
             let mut st = y;
-            st.set_time(n.time());
+            st.set_x(n.x());
             st.set_delta_u_normal(n.delta_u());
             st
         };
-        let y0 = NormalState::new(y.time(), y.delta_u()[0]);
+        let y0 = NormalState::new(y.x(), y.delta_u()[0]);
         let end = stepper.advance_checked(&rhs, y0.0, stop, rec, |rec, v| {
             if rec.takes_steps() {
                 rec.emit(&self.units, &full(v), None);
@@ -224,7 +231,7 @@ pub(super) mod tests {
 
     fn step_sliding(c: &Collision) -> (SlidingState, StopReason) {
         let profile = HalfSine::new(TAU).unwrap();
-        let problem = Problem::new(c, &profile);
+        let problem = Problem::new(c, &profile, TimeMap::Identity);
         let mut stepper = Stepper::new(&SolverSettings::default()).unwrap();
         let mut rec = Recorder::new(None, c.theta());
         let y0 = SlidingState::initial(problem.slip0);
@@ -253,7 +260,7 @@ pub(super) mod tests {
         );
         assert!((time - t_stick).abs() < 1e-10 * TAU, "{time} vs {t_stick}");
         // The state returned is the located stop: inside the contact, slip ~ 0.
-        assert!(y.time() < 1.0 && (y.time() * TAU - t_stick).abs() < 1e-6 * TAU);
+        assert!(y.x() < 1.0 && (y.x() * TAU - t_stick).abs() < 1e-6 * TAU);
         assert!(y.slip().norm() < 1e-9 * (2.0 * v) / c_speed(u, v));
     }
 
@@ -268,7 +275,7 @@ pub(super) mod tests {
     fn sliding_stage_without_stop_reaches_the_end() {
         let (y, reason) = step_sliding(&stun(0.5, 0.25));
         assert_eq!(reason, StopReason::ReachedEnd);
-        assert_eq!(y.time(), 1.0);
+        assert_eq!(y.x(), 1.0);
         assert!(y.slip().norm() > 0.0);
     }
 }

@@ -1,5 +1,6 @@
 //! Location of the stop of sliding inside the step that crossed it: regula falsi with the
-//! Illinois modification in the impulse fraction q = Phi(s) (docs/model.md#locating-the-stop-of-sliding).
+//! Illinois modification in the impulse fraction q = Phi(s) (docs/model.md#locating-the-stop-of-sliding),
+//! s = g(x) the scaled time of the integration variable.
 
 use super::rhs::{SlidingRhs, SlidingState, SLIDING_DIM};
 use super::stepping::Stepper;
@@ -25,7 +26,8 @@ const G_TOL: f64 = 1e-14;
 const MAX_TRIALS: usize = 100;
 
 /// Locates the stop of sliding inside the step from `prev` (g > 0) to `cross` (g <= 0):
-/// regula falsi (Illinois) in q = Phi(s), each trial re-integrated from `prev`.
+/// regula falsi (Illinois) in q = Phi(g(x)), each trial re-integrated from `prev` to the
+/// integration variable x = g^-1(Phi^-1(q)).
 ///
 /// The trials integrate with friction along e0 (the round-off branch of the right-hand
 /// side). Every trial is aimed at the stop, so its last stages evaluate the right-hand side
@@ -42,13 +44,14 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
     prev: &SlidingState,
     cross: &SlidingState,
 ) -> Result<SlidingState, Error> {
-    let (s_lo0, s_hi0) = (prev.time(), cross.time());
+    let map = rhs.time_map;
+    let (x_lo0, x_hi0) = (prev.x(), cross.x());
     let mut lo = Bound {
-        q: profile.cumulative(s_lo0),
+        q: profile.cumulative(map.time(x_lo0)),
         g: rhs.event(prev),
     };
     let mut hi = Bound {
-        q: profile.cumulative(s_hi0),
+        q: profile.cumulative(map.time(x_hi0)),
         g: rhs.event(cross),
     };
     if hi.g >= 0.0 {
@@ -71,8 +74,10 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
             break;
         }
         let q = lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g));
-        let s = profile.time_at_cumulative(q).clamp(s_lo0, s_hi0);
-        let adv = stepper.advance(&frozen, s_lo0, prev.0, s, s - s_lo0, &mut no_stop)?;
+        let x = map
+            .at_time(profile.time_at_cumulative(q))
+            .clamp(x_lo0, x_hi0);
+        let adv = stepper.advance(&frozen, x_lo0, prev.0, x, x - x_lo0, &mut no_stop)?;
         let st = SlidingState(adv.y);
         let g = rhs.event(&st);
         if g.abs() < best_g || (g <= 0.0 && g.abs() <= best_g) {

@@ -2,6 +2,7 @@
 //! states and trace rows.
 
 use super::rhs::SlidingState;
+use super::time_map::TimeMap;
 use crate::formats::trace::TraceRow;
 use crate::model::collision::Collision;
 use crate::model::state::CmState;
@@ -12,6 +13,8 @@ use nalgebra::{Vector2, Vector3};
 pub(super) struct Units<'a, P: ForceProfile + ?Sized> {
     c: &'a Collision,
     profile: &'a P,
+    /// The integration variable's map to the scaled time.
+    time_map: TimeMap,
     /// v_ref (m/s).
     v: f64,
     /// v_ref / r (rad/s).
@@ -24,12 +27,14 @@ pub(super) struct Units<'a, P: ForceProfile + ?Sized> {
 }
 
 impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
-    /// The units of collision `c` with force profile `profile`.
-    pub(super) fn new(c: &'a Collision, profile: &'a P) -> Self {
+    /// The units of collision `c` with force profile `profile`, integrated in the variable
+    /// of `time_map`.
+    pub(super) fn new(c: &'a Collision, profile: &'a P, time_map: TimeMap) -> Self {
         let sc = c.scales;
         Units {
             c,
             profile,
+            time_map,
             v: sc.speed,
             w: sc.spin,
             e: sc.energy,
@@ -60,10 +65,10 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
         y.slip().dot(&self.e0) * self.v
     }
 
-    /// The trace row of `y` at `time` (s; default the scaled time times the duration), with
-    /// slip angle `theta` (rad).
+    /// The trace row of `y` at `time` (s; default the scaled time of its integration
+    /// variable times the duration), with slip angle `theta` (rad).
     pub(super) fn row(&self, y: &SlidingState, time: Option<f64>, theta: Option<f64>) -> TraceRow {
-        let s = y.time();
+        let s = self.time_map.time(y.x());
         let tau = self.profile.duration();
         let p = self.c.impulse;
         let slip = y.slip();

@@ -260,9 +260,9 @@ impl ForceProfile for Hertz {
         self.duration
     }
 
-    /// The force grows like t^1.5 from both ends: steps graded toward them.
-    fn breakpoints(&self) -> &[f64] {
-        &super::GRADED_ENDS
+    /// The force grows like t^1.5 from both ends (f ~ delta^(3/2), delta ~ v0 t).
+    fn end_power(&self) -> Option<f64> {
+        Some(1.5)
     }
 
     fn shape(&self, s: f64) -> f64 {

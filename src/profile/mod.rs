@@ -56,11 +56,20 @@ pub trait ForceProfile {
         invert_cumulative(self, q)
     }
 
-    /// Scaled times in (0, 1), sorted, where phi is not smooth (kinks, jumps), or that
-    /// grade the steps toward an end where phi ~ s^n with fractional n ([`GRADED_ENDS`]):
-    /// the integrators step exactly to them.
+    /// Scaled times in (0, 1), sorted, where phi is not smooth (kinks, jumps): the
+    /// integrators step exactly to them.
     fn breakpoints(&self) -> &[f64] {
         &[]
+    }
+
+    /// The exponent n of the ends, for a pulse that is analytic inside (0, 1) and grows like
+    /// s^n from both ends with n not an integer (phi ~ s^n near 0 and ~ (1 - s)^n near 1):
+    /// there the force's higher derivatives are infinite, and the integrator smooths the
+    /// ends by a change of the time variable (or, with that off, grades its steps toward
+    /// them; docs/model.md#time-stepping). `None` (the default) when the ends are smooth
+    /// or are where the integration starts and stops anyway.
+    fn end_power(&self) -> Option<f64> {
+        None
     }
 
     /// Force f(t) (N) for a total impulse `impulse` P (N s).
@@ -73,38 +82,6 @@ pub trait ForceProfile {
         impulse * self.cumulative(t / self.duration())
     }
 }
-
-/// Scaled times grading the steps toward both ends of a pulse whose force behaves like
-/// s^n there with n not an integer (hertz: n = 1.5; sine-power with a fractional
-/// exponent): 2^-10 .. 2^-2 and 1 - 2^-2 .. 1 - 2^-10, so that no step is longer than
-/// twice its distance from the end it approaches.
-///
-/// The force is analytic inside the pulse but its expansion about a point converges only
-/// up to the nearer end. A step that reaches from the middle of the pulse to near the end
-/// leaves the region where the embedded error estimates hold: dop853 at rtol 1e-10 took a
-/// step from s = 0.567 to 0.969 of a hertz pulse with a true error of 5e-6 (found by the
-/// property tests). Used as breakpoints, these points cost a few steps and keep the error
-/// at the tolerance's level.
-pub const GRADED_ENDS: [f64; 18] = [
-    1.0 / 1024.0,
-    1.0 / 512.0,
-    1.0 / 256.0,
-    1.0 / 128.0,
-    1.0 / 64.0,
-    1.0 / 32.0,
-    1.0 / 16.0,
-    1.0 / 8.0,
-    1.0 / 4.0,
-    1.0 - 1.0 / 4.0,
-    1.0 - 1.0 / 8.0,
-    1.0 - 1.0 / 16.0,
-    1.0 - 1.0 / 32.0,
-    1.0 - 1.0 / 64.0,
-    1.0 - 1.0 / 128.0,
-    1.0 - 1.0 / 256.0,
-    1.0 - 1.0 / 512.0,
-    1.0 - 1.0 / 1024.0,
-];
 
 /// Safeguarded Newton iteration (bisection fallback) for Phi(s) = q on [0, 1].
 pub fn invert_cumulative<P: ForceProfile + ?Sized>(profile: &P, q: f64) -> f64 {
@@ -188,6 +165,9 @@ impl ForceProfile for Profile {
     }
     fn breakpoints(&self) -> &[f64] {
         delegate!(self, p => p.breakpoints())
+    }
+    fn end_power(&self) -> Option<f64> {
+        delegate!(self, p => p.end_power())
     }
 }
 
@@ -327,10 +307,25 @@ pub(crate) mod tests {
     }
 
     /// Composite Gauss-Legendre quadrature of phi over [a, b] (independent of `cumulative`),
-    /// split at the profile's breakpoints, with compensated summation.
+    /// split at the profile's breakpoints and, for algebraic ends, at points graded toward
+    /// them (2^-k and 1 - 2^-k, k = 2..20), with compensated summation.
     pub fn integrate_shape(p: &dyn ForceProfile, a: f64, b: f64, panels: usize) -> f64 {
+        let graded: Vec<f64> = match p.end_power() {
+            Some(_) => (2..=20)
+                .map(|k| 0.5_f64.powi(k))
+                .flat_map(|h| [h, 1.0 - h])
+                .collect(),
+            None => Vec::new(),
+        };
         let mut cuts = vec![a];
-        cuts.extend(p.breakpoints().iter().copied().filter(|&x| x > a && x < b));
+        cuts.extend(
+            p.breakpoints()
+                .iter()
+                .chain(&graded)
+                .copied()
+                .filter(|&x| x > a && x < b),
+        );
+        cuts.sort_by(f64::total_cmp);
         cuts.push(b);
         let nodes = [
             (-0.906_179_845_938_664, 0.236_926_885_056_189_1),

@@ -73,14 +73,10 @@ impl ForceProfile for SinePower {
         self.duration
     }
 
-    /// A fractional exponent n makes the force grow like t^n from the ends: steps graded
-    /// toward them. An integer exponent gives an analytic pulse: none.
-    fn breakpoints(&self) -> &[f64] {
-        if self.exponent.fract() == 0.0 {
-            &[]
-        } else {
-            &super::GRADED_ENDS
-        }
+    /// A fractional exponent n makes the force grow like t^n from the ends; an integer
+    /// exponent gives an analytic pulse (`None`).
+    fn end_power(&self) -> Option<f64> {
+        (self.exponent.fract() != 0.0).then_some(self.exponent)
     }
 
     #[inline]
