@@ -36,7 +36,7 @@ enum Command {
     /// Run a scene (the built-in default scene when none is given).
     Run(RunArgs),
     /// Work-precision study: error against time per contact for every profile and method;
-    /// writes DIR/work_precision.csv, .svg and .png.
+    /// writes DIR/work_precision.csv, .svg, .png and .md (the cost tables).
     WorkPrecision(StudyArgs),
     /// Resolve one collision per row of a CSV file (see README, "Batch").
     Batch(BatchArgs),
@@ -59,8 +59,8 @@ struct StudyArgs {
     /// Leave out the companion scene in which sliding stops during contact.
     #[arg(long)]
     no_sticking: bool,
-    /// Only redraw the figure from DIR/work_precision.csv (e.g. after the peers' script
-    /// appended its rows).
+    /// Only redraw the figure and the cost tables from DIR/work_precision.csv (e.g. after
+    /// the peers' script appended its rows).
     #[arg(long)]
     replot: bool,
 }
@@ -313,12 +313,25 @@ fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     let csv_path = args.out.join("work_precision.csv");
     let svg = args.out.join("work_precision.svg");
     let png = args.out.join("work_precision.png");
+    let md = args.out.join("work_precision.md");
+    let write_md = |rows: &[work_precision::StudyRow]| -> Result<(), Error> {
+        let mut file = AtomicFile::create(&md)?;
+        file.write_all(work_precision::markdown(rows).as_bytes())
+            .map_err(|e| Error::io(&md, e))?;
+        file.commit()
+    };
     if args.replot {
         let file = std::fs::File::open(&csv_path).map_err(|e| Error::io(&csv_path, e))?;
         let rows = work_precision::read_csv(std::io::BufReader::new(file), &csv_path)?;
         figure::write(&rows, &svg, &png)?;
+        write_md(&rows)?;
         print!("{}", work_precision::summary(&rows));
-        println!("\nwrote {} and {}", svg.display(), png.display());
+        println!(
+            "\nwrote {}, {} and {}",
+            svg.display(),
+            png.display(),
+            md.display()
+        );
         return Ok(());
     }
     let scene = match &args.scene {
@@ -354,6 +367,7 @@ fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     work_precision::write_csv(&mut file, &rows)?;
     file.commit()?;
     figure::write(&rows, &svg, &png)?;
+    write_md(&rows)?;
     print!("{}", work_precision::summary(&rows));
     for r in rows.iter().filter(|r| !r.note.is_empty()) {
         eprintln!(
@@ -362,10 +376,11 @@ fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         );
     }
     println!(
-        "\nwrote {}, {} and {} in {:.1} s",
+        "\nwrote {}, {}, {} and {} in {:.1} s",
         csv_path.display(),
         svg.display(),
         png.display(),
+        md.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

@@ -362,7 +362,10 @@ fn rk4_keeps_its_order_on_algebraic_ends_with_the_time_transform() {
                     .collect()
             };
             let (on, off) = (fitted_order(&run(true)), fitted_order(&run(false)));
-            eprintln!("rk4 {name} {}: order {on:.2} (transform), {off:.2} (graded)", case.name);
+            eprintln!(
+                "rk4 {name} {}: order {on:.2} (transform), {off:.2} (graded)",
+                case.name
+            );
             assert!(on >= TRANSFORMED_ORDER, "{name} {}: order {on}", case.name);
             // Without the transform the order is about n + 1 (a little above, before the
             // asymptotic regime).
@@ -557,4 +560,3 @@ fn independent_references_agree_with_known_values() {
         }
     }
 }
-

@@ -14,8 +14,11 @@
 //!
 //! Profiles with breakpoints (the knots of a table) are run again with
 //! [`SolverSettings::breakpoints`] off, so the study shows what stepping exactly to them
-//! saves. By default the study also runs a companion scene in which sliding stops during
-//! the contact (`data/scenes/stun_cut_sticks.toml`), which exercises the stick event.
+//! saves; profiles with algebraic ends (`hertz`, `sine-power` 1.5) are run again with
+//! [`SolverSettings::time_transform`] off (steps graded toward the ends instead), so it
+//! shows what the smoothing change of time variable saves. By default the study also runs a
+//! companion scene in which sliding stops during the contact
+//! (`data/scenes/stun_cut_sticks.toml`), which exercises the stick event.
 //!
 //! [`write_csv`] writes the rows with the columns of [`COLUMNS`] first (the contract of
 //! issue 3) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
@@ -48,15 +51,16 @@ pub const COLUMNS: [&str; 9] = [
 ];
 
 /// Columns after [`COLUMNS`]: whether the integrator stepped to the profile's breakpoints,
-/// the scene, rejected steps, timed samples and solves per sample, and a note (why a run
-/// failed).
-pub const EXTRA_COLUMNS: [&str; 6] = [
+/// the scene, rejected steps, timed samples and solves per sample, a note (why a run
+/// failed), and whether the time transform was on.
+pub const EXTRA_COLUMNS: [&str; 7] = [
     "breakpoints",
     "scene",
     "rejected_steps",
     "samples",
     "solves_per_sample",
     "note",
+    "time_transform",
 ];
 
 /// The built-in companion scene in which sliding stops during contact.
@@ -198,6 +202,8 @@ pub struct Setting {
     pub steps: Option<u32>,
     /// Step exactly to the profile's breakpoints.
     pub breakpoints: bool,
+    /// The smoothing time transform of pulses with algebraic ends.
+    pub time_transform: bool,
 }
 
 impl Setting {
@@ -214,7 +220,7 @@ impl Setting {
             s = SolverSettings::new(self.method, s.rtol, s.atol, n)?;
         }
         s.breakpoints = self.breakpoints;
-        Ok(s)
+        Ok(s.with_time_transform(self.time_transform))
     }
 }
 
@@ -241,6 +247,8 @@ pub struct StudyRow {
     pub seconds_per_contact: f64,
     /// Whether the integrator stepped to the profile's breakpoints.
     pub breakpoints: bool,
+    /// Whether the time transform was on (it acts on pulses with algebraic ends only).
+    pub time_transform: bool,
     /// Scene name.
     pub scene: String,
     /// Timed samples.
@@ -251,26 +259,37 @@ pub struct StudyRow {
     pub note: String,
 }
 
+/// The variants (breakpoints, time transform) a profile is run with: the defaults; and
+/// with the time transform off for algebraic ends (graded breakpoints instead), or with
+/// the breakpoints off for a profile that has some.
+pub fn variants(profile: &dyn ForceProfile) -> Vec<(bool, bool)> {
+    let mut v = vec![(true, true)];
+    if profile.end_power().is_some() {
+        v.push((true, false));
+    } else if !profile.breakpoints().is_empty() {
+        v.push((false, true));
+    }
+    v
+}
+
 /// The settings run for one profile: the closed form, the rk4 ladder, the tolerance
-/// ladders, and the same without breakpoints when the profile has some.
+/// ladders, for each of its [`variants`].
 pub fn settings_for(profile: &dyn ForceProfile, options: &StudyOptions) -> Vec<Setting> {
     let mut v = vec![Setting {
         method: Method::ClosedForm,
         rtol: None,
         steps: None,
         breakpoints: true,
+        time_transform: true,
     }];
-    let has_breakpoints = !profile.breakpoints().is_empty();
-    for breakpoints in [true, false] {
-        if !breakpoints && !has_breakpoints {
-            break;
-        }
+    for (breakpoints, time_transform) in variants(profile) {
         for &n in &options.rk4_steps {
             v.push(Setting {
                 method: Method::Rk4,
                 rtol: None,
                 steps: Some(n),
                 breakpoints,
+                time_transform,
             });
         }
         for method in [Method::Dopri5, Method::Dop853] {
@@ -280,6 +299,7 @@ pub fn settings_for(profile: &dyn ForceProfile, options: &StudyOptions) -> Vec<S
                     rtol: Some(r),
                     steps: None,
                     breakpoints,
+                    time_transform,
                 });
             }
         }
@@ -342,6 +362,7 @@ pub fn run_job(scene: &Scene, job: &Job, options: &StudyOptions) -> Result<Study
         stats: Stats::default(),
         seconds_per_contact: f64::NAN,
         breakpoints: job.setting.breakpoints,
+        time_transform: job.setting.time_transform,
         scene: scene.name.clone(),
         samples: 0,
         solves_per_sample: 0,
@@ -515,6 +536,7 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
             r.samples.to_string(),
             r.solves_per_sample.to_string(),
             r.note.clone(),
+            r.time_transform.to_string(),
         ])?;
     }
     w.into_inner()
@@ -523,7 +545,9 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
 
 /// Reads a study CSV (ours, possibly with rows appended by a peer's script). The columns of
 /// [`COLUMNS`] are required (by name); of the extra columns, missing ones or empty cells
-/// read as breakpoints = true, scene = "", zero counts, no note. Errors name the line.
+/// read as breakpoints = true, scene = "", zero counts, no note, time transform = true (the
+/// defaults: a peer's rows, and files written before the column existed). Errors name the
+/// line.
 pub fn read_csv<R: Read>(input: R, path: &Path) -> Result<Vec<StudyRow>, Error> {
     let err = |line: u64, message: String| Error::BatchInput {
         path: path.to_path_buf(),
@@ -584,6 +608,7 @@ pub fn read_csv<R: Read>(input: R, path: &Path) -> Result<Vec<StudyRow>, Error> 
             },
             seconds_per_contact: float(required[8], "seconds_per_contact")?.unwrap_or(f64::NAN),
             breakpoints: !matches!(ext(0), "false" | "False" | "0"),
+            time_transform: !matches!(ext(6), "false" | "False" | "0"),
             scene: ext(1).to_string(),
             samples: int(ext(3), "samples")? as u32,
             solves_per_sample: int(ext(4), "solves_per_sample")? as u32,
@@ -604,17 +629,26 @@ pub struct Series<'a> {
     pub method: &'a str,
     /// Breakpoints on.
     pub breakpoints: bool,
+    /// Time transform on.
+    pub time_transform: bool,
     /// The rows, in the order of the ladder (cheapest first).
     pub rows: Vec<&'a StudyRow>,
 }
 
 impl Series<'_> {
-    /// The label of the line: the method, with "no breakpoints" when they were off.
+    /// Whether the line runs with the defaults (breakpoints and time transform on).
+    pub fn is_default(&self) -> bool {
+        self.breakpoints && self.time_transform
+    }
+
+    /// The label of the line: the method, with "no transform" and "no breakpoints" when
+    /// they were off.
     pub fn label(&self) -> String {
-        if self.breakpoints {
-            self.method.to_string()
-        } else {
-            format!("{} (no breakpoints)", self.method)
+        match (self.time_transform, self.breakpoints) {
+            (true, true) => self.method.to_string(),
+            (true, false) => format!("{} (no breakpoints)", self.method),
+            (false, true) => format!("{} (no transform)", self.method),
+            (false, false) => format!("{} (no transform, no breakpoints)", self.method),
         }
     }
 
@@ -643,6 +677,15 @@ impl Series<'_> {
         (sxx > 0.0).then(|| -sxy / sxx)
     }
 
+    /// The fewest right-hand-side evaluations of a run with error <= `target`, if any.
+    pub fn fewest_evaluations_within(&self, target: f64) -> Option<u64> {
+        self.rows
+            .iter()
+            .filter(|r| r.error.is_some_and(|e| e <= target))
+            .map(|r| r.stats.rhs_evaluations)
+            .min()
+    }
+
     /// The cheapest run (seconds per contact) with error <= `target`, if any.
     pub fn cheapest_within(&self, target: f64) -> Option<&StudyRow> {
         self.rows
@@ -664,6 +707,7 @@ pub fn series(rows: &[StudyRow]) -> Vec<Series<'_>> {
                 && s.profile == r.profile
                 && s.method == r.method
                 && s.breakpoints == r.breakpoints
+                && s.time_transform == r.time_transform
         });
         match found {
             Some(s) => s.rows.push(r),
@@ -672,6 +716,7 @@ pub fn series(rows: &[StudyRow]) -> Vec<Series<'_>> {
                 profile: &r.profile,
                 method: &r.method,
                 breakpoints: r.breakpoints,
+                time_transform: r.time_transform,
                 rows: vec![r],
             }),
         }
@@ -688,8 +733,31 @@ pub fn series(rows: &[StudyRow]) -> Vec<Series<'_>> {
     out
 }
 
+/// The error levels the summaries give the cost of.
+pub const TARGETS: [f64; 4] = [1e-6, 1e-8, 1e-10, 1e-12];
+
+/// The cost of reaching `target` on a line: time per contact and evaluations of its
+/// cheapest run, or "not reached".
+fn cost_cell(line: &Series<'_>, target: f64) -> String {
+    match line.cheapest_within(target) {
+        Some(r) => format!(
+            "{} / {}",
+            human_seconds(r.seconds_per_contact),
+            r.stats.rhs_evaluations
+        ),
+        None => "not reached".into(),
+    }
+}
+
+/// A line's observed order, one decimal, or "-".
+fn order_cell(line: &Series<'_>) -> String {
+    line.observed_order()
+        .map(|o| format!("{o:.1}"))
+        .unwrap_or_else(|| "-".into())
+}
+
 /// A plain-text summary: per scene and profile, each method's observed order and the
-/// cheapest cost (time per contact, evaluations) of reaching errors 1e-6, 1e-9, 1e-12.
+/// cheapest cost (time per contact / evaluations) of reaching the errors of [`TARGETS`].
 pub fn summary(rows: &[StudyRow]) -> String {
     use std::fmt::Write as _;
     let mut s = String::new();
@@ -698,27 +766,124 @@ pub fn summary(rows: &[StudyRow]) -> String {
         if line.scene != scene {
             scene = line.scene;
             let _ = writeln!(s, "\nscene: {scene}");
-            let _ = writeln!(
-                s,
-                "{:<11} {:<28} {:>6}  {:>21}  {:>21}  {:>21}",
-                "profile", "method", "order", "error<=1e-6", "error<=1e-9", "error<=1e-12"
-            );
+            let _ = write!(s, "{:<11} {:<34} {:>6}", "profile", "method", "order");
+            for t in TARGETS {
+                let _ = write!(s, "  {:>18}", format!("error<={t:e}"));
+            }
+            s.push('\n');
         }
-        let order = line
-            .observed_order()
-            .map(|o| format!("{o:.1}"))
-            .unwrap_or_else(|| "-".into());
-        let _ = write!(s, "{:<11} {:<28} {:>6}", line.profile, line.label(), order);
-        for target in [1e-6, 1e-9, 1e-12] {
-            let cell = match line.cheapest_within(target) {
-                Some(r) => format!(
-                    "{} ({} f)",
-                    human_seconds(r.seconds_per_contact),
-                    r.stats.rhs_evaluations
-                ),
-                None => "not reached".into(),
+        let _ = write!(
+            s,
+            "{:<11} {:<34} {:>6}",
+            line.profile,
+            line.label(),
+            order_cell(&line)
+        );
+        for target in TARGETS {
+            let _ = write!(s, "  {:>18}", cost_cell(&line, target));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// The cost tables in Markdown (the study writes them to `work_precision.md` beside the
+/// CSV): per scene, every line's observed order, best error and cheapest cost of each
+/// error of [`TARGETS`]; then, per profile, what the adaptive methods pay against the
+/// half-sine for the same error.
+pub fn markdown(rows: &[StudyRow]) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::from(
+        "# What accuracy costs\n\n\
+         Generated by `billiard-contact work-precision` (or `--replot`) from `work_precision.csv` \
+         in the same directory: do not edit by hand. Each cell is the time per contact \
+         (median wall time of one solve) / the right-hand-side evaluations of the cheapest run \
+         of the line's ladder that reaches the error; p is the observed order (error ~ \
+         evaluations^-p over the runs with error in [1e-13, 1e-2]); best is the smallest error \
+         of the ladder. \"no transform\": hertz and sine-power stepped through graded \
+         breakpoints instead of the smoothing time transform; \"no breakpoints\": a table's \
+         knots not stepped to.\n",
+    );
+    let lines = series(rows);
+    let mut scenes: Vec<&str> = Vec::new();
+    for l in &lines {
+        if !scenes.contains(&l.scene) {
+            scenes.push(l.scene);
+        }
+    }
+    for scene in scenes {
+        let _ = write!(s, "\n## {scene}\n\n| profile | method | p | best error |");
+        for t in TARGETS {
+            let _ = write!(s, " error <= {t:e} |");
+        }
+        s.push_str("\n|---|---|---|---|");
+        s.push_str(&"---|".repeat(TARGETS.len()));
+        s.push('\n');
+        for line in lines.iter().filter(|l| l.scene == scene) {
+            let best = line
+                .rows
+                .iter()
+                .filter_map(|r| r.error)
+                .min_by(f64::total_cmp)
+                .map_or("-".to_string(), |e| format!("{e:.1e}"));
+            let _ = write!(
+                s,
+                "| {} | {} | {} | {best} |",
+                line.profile,
+                line.label(),
+                order_cell(line)
+            );
+            for t in TARGETS {
+                let _ = write!(s, " {} |", cost_cell(line, t));
+            }
+            s.push('\n');
+        }
+        s.push_str(&against_half_sine(&lines, scene));
+    }
+    s
+}
+
+/// Per profile other than the half-sine, for dopri5 and dop853 with the default settings:
+/// evaluations (fewest of a run reaching the error) and time per contact (cheapest run)
+/// over the half-sine's, at the errors of [`TARGETS`] but the last.
+fn against_half_sine(lines: &[Series<'_>], scene: &str) -> String {
+    use std::fmt::Write as _;
+    let targets = &TARGETS[..TARGETS.len() - 1];
+    let mut s = String::from(
+        "\nAgainst the half-sine at the same error (evaluations, time per contact; \
+         default settings):\n\n| profile | method |",
+    );
+    for t in targets {
+        let _ = write!(s, " error <= {t:e} |");
+    }
+    s.push_str("\n|---|---|");
+    s.push_str(&"---|".repeat(targets.len()));
+    s.push('\n');
+    let default = |profile: &str, method: &str| {
+        lines.iter().find(|l| {
+            l.scene == scene && l.profile == profile && l.method == method && l.is_default()
+        })
+    };
+    for line in lines.iter().filter(|l| l.scene == scene && l.is_default()) {
+        if line.profile == "half-sine" || !matches!(line.method, "dopri5" | "dop853") {
+            continue;
+        }
+        let Some(base) = default("half-sine", line.method) else {
+            continue;
+        };
+        let _ = write!(s, "| {} | {} |", line.profile, line.method);
+        for &t in targets {
+            let evals = line.fewest_evaluations_within(t);
+            let base_evals = base.fewest_evaluations_within(t);
+            let time = line.cheapest_within(t).map(|r| r.seconds_per_contact);
+            let base_time = base.cheapest_within(t).map(|r| r.seconds_per_contact);
+            let cell = match (evals, base_evals, time, base_time) {
+                (Some(n), Some(b), Some(x), Some(y)) if b > 0 && y > 0.0 => {
+                    format!("{:.2}x, {:.2}x", n as f64 / b as f64, x / y)
+                }
+                _ => "-".into(),
             };
-            let _ = write!(s, "  {cell:>21}");
+            let _ = write!(s, " {cell} |");
         }
         s.push('\n');
     }
@@ -848,6 +1013,7 @@ mod tests {
                 },
                 seconds_per_contact: n as f64 * 1e-9,
                 breakpoints: true,
+                time_transform: true,
                 scene: "s".into(),
                 samples: 1,
                 solves_per_sample: 1,
@@ -858,6 +1024,100 @@ mod tests {
         assert_eq!(s.len(), 1);
         assert!((s[0].observed_order().unwrap() - 4.0).abs() < 1e-12);
         assert_eq!(s[0].cheapest_within(1e-6).unwrap().steps, Some(64));
+    }
+
+    /// Hertz runs with the time transform on and off (graded breakpoints), and the column
+    /// says which; in the smoothed variable rk4 at 64 steps is far closer to the closed
+    /// form (a t^1.5 end costs it its order: docs/model.md#the-smoothing-change-of-time-variable).
+    #[test]
+    fn hertz_with_the_transform_on_and_off() {
+        let opts = StudyOptions {
+            profiles: vec![ProfileKind::Hertz],
+            rtols: vec![1e-6, 1e-9],
+            sticking_scene: false,
+            ..quick()
+        };
+        let rows = run_study(Scene::default_scene(), &opts, |_, _, _| {}).unwrap();
+        let per_variant = opts.rk4_steps.len() + 2 * opts.rtols.len();
+        assert_eq!(rows.len(), 1 + 2 * per_variant);
+        assert_eq!(
+            rows.iter().filter(|r| !r.time_transform).count(),
+            per_variant
+        );
+        let rk4_64 = |on: bool| {
+            rows.iter()
+                .find(|r| r.method == "rk4" && r.steps == Some(64) && r.time_transform == on)
+                .and_then(|r| r.error)
+                .unwrap()
+        };
+        assert!(
+            rk4_64(true) < 1e-3 * rk4_64(false),
+            "{} {}",
+            rk4_64(true),
+            rk4_64(false)
+        );
+        let text = String::from_utf8(write_csv(Vec::new(), &rows).unwrap()).unwrap();
+        assert!(text
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with(",note,time_transform"));
+        let labels: Vec<String> = series(&rows).iter().map(|l| l.label()).collect();
+        assert!(
+            labels.contains(&"dop853 (no transform)".to_string()),
+            "{labels:?}"
+        );
+    }
+
+    /// The Markdown tables: a header per scene, a row per line with its cheapest costs,
+    /// and the ratios against the half-sine (here 2x the evaluations, 3x the time).
+    #[test]
+    fn markdown_cost_tables() {
+        let row = |profile: &str, rtol: f64, error: f64, n: u64, t: f64| StudyRow {
+            profile: profile.into(),
+            method: "dop853".into(),
+            rtol: Some(rtol),
+            steps: None,
+            error: Some(error),
+            stick_time_error: None,
+            stats: Stats {
+                rhs_evaluations: n,
+                accepted_steps: n / 12,
+                rejected_steps: 0,
+            },
+            seconds_per_contact: t,
+            breakpoints: true,
+            time_transform: true,
+            scene: "s".into(),
+            samples: 1,
+            solves_per_sample: 1,
+            note: String::new(),
+        };
+        let rows = vec![
+            row("half-sine", 1e-6, 1e-7, 40, 2e-6),
+            row("half-sine", 1e-9, 1e-11, 60, 4e-6),
+            row("hertz", 1e-6, 1e-7, 80, 6e-6),
+            row("hertz", 1e-9, 1e-11, 120, 12e-6),
+        ];
+        let md = markdown(&rows);
+        assert!(md.starts_with("# What accuracy costs"));
+        assert!(md.contains("\n## s\n"), "{md}");
+        assert!(
+            md.contains("| hertz | dop853 | - | 1.0e-11 | 6.00 us / 80 | 12.00 us / 120 | 12.00 us / 120 | not reached |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| hertz | dop853 | 2.00x, 3.00x | 2.00x, 3.00x | 2.00x, 3.00x |"),
+            "{md}"
+        );
+    }
+
+    #[test]
+    fn read_csv_without_the_transform_column_reads_true() {
+        let old = "profile,method,rtol,steps,error,stick_time_error,rhs_evaluations,accepted_steps,seconds_per_contact,breakpoints,scene,rejected_steps,samples,solves_per_sample,note\n\
+                   hertz,scipy-DOP853,1e-6,,2e-7,,120,20,1e-4,true,s,,,,\n";
+        let rows = read_csv(old.as_bytes(), Path::new("w.csv")).unwrap();
+        assert!(rows[0].time_transform && rows[0].breakpoints);
     }
 
     #[test]

@@ -219,8 +219,8 @@ impl<'a> Segments<'a> {
                 end = end.min(map.at_time(b));
             }
         }
-        self.sample_x = (self.samples > 0)
-            .then(|| map.at_time(self.next_sample as f64 / self.samples as f64));
+        self.sample_x =
+            (self.samples > 0).then(|| map.at_time(self.next_sample as f64 / self.samples as f64));
         if let Some(xs) = self.sample_x {
             end = end.min(xs);
         }

@@ -152,10 +152,7 @@ impl TimeMap {
     pub fn time_and_rate(&self, x: f64) -> (f64, f64) {
         match self {
             TimeMap::Identity => (x, 1.0),
-            TimeMap::SineSquared(p) => {
-                let x = x.clamp(0.0, 1.0);
-                (p.cumulative(x), p.shape(x))
-            }
+            TimeMap::SineSquared(p) => p.cumulative_and_shape(x.clamp(0.0, 1.0)),
             TimeMap::SinePower(p) => {
                 let x = x.clamp(0.0, 1.0);
                 (p.cumulative(x), p.shape(x))
@@ -201,7 +198,10 @@ mod tests {
             if (2.0 * n).fract() != 0.0 {
                 let m = f64::from(m);
                 assert!((n + 1.0) * (m + 1.0) >= 9.0 || m == 1.0, "n = {n}");
-                assert!((n + 1.0) * m < 9.0 || m == 1.0, "n = {n}: m not the smallest");
+                assert!(
+                    (n + 1.0) * m < 9.0 || m == 1.0,
+                    "n = {n}: m not the smallest"
+                );
             }
         }
     }
@@ -237,7 +237,10 @@ mod tests {
             let (s, rate) = map.time_and_rate(x);
             let want = x - (2.0 * PI * x).sin() / (2.0 * PI);
             assert!((s - want).abs() < 1e-14, "x = {x}: {s} vs {want}");
-            assert!((rate - 2.0 * (PI * x).sin().powi(2)).abs() < 1e-14, "x = {x}");
+            assert!(
+                (rate - 2.0 * (PI * x).sin().powi(2)).abs() < 1e-14,
+                "x = {x}"
+            );
             if x > 0.0 && x < 1.0 {
                 assert!((map.at_time(want) - x).abs() < 1e-12, "x = {x}");
             }

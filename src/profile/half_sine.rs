@@ -29,6 +29,20 @@ impl HalfSine {
     }
 }
 
+impl HalfSine {
+    /// Phi(s) and phi(s) together, from one sine and cosine of pi s' / 2 with s' the
+    /// distance to the nearer end (phi = (pi/2) sin(pi s) = pi sin(pi s'/2) cos(pi s'/2)):
+    /// the integrator's sin^2 time transform needs both at every evaluation. `s` in [0, 1].
+    #[inline]
+    pub fn cumulative_and_shape(&self, s: f64) -> (f64, f64) {
+        let near = s.min(1.0 - s);
+        let (sin, cos) = (FRAC_PI_2 * near).sin_cos();
+        let from_end = sin * sin;
+        let cumulative = if s <= 0.5 { from_end } else { 1.0 - from_end };
+        (cumulative, PI * sin * cos)
+    }
+}
+
 impl ForceProfile for HalfSine {
     fn duration(&self) -> f64 {
         self.duration
@@ -79,5 +93,17 @@ mod tests {
     #[test]
     fn contract() {
         crate::profile::tests::check_profile(&HalfSine::new(1e-3).unwrap(), 1e-13);
+    }
+
+    /// Both at once agree with the separate formulas to round-off.
+    #[test]
+    fn cumulative_and_shape_together() {
+        let p = HalfSine::new(1.0).unwrap();
+        for i in 0..=200 {
+            let s = i as f64 / 200.0;
+            let (c, f) = p.cumulative_and_shape(s);
+            assert!((c - p.cumulative(s)).abs() <= 2e-16, "s = {s}");
+            assert!((f - p.shape(s)).abs() <= 4e-16, "s = {s}");
+        }
     }
 }

@@ -137,7 +137,7 @@ fn draw_header<DB: DrawingBackend>(header: &DrawingArea<DB, Shift>) -> Drawn<DB>
     header.draw(&Text::new(
         "error = largest scaled deviation from the closed form; p = observed order \
          (error ~ evaluations^-p); hollow markers at 1e-17: error exactly 0; \
-         dashed: breakpoints off",
+         dashed with crosses: time transform off (hertz, sine-power) or breakpoints off",
         (14, 42),
         (FONT, 15).into_font(),
     ))
@@ -209,8 +209,9 @@ fn points(line: &Series) -> Vec<(f64, f64, bool)> {
         .collect()
 }
 
-/// The line through `pts` in its method's colour, solid with breakpoints and dashed
-/// without, with its legend entry (the observed order when there is one).
+/// The line through `pts` in its method's colour, solid with the default settings and
+/// dashed with the time transform or the breakpoints off, with its legend entry (the
+/// observed order when there is one).
 fn draw_line<'a, DB: DrawingBackend + 'a>(
     chart: &mut Panel<'a, DB>,
     line: &Series,
@@ -225,7 +226,7 @@ fn draw_line<'a, DB: DrawingBackend + 'a>(
     };
     // Segment by segment: the bitmap backend joins wide polylines with unlimited
     // miters, which spike across the figure where a ladder doubles back.
-    let drawn = if line.breakpoints {
+    let drawn = if line.is_default() {
         chart.draw_series(
             xy.windows(2)
                 .map(|w| PathElement::new(vec![w[0], w[1]], style)),
@@ -262,8 +263,9 @@ fn apart_by_pixels<'a, DB: DrawingBackend + 'a>(
     xy
 }
 
-/// The markers of a line's points: triangles for the peers (scipy), circles with
-/// breakpoints, crosses without; hollow and larger for errors of exactly 0.
+/// The markers of a line's points: triangles for the peers (scipy), circles with the
+/// default settings, crosses with the time transform or the breakpoints off; hollow and
+/// larger for errors of exactly 0.
 fn draw_markers<'a, DB: DrawingBackend + 'a>(
     chart: &mut Panel<'a, DB>,
     line: &Series,
@@ -279,7 +281,7 @@ fn draw_markers<'a, DB: DrawingBackend + 'a>(
         chart.draw_series(pts.iter().map(marker).map(|(x, y, r, st)| {
             EmptyElement::at((x, y)) + TriangleMarker::new((0, 0), r + 1, st)
         }))?;
-    } else if line.breakpoints {
+    } else if line.is_default() {
         chart.draw_series(
             pts.iter()
                 .map(marker)
@@ -369,6 +371,7 @@ mod tests {
             },
             seconds_per_contact: t,
             breakpoints: bp,
+            time_transform: true,
             scene: "scene".into(),
             samples: 1,
             solves_per_sample: 1,
