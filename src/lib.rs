@@ -99,6 +99,7 @@ pub use integrator::{Method, Sampling, SolverSettings, Stats};
 pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
+pub use model::material::{HertzContact, Material};
 pub use model::params::{
     Ball, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
 };

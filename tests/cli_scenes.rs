@@ -149,6 +149,9 @@ struct SceneRef {
     up: Vector3<f64>,
     duration: f64,
     profile: ProfileRef,
+    /// Hertz's contact of the balls' material, when the scene gives it (the duration is then
+    /// its contact time).
+    hertz: Option<common::HertzRef>,
 }
 
 fn vec3(v: &toml::Value) -> Vector3<f64> {
@@ -237,6 +240,21 @@ fn read_scene(path: &Path) -> SceneRef {
             up.normalize(),
         )
     };
+    // The balls' material instead of a duration: Hertz's contact time at v = 2 U(0).
+    let material = (
+        num(t["balls"].get("youngs_modulus")),
+        num(t["balls"].get("poisson_ratio")),
+    );
+    let hertz = match material {
+        (Some(e), Some(nu)) => Some(common::hertz_identical(
+            balls.m,
+            balls.r,
+            e,
+            nu,
+            2.0 * pair.u0(),
+        )),
+        _ => None,
+    };
     SceneRef {
         balls,
         law,
@@ -245,8 +263,9 @@ fn read_scene(path: &Path) -> SceneRef {
         pair,
         lab,
         up,
-        duration: duration.unwrap(),
+        duration: duration.or(hertz.map(|h| h.duration)).unwrap(),
         profile,
+        hertz,
     }
 }
 
@@ -375,6 +394,30 @@ fn check_contract(j: &Value, lab: bool, method: &str, what: &str) {
     walk(j, "", &mut nulls);
     for n in nulls {
         assert!(NULLABLE.contains(&n.as_str()), "{what}: {n} is null");
+    }
+}
+
+/// The duration, and the `hertz` object exactly when the material sets the duration.
+fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
+    let rel = |got: f64, want: f64| ((got - want) / want).abs();
+    assert!(
+        rel(f(j, "duration"), sc.duration) <= 1e-12,
+        "{what}: duration"
+    );
+    match &sc.hertz {
+        None => assert!(j.get("hertz").is_none(), "{what}: hertz without a material"),
+        Some(h) => {
+            let got = &j["hertz"];
+            assert!(
+                rel(f(got, "max_compression"), h.max_compression) <= 1e-12,
+                "{what}"
+            );
+            assert!(rel(f(got, "peak_force"), h.peak_force) <= 1e-12, "{what}");
+            assert!(
+                rel(f(got, "contact_radius"), h.contact_radius) <= 1e-12,
+                "{what}"
+            );
+        }
     }
 }
 
@@ -509,6 +552,7 @@ fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
             let what = format!("{} --method {method}", path.display());
             let j = json(&["run", p, "--json", "--method", method]);
             check_contract(&j, sc.lab, method, &what);
+            check_duration(&sc, &j, &what);
             // At rtol 1e-12: agrees with the reference.
             let j = json(&["run", p, "--json", "--method", method, "--rtol", "1e-12"]);
             check_contract(&j, sc.lab, method, &what);

@@ -512,6 +512,7 @@ proptest! {
         let scene = |l: LabScene| Scene {
             name: "rotation".into(),
             ball: Ball::new(case.m, r, case.alpha).unwrap(),
+            material: None,
             contact: Contact { friction: case.friction(), impulse: case.rule() },
             profile: case.profile(),
             incoming: Incoming::Lab(l),

@@ -23,6 +23,8 @@
 //! Optional in both: `id` (copied to the output), and per-row overrides of the scene:
 //! `mass` (kg), `radius` (m), `alpha`, `mu` (constant), `restitution` or `impulse` (N s),
 //! `duration` (s; the outgoing state does not depend on it, the stick time scales with it).
+//! With a scene that gives the balls' material, each row's duration is its own Hertz contact
+//! time (from its mass, radius and approach speed), and a `duration` column is refused.
 //!
 //! # Output columns
 //!
@@ -42,6 +44,7 @@ use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
+use crate::model::material::{HertzContact, Material, YOUNGS_MODULUS_FIELD};
 use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::profile::{ForceProfile, Profile};
@@ -64,6 +67,9 @@ pub struct BatchSetup {
     pub effects: Effects,
     /// Normal-force profile (its duration is the default duration).
     pub profile: Profile,
+    /// The balls' material, when the scene gives it: each row's duration is then its own
+    /// Hertz contact time.
+    pub material: Option<Material>,
     /// Method and tolerances.
     pub settings: SolverSettings,
 }
@@ -76,6 +82,7 @@ impl BatchSetup {
             contact: scene.contact,
             effects: scene.effects,
             profile: scene.profile.clone(),
+            material: scene.material,
             settings,
         }
     }
@@ -193,6 +200,33 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
     Ok((ball, Contact { friction, impulse }))
 }
 
+/// The contact duration of a row (s): its `duration` column, else the Hertz contact time of
+/// the setup's material for the row's ball and approach speed (balls that approach), else
+/// the profile's.
+fn row_duration(
+    setup: &BatchSetup,
+    o: &Overrides,
+    ball: &Ball,
+    cm: &CmState,
+) -> Result<f64, Error> {
+    match (o.duration, &setup.material) {
+        (Some(d), Some(m)) => Err(Error::invalid(
+            "duration",
+            format!(
+                "{d} s together with the scene's {YOUNGS_MODULUS_FIELD} = {}",
+                m.youngs_modulus()
+            ),
+            "one of them: with the material each row's contact time follows from its balls and \
+             approach speed; leave out the column, or the material",
+        )),
+        (Some(d), None) => Ok(d),
+        (None, Some(m)) if cm.u_cm.x > 0.0 => {
+            Ok(HertzContact::identical(ball, m, cm.u_cm.x)?.duration)
+        }
+        (None, _) => Ok(setup.profile.duration()),
+    }
+}
+
 /// The centre-of-mass state of a row, with the lab frame for lab rows.
 fn cm_of(radius: f64, input: &BatchInput) -> Result<(CmState, Option<Frame>), Error> {
     Ok(match &input.incoming {
@@ -225,7 +259,7 @@ fn resolve_with(
     let (ball, contact) = params_of(setup, &input.overrides)?;
     let (cm, frame) = cm_of(ball.radius, input)?;
     let profile = &setup.profile;
-    let time_scale = input.overrides.duration.unwrap_or(profile.duration());
+    let time_scale = row_duration(setup, &input.overrides, &ball, &cm)?;
     let mut out = if setup.settings.method == Method::ClosedForm {
         let own;
         let kernel = match shared {

@@ -100,6 +100,17 @@ impl From<&Checks> for CheckJson {
     }
 }
 
+/// Hertz's contact of the balls' material (when the duration comes from it), SI units.
+#[derive(Debug, Serialize)]
+pub struct HertzJson {
+    /// Largest compression delta_max (m).
+    pub max_compression: Num,
+    /// Peak force k delta_max^(3/2) of the elastic impact (N).
+    pub peak_force: Num,
+    /// Radius of the contact patch at the peak (m).
+    pub contact_radius: Num,
+}
+
 /// Solver settings and work.
 #[derive(Debug, Serialize)]
 pub struct SolverJson {
@@ -121,6 +132,10 @@ pub struct Report {
     pub profile: &'static str,
     /// Contact duration (s).
     pub duration: Num,
+    /// Hertz's contact of the balls' material, when the duration comes from it; absent
+    /// otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hertz: Option<HertzJson>,
     /// Simulated effects.
     pub effects: Vec<&'static str>,
     /// Whether the balls collide.
@@ -337,6 +352,11 @@ impl Report {
             name: scene.name.clone(),
             profile: scene.profile.name(),
             duration: Num(scene.profile.duration()),
+            hertz: scene.hertz().ok().flatten().map(|h| HertzJson {
+                max_compression: Num(h.max_compression),
+                peak_force: Num(h.peak_force),
+                contact_radius: Num(h.contact_radius),
+            }),
             effects: scene.effects.simulated(&scene.contact.friction),
             collision: o.collision,
             impulse: Num(o.impulse),
@@ -403,6 +423,14 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         so.settings.method,
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
+    if let Ok(Some(h)) = scene.hertz() {
+        let _ = writeln!(
+            s,
+            "  Hertz contact of the material: compression {:.4e} m, peak force {:.4e} N, \
+             contact radius {:.4e} m",
+            h.max_compression, h.peak_force, h.contact_radius
+        );
+    }
     if !o.collision {
         let _ = writeln!(
             s,

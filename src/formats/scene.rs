@@ -6,13 +6,15 @@
 //! mass = 0.17        # kg
 //! radius = 0.028575  # m
 //! alpha = 0.4        # I = alpha m r^2; default 0.4
+//! # youngs_modulus = 5.4e9   # Pa; optional, with poisson_ratio: hertz and sine-power
+//! # poisson_ratio = 0.34     # then take their duration from the material (none given)
 //! [contact]
 //! mu = 0.06          # or { model = "speed-dependent", a = 9.951e-3, b = 0.108, c = 1.088 }
 //! restitution = 1.0  # or: impulse = 0.17  (N s); not both; neither: restitution 1
 //! [contact.profile]
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
 //!                        # | tabulated (file = "...", relative to the scene)
-//! duration = 2.5e-4      # s
+//! duration = 2.5e-4      # s (hertz, sine-power: or from the balls' material)
 //! [incoming.cm]          # either this ...
 //! u = [0.5, 0.25, 0.0]   # velocity of ball A in the paper's frame; B has -u
 //! omega_a = [0.0, 0.0, 0.0]   # default 0
@@ -45,6 +47,7 @@ use crate::integrator::{Method, SolverSettings, DEFAULT_RTOL, DEFAULT_STEPS};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
+use crate::model::material::{HertzContact, Material, POISSON_RATIO_FIELD, YOUNGS_MODULUS_FIELD};
 use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
@@ -73,6 +76,9 @@ pub struct Scene {
     pub name: String,
     /// The balls.
     pub ball: Ball,
+    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`), when given: the
+    /// profile's duration then follows from it ([`Scene::hertz`]).
+    pub material: Option<Material>,
     /// Friction and impulse rule.
     pub contact: Contact,
     /// Normal-force profile.
@@ -119,6 +125,8 @@ struct RawBalls {
     mass: f64,
     radius: f64,
     alpha: Option<f64>,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -201,6 +209,7 @@ impl Scene {
             raw.balls.radius,
             raw.balls.alpha.unwrap_or(ALPHA_SOLID),
         )?;
+        let material = material_of(&raw.balls)?;
         let friction = parse_mu(&raw.contact.mu)?;
         let impulse = match (raw.contact.restitution, raw.contact.impulse) {
             (Some(e), None) => ImpulseRule::restitution(e)?,
@@ -214,7 +223,13 @@ impl Scene {
                 ))
             }
         };
-        let profile = raw.contact.profile.build(base)?;
+        check_duration_source(&raw.contact.profile, material.as_ref())?;
+        // Without the material the profile is built here, before the incoming state (whose
+        // errors come second); with it, once the approach speed is known.
+        let given = match material {
+            None => Some(raw.contact.profile.build(base)?),
+            Some(_) => None,
+        };
         let incoming =
             match (raw.incoming.cm, raw.incoming.lab) {
                 (Some(cm), None) => Incoming::Cm(CmState::new(
@@ -257,6 +272,17 @@ impl Scene {
                 .with_time_transform(s.time_transform.unwrap_or(true))
             }
         };
+        let contact = Contact { friction, impulse };
+        let effects = raw.effects.unwrap_or_default();
+        let profile = match (given, &material) {
+            (Some(p), _) => p,
+            (None, Some(mat)) => {
+                let (c, _) = centre_of_mass(ball, contact, effects, &incoming)?;
+                let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
+                raw.contact.profile.build_with(base, Some(hertz.duration))?
+            }
+            (None, None) => unreachable!("without the material the profile is built above"),
+        };
         let scene = Scene {
             name: raw.name.unwrap_or_else(|| {
                 source
@@ -265,11 +291,12 @@ impl Scene {
                     .unwrap_or_else(|| "scene".into())
             }),
             ball,
-            contact: Contact { friction, impulse },
+            material,
+            contact,
             profile,
             incoming,
             solver,
-            effects: raw.effects.unwrap_or_default(),
+            effects,
             source: source.map(Path::to_path_buf),
             table: match raw.table {
                 None => None,
@@ -317,18 +344,83 @@ impl Scene {
 
     /// The collision in the centre-of-mass frame, and the lab frame for lab scenes.
     pub fn collision(&self) -> Result<(Collision, Option<Frame>), Error> {
-        let (cm, frame) = match &self.incoming {
-            Incoming::Cm(cm) => (*cm, None),
-            Incoming::Lab(lab) => {
-                let frame = Frame::new(lab, self.ball.radius)?;
-                (frame.to_cm(lab), Some(frame))
-            }
-        };
-        Ok((
-            Collision::new(self.ball, self.contact, self.effects, cm)?,
-            frame,
-        ))
+        centre_of_mass(self.ball, self.contact, self.effects, &self.incoming)
     }
+
+    /// Hertz's contact of the balls' material at the scene's approach speed, when the scene
+    /// gives the material (`None` otherwise): the profile's duration is its contact time.
+    pub fn hertz(&self) -> Result<Option<HertzContact>, Error> {
+        let Some(material) = &self.material else {
+            return Ok(None);
+        };
+        let (c, _) = self.collision()?;
+        HertzContact::identical(&self.ball, material, c.incoming.u_cm.x).map(Some)
+    }
+}
+
+/// The collision of `incoming` in the centre-of-mass frame, and the lab frame for lab input.
+fn centre_of_mass(
+    ball: Ball,
+    contact: Contact,
+    effects: Effects,
+    incoming: &Incoming,
+) -> Result<(Collision, Option<Frame>), Error> {
+    let (cm, frame) = match incoming {
+        Incoming::Cm(cm) => (*cm, None),
+        Incoming::Lab(lab) => {
+            let frame = Frame::new(lab, ball.radius)?;
+            (frame.to_cm(lab), Some(frame))
+        }
+    };
+    Ok((Collision::new(ball, contact, effects, cm)?, frame))
+}
+
+/// The balls' material, when `[balls]` gives it: `youngs_modulus` and `poisson_ratio`
+/// together, or neither.
+fn material_of(balls: &RawBalls) -> Result<Option<Material>, Error> {
+    match (balls.youngs_modulus, balls.poisson_ratio) {
+        (Some(e), Some(nu)) => Material::new(e, nu).map(Some),
+        (None, None) => Ok(None),
+        (Some(e), None) => Err(Error::invalid(
+            POISSON_RATIO_FIELD,
+            format!("missing, with {YOUNGS_MODULUS_FIELD} = {e}"),
+            "given together with balls.youngs_modulus (the material needs both)",
+        )),
+        (None, Some(nu)) => Err(Error::invalid(
+            YOUNGS_MODULUS_FIELD,
+            format!("missing, with {POISSON_RATIO_FIELD} = {nu}"),
+            "given together with balls.poisson_ratio (the material needs both)",
+        )),
+    }
+}
+
+/// The contact duration comes from exactly one place: the profile, or (for `hertz` and
+/// `sine-power`) the balls' material.
+fn check_duration_source(spec: &ProfileSpec, material: Option<&Material>) -> Result<(), Error> {
+    let Some(material) = material else {
+        return Ok(());
+    };
+    if !spec.takes_material_duration() {
+        return Err(Error::invalid(
+            YOUNGS_MODULUS_FIELD,
+            material.youngs_modulus(),
+            "only with contact.profile.shape = \"hertz\" or \"sine-power\", whose contact time \
+             the material sets; other shapes take a duration",
+        ));
+    }
+    if let Some(d) = spec.duration() {
+        return Err(Error::invalid(
+            crate::profile::DURATION_FIELD,
+            format!(
+                "{d} s together with {YOUNGS_MODULUS_FIELD} = {} and {POISSON_RATIO_FIELD} = {}",
+                material.youngs_modulus(),
+                material.poisson_ratio()
+            ),
+            "one of them: the material and the approach speed set the contact time of a hertz \
+             or sine-power pulse; leave out the duration, or the material",
+        ));
+    }
+    Ok(())
 }
 
 fn vec3(field: &str, v: [f64; 3]) -> Result<Vector3<f64>, Error> {

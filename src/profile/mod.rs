@@ -204,15 +204,18 @@ pub enum ProfileSpec {
         /// Contact duration (s).
         duration: f64,
     },
-    /// `shape = "hertz"`.
+    /// `shape = "hertz"`; without `duration` the balls' material sets it.
     Hertz {
-        /// Contact duration (s).
-        duration: f64,
+        /// Contact duration (s); `None`: from the material.
+        #[serde(default)]
+        duration: Option<f64>,
     },
-    /// `shape = "sine-power"`, `exponent` (default 1.5).
+    /// `shape = "sine-power"`, `exponent` (default 1.5); without `duration` the balls'
+    /// material sets it (the Hertz contact time).
     SinePower {
-        /// Contact duration (s).
-        duration: f64,
+        /// Contact duration (s); `None`: from the material.
+        #[serde(default)]
+        duration: Option<f64>,
         /// Exponent n > 0 of sin^n.
         #[serde(default)]
         exponent: Option<f64>,
@@ -234,14 +237,54 @@ pub enum ProfileSpec {
 }
 
 impl ProfileSpec {
+    /// The duration the scene gives (s), if any.
+    pub fn duration(&self) -> Option<f64> {
+        match self {
+            ProfileSpec::HalfSine { duration } | ProfileSpec::Rectangle { duration } => {
+                Some(*duration)
+            }
+            ProfileSpec::Hertz { duration }
+            | ProfileSpec::SinePower { duration, .. }
+            | ProfileSpec::Tabulated { duration, .. } => *duration,
+        }
+    }
+
+    /// Whether the shape may take its duration from the balls' material: `hertz`, and
+    /// `sine-power` (the common approximation of the Hertz pulse).
+    pub fn takes_material_duration(&self) -> bool {
+        matches!(
+            self,
+            ProfileSpec::Hertz { .. } | ProfileSpec::SinePower { .. }
+        )
+    }
+
     /// Builds the profile; `base` is the directory relative file names are resolved in.
-    /// Errors name the scene's field (`contact.profile.duration`, `.exponent`, `.file`).
+    /// Errors name the scene's field (`contact.profile.duration`, `.exponent`, `.file`);
+    /// `hertz` and `sine-power` without a duration need [`ProfileSpec::build_with`].
     pub fn build(&self, base: &Path) -> Result<Profile, Error> {
+        self.build_with(base, None)
+    }
+
+    /// Builds the profile with `derived` (s) as the duration of a `hertz` or `sine-power`
+    /// spec that gives none (the Hertz contact time of the balls' material).
+    pub fn build_with(&self, base: &Path, derived: Option<f64>) -> Result<Profile, Error> {
+        let material_duration = |given: &Option<f64>| {
+            given.or(derived).ok_or_else(|| {
+                Error::invalid(
+                    DURATION_FIELD,
+                    "missing",
+                    "> 0 s, or the balls' material (balls.youngs_modulus and \
+                     balls.poisson_ratio), from which hertz and sine-power take the contact time",
+                )
+            })
+        };
         Ok(match self {
             ProfileSpec::HalfSine { duration } => Profile::HalfSine(HalfSine::new(*duration)?),
-            ProfileSpec::Hertz { duration } => Profile::Hertz(Hertz::new(*duration)?),
+            ProfileSpec::Hertz { duration } => {
+                Profile::Hertz(Hertz::new(material_duration(duration)?)?)
+            }
             ProfileSpec::SinePower { duration, exponent } => Profile::SinePower(SinePower::new(
-                *duration,
+                material_duration(duration)?,
                 exponent.unwrap_or(DEFAULT_SINE_POWER_EXPONENT),
             )?),
             ProfileSpec::Rectangle { duration } => Profile::Rectangle(Rectangle::new(*duration)?),

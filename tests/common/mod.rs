@@ -354,6 +354,34 @@ pub fn sine_power_fraction(n: f64, s: f64) -> f64 {
     }
 }
 
+/// Hertz's elastic impact of two identical balls (Landau & Lifshitz, Theory of Elasticity,
+/// section 9), written out from the textbook: effective modulus E* = E / (2 (1 - nu^2)),
+/// effective radius r/2, reduced mass m/2, F = k delta^(3/2) with k = (4/3) E* sqrt(r/2);
+/// energy conservation (m/2) v^2 / 2 = (2/5) k delta_max^(5/2) at the relative approach
+/// speed v; contact time (4/5) B(2/5, 1/2) delta_max / v (the scaled Hertz equation's
+/// 2 hertz_half() = (4/5) B(2/5, 1/2)); peak force k delta_max^(3/2); contact radius
+/// sqrt((r/2) delta_max).
+#[derive(Debug, Clone, Copy)]
+pub struct HertzRef {
+    pub duration: f64,
+    pub max_compression: f64,
+    pub peak_force: f64,
+    pub contact_radius: f64,
+}
+
+pub fn hertz_identical(m: f64, r: f64, youngs: f64, poisson: f64, v: f64) -> HertzRef {
+    let e_star = youngs / (2.0 * (1.0 - poisson * poisson));
+    let radius = r / 2.0;
+    let k = 4.0 / 3.0 * e_star * radius.sqrt();
+    let delta = (5.0 * (m / 2.0) * v * v / (4.0 * k)).powf(2.0 / 5.0);
+    HertzRef {
+        duration: 4.0 / 5.0 * beta_fn(0.4, 0.5) * delta / v,
+        max_compression: delta,
+        peak_force: k * delta.powf(1.5),
+        contact_radius: (radius * delta).sqrt(),
+    }
+}
+
 /// Elastic Hertz impact, scaled (delta'' = -delta^(3/2), delta(0) = 0, delta'(0) = 1):
 /// energy gives delta' = sqrt(1 - x^(5/2)) with x = delta / delta_max, delta_max = (5/4)^(2/5),
 /// so t(x) = delta_max F(x), F(x) = integral_0^x dx' / sqrt(1 - x'^(5/2)), and the impulse
