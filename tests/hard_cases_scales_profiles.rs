@@ -234,27 +234,29 @@ fn hard_profiles() -> Vec<Hard<'static>> {
             name: "sine-power 0.5",
             profile: Box::new(SinePower::new(TAU, 0.5).unwrap()),
             phi: Box::new(|s| sine_power_phi(0.5, s)),
-            // rk4's fixed first step integrates f ~ t^0.5: error O(h^1.5), h = 1e-3. The
-            // embedded error estimates of dopri5 underestimate the first step's error on
-            // t^0.5. Observed rk4 8e-6, dopri5 1.1e-8, dop853 1.6e-9.
-            tol: [3e-5, 5e-8, 5e-9],
+            // f ~ t^0.5 at the ends, smoothed by the sin^2 time transform
+            // (docs/model.md#the-smoothing-change-of-time-variable). Observed rk4 4.9e-14,
+            // dopri5 5.6e-11, dop853 3.5e-11 (stepping in t: rk4 8e-6, dopri5 1.1e-8, dop853
+            // 1.6e-9, the first step integrating t^0.5).
+            tol: [1e-12, 1e-9, 5e-10],
         },
         Hard {
             name: "sine-power 1.5",
             profile: Box::new(SinePower::new(TAU, 1.5).unwrap()),
             phi: Box::new(|s| sine_power_phi(1.5, s)),
-            // t^1.5 ends lower the observed order (docs/model.md#breakpoints); the steps
-            // are graded toward them (profile::GRADED_ENDS). Observed rk4 3.0e-9 (its
-            // fixed first step), dopri5 5.9e-10, dop853 5.9e-10.
-            tol: [1e-8, 2e-9, 2e-9],
+            // t^1.5 ends, smoothed by the sin^2 time transform. Observed rk4 4.1e-14,
+            // dopri5 7.4e-11, dop853 5.8e-12 (with graded breakpoints instead,
+            // details::GRADED_ENDS: rk4 3.0e-9, dopri5 5.9e-10, dop853 5.9e-10).
+            tol: [1e-12, 1e-9, 1e-10],
         },
         Hard {
             name: "hertz",
             profile: Box::new(Hertz::new(TAU).unwrap()),
             phi: Box::new(|s| Hertz::new(1.0).unwrap().cumulative(s)),
-            // t^1.5 ends, as sine-power 1.5. Observed rk4 2.8e-9, dopri5 6.2e-10, dop853
-            // 2.8e-10 (without the graded steps dop853 reached 1.6e-6 in a property test).
-            tol: [1e-8, 2e-9, 1e-9],
+            // t^1.5 ends, as sine-power 1.5. Observed rk4 5.6e-14, dopri5 5.6e-11, dop853
+            // 2.5e-11 (graded breakpoints instead: rk4 2.8e-9, dopri5 6.2e-10, dop853
+            // 2.8e-10; neither, dop853 reached 1.6e-6 in a property test).
+            tol: [1e-12, 1e-9, 3e-10],
         },
     ]
 }
