@@ -15,7 +15,7 @@
 use super::record::Recorder;
 use super::rhs::SlidingState;
 use super::settings::{Sampling, SolverSettings, Stats};
-use super::stages::{ContactStage, Problem, StopReason};
+use super::stages::{ContactStage, Problem, Run, StopReason};
 use super::stepping::Stepper;
 use crate::error::Error;
 use crate::formats::trace::TraceSink;
@@ -79,13 +79,15 @@ pub fn integrate<P: ForceProfile + ?Sized>(
             "> 0 N s: integrate needs balls that approach (U(0) > 0)",
         ));
     }
-    let mut stepper = Stepper::new(settings)?;
     let problem = Problem::new(c, profile);
     let sampling = trace.as_ref().map_or(Sampling::Steps, |t| t.1);
-    let mut rec = Recorder::new(trace, c.theta());
+    let mut run = Run {
+        stepper: Stepper::new(settings)?,
+        rec: Recorder::new(trace, c.theta()),
+    };
     let mut y = SlidingState::initial(problem.slip0);
     let (mut stage, mut stop) = initial_stage(c);
-    rec.emit(&problem.units, &y, Some(0.0));
+    run.rec.emit(&problem.units, &y, Some(0.0));
 
     let breakpoints: &[f64] = if settings.breakpoints {
         profile.breakpoints()
@@ -97,7 +99,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     while s < 1.0 {
         let end = segments.end_after(s);
         while y.time() < end {
-            let (next, reason) = problem.step(stage, y, end, &mut stepper, &mut rec)?;
+            let (next, reason) = problem.step(stage, y, end, &mut run)?;
             y = next;
             if let StopReason::SlidingStopped { time, impulse } = reason {
                 (stop.time, stop.impulse) = (Some(time), Some(impulse));
@@ -108,16 +110,16 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                 } else {
                     stage = ContactStage::Frozen;
                 }
-                rec.emit(&problem.units, &y, stop.time);
+                run.rec.emit(&problem.units, &y, stop.time);
             }
         }
         s = end;
         if let Some(t) = segments.sample_reached(s, profile.duration()) {
-            rec.emit(&problem.units, &y, Some(t));
+            run.rec.emit(&problem.units, &y, Some(t));
         }
     }
-    rec.take_error()?;
-    Ok(result(&problem, &y, stop, &rec, stepper.stats))
+    run.rec.take_error()?;
+    Ok(result(&problem, &y, stop, &run))
 }
 
 /// The stage the contact starts in, and the stop when there is no sliding to stop.
@@ -142,8 +144,7 @@ fn result<P: ForceProfile + ?Sized>(
     problem: &Problem<'_, P>,
     y: &SlidingState,
     stop: Stop,
-    rec: &Recorder<'_>,
-    stats: Stats,
+    run: &Run<'_>,
 ) -> Integrated {
     let c = problem.c;
     let s_out = if c.active_friction().is_none() {
@@ -160,9 +161,9 @@ fn result<P: ForceProfile + ?Sized>(
         sticks: stop.sticks,
         stick_time: stop.time,
         stick_impulse: stop.impulse,
-        theta_drift: rec.theta_drift,
-        slip_consistency: rec.slip_consistency,
-        stats,
+        theta_drift: run.rec.theta_drift,
+        slip_consistency: run.rec.slip_consistency,
+        stats: run.stepper.stats,
     }
 }
 
