@@ -11,7 +11,7 @@
 
 use crate::error::Error;
 use crate::model::state::LabBall;
-use crate::table_phase::{Phase, RollOut, TableOutcome};
+use crate::table_phase::{BallMotion, RollOut, TableOutcome};
 use std::io::Write;
 
 /// Default number of intervals of the path.
@@ -23,9 +23,9 @@ pub struct PathRow {
     /// Time since separation (s).
     pub t: f64,
     /// Ball A: phase and state.
-    pub a: (Phase, LabBall),
+    pub a: (BallMotion, LabBall),
     /// Ball B: phase and state.
-    pub b: (Phase, LabBall),
+    pub b: (BallMotion, LabBall),
 }
 
 /// The header cells.
@@ -84,7 +84,7 @@ pub fn path_rows(t: &TableOutcome, samples: u64) -> Vec<PathRow> {
 }
 
 /// The state just before `time`: the separation state at t = 0.
-fn before(r: &RollOut, up: &nalgebra::Vector3<f64>, time: f64) -> (Phase, LabBall) {
+fn before(r: &RollOut, up: &nalgebra::Vector3<f64>, time: f64) -> (BallMotion, LabBall) {
     if time == 0.0 {
         let phase = r.segments[0].phase;
         return (phase, r.start);

@@ -47,7 +47,7 @@ use crate::model::frame::{Frame, LabScene};
 use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
-use crate::table_phase::{Table, TableParams};
+use crate::table_phase::{Table, TableParams, TableSettings};
 use nalgebra::Vector3;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -271,15 +271,15 @@ impl Scene {
             table: match raw.table {
                 None => None,
                 Some(t) => {
-                    let d = TableParams::default();
-                    Some(TableParams::new(
-                        t.mu.unwrap_or(d.mu),
-                        t.restitution.unwrap_or(d.restitution),
-                        t.g.unwrap_or(d.g),
-                        t.rolling_resistance.unwrap_or(d.rolling_resistance),
-                        t.spin_decay.unwrap_or(d.spin_decay),
-                        t.height,
-                    )?)
+                    let d = TableSettings::default();
+                    Some(TableParams::new(TableSettings {
+                        mu: t.mu.unwrap_or(d.mu),
+                        restitution: t.restitution.unwrap_or(d.restitution),
+                        g: t.g.unwrap_or(d.g),
+                        rolling_resistance: t.rolling_resistance.unwrap_or(d.rolling_resistance),
+                        spin_decay: t.spin_decay.unwrap_or(d.spin_decay),
+                        height: t.height,
+                    })?)
                 }
             },
         };
