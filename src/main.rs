@@ -173,15 +173,17 @@ fn settings(scene: &Scene, args: &RunArgs) -> Result<SolverSettings, Error> {
     let base = scene.solver;
     let method = match &args.method {
         Some(m) => m.parse::<Method>()?,
-        None => base.method,
+        None => base.method(),
     };
-    let rtol = args.rtol.unwrap_or(base.rtol);
+    let rtol = args.rtol.unwrap_or(base.rtol());
     // A new rtol carries atol with it unless atol is given too.
-    let atol = args
-        .atol
-        .unwrap_or(if args.rtol.is_some() { rtol } else { base.atol });
-    let mut s = SolverSettings::new(method, rtol, atol, args.steps.unwrap_or(base.steps))?;
-    s.breakpoints = base.breakpoints;
+    let atol = args.atol.unwrap_or(if args.rtol.is_some() {
+        rtol
+    } else {
+        base.atol()
+    });
+    let mut s = SolverSettings::new(method, rtol, atol, args.steps.unwrap_or(base.steps()))?;
+    s = s.with_breakpoints(base.breakpoints());
     Ok(s)
 }
 
@@ -370,10 +372,14 @@ fn batch(args: &BatchArgs) -> Result<(), Error> {
     };
     let method = args.method.parse::<Method>()?;
     let base = scene.solver;
-    let rtol = args.rtol.unwrap_or(base.rtol);
-    let atol = if args.rtol.is_some() { rtol } else { base.atol };
-    let mut settings = SolverSettings::new(method, rtol, atol, base.steps)?;
-    settings.breakpoints = base.breakpoints;
+    let rtol = args.rtol.unwrap_or(base.rtol());
+    let atol = if args.rtol.is_some() {
+        rtol
+    } else {
+        base.atol()
+    };
+    let mut settings = SolverSettings::new(method, rtol, atol, base.steps())?;
+    settings = settings.with_breakpoints(base.breakpoints());
     if args.threads == Some(0) {
         return Err(Error::invalid("--threads", 0, "at least 1"));
     }

@@ -252,10 +252,7 @@ fn closed_form_matches_first_principles_over_random_states() {
 #[test]
 fn solve_closed_form_method_matches_first_principles() {
     let mut rng = Rng::new(0x5eed_0002);
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     let profile = HalfSine::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for _ in 0..STATES / 4 {
@@ -348,10 +345,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
             b,
         ),
     ];
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for case in &cases {
         assert_eq!(case.pair.slip(b.r), Vector3::zeros());
         let c = collision(&case.balls, &case.law, &case.pair).unwrap();
@@ -656,10 +650,7 @@ fn without_stick_effect_the_paper_formulas_apply_and_eq_57_is_flagged() {
     let o = solve(
         &c,
         &HalfSine::new(TAU).unwrap(),
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();

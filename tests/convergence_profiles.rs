@@ -186,7 +186,10 @@ fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, 
     let err = error(case, &o, &want);
     let what = format!(
         "{} / {} / {} rtol {:e}",
-        sub.name, case.name, s.method, s.rtol
+        sub.name,
+        case.name,
+        s.method(),
+        s.rtol()
     );
     assert!(err <= tol, "{what}: scaled error {err:e} > {tol:e}");
     // The run's own check agrees with the independent error (same scales).

@@ -133,10 +133,7 @@ fn time_stepping_converges_to_the_quadrature_answer() {
     let cf = solve(
         &c,
         &profile,
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();
@@ -210,10 +207,7 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
     let p_stick = g_quad(c.s0) / k();
     assert!(p_stick < c.impulse);
     for method in [Method::ClosedForm, Method::Dop853] {
-        let st = SolverSettings {
-            method,
-            ..Default::default()
-        };
+        let st = SolverSettings::default().with_method(method);
         let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &st, None).unwrap();
         assert!(o.sticks);
         let found = o.stick_impulse.unwrap();
@@ -243,10 +237,7 @@ fn b_zero_reduces_exactly_to_constant_mu() {
         assert_eq!(a.stick_time, b.stick_time);
         assert_eq!(a.s_out, b.s_out);
         assert_eq!(a.stats, b.stats);
-        let cf = SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        };
+        let cf = SolverSettings::default().with_method(Method::ClosedForm);
         let (a, b) = (
             solve(&sd, &profile, &cf, None).unwrap(),
             solve(&cm, &profile, &cf, None).unwrap(),

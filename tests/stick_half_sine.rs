@@ -171,7 +171,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
         dp <= STICK_IMPULSE_TOL,
         "{} ({}): p(t_stick)/P = {}, p_stick/P = {q}",
         shot.what,
-        settings.method,
+        settings.method(),
         p_fraction(t)
     );
     // The reported stick impulse is the impulse at the reported time.
@@ -183,7 +183,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
             dt <= STICK_TIME_TOL,
             "{} ({}): t/tau = {t}, exact {exact}, error {dt:e}",
             shot.what,
-            settings.method
+            settings.method()
         );
         (dt, dp)
     } else {
@@ -228,7 +228,7 @@ fn stops_early_middle_and_late_in_the_pulse() {
         eprintln!(
             "spinning states, {} rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, \
              |p - p_stick| {wp:.2e} P",
-            settings.method
+            settings.method()
         );
     }
 }
@@ -236,10 +236,7 @@ fn stops_early_middle_and_late_in_the_pulse() {
 /// The closed-form method reports the exact time from the profile's inverse.
 #[test]
 fn closed_form_method_reports_the_exact_stick_time() {
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for shot in stun_cuts()
         .into_iter()
         .chain(spinning(&[1e-10, 0.2, 0.5, 0.999]))

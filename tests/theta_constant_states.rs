@@ -113,8 +113,8 @@ fn theta_is_constant_while_sliding() {
         let what = format!(
             "state {i}, {}, {} rtol {:e}",
             profile.name(),
-            settings.method,
-            settings.rtol
+            settings.method(),
+            settings.rtol()
         );
         assert!(
             o.check.theta_drift <= THETA_TOL,

@@ -203,17 +203,14 @@ pub struct Setting {
 impl Setting {
     /// The solver settings of this setting.
     pub fn solver(&self) -> Result<SolverSettings, Error> {
-        let mut s = SolverSettings {
-            method: self.method,
-            ..Default::default()
-        };
+        let mut s = SolverSettings::default().with_method(self.method);
         if let Some(r) = self.rtol {
-            s = SolverSettings::new(self.method, r, r, s.steps)?;
+            s = SolverSettings::new(self.method, r, r, s.steps())?;
         }
         if let Some(n) = self.steps {
-            s = SolverSettings::new(self.method, s.rtol, s.atol, n)?;
+            s = SolverSettings::new(self.method, s.rtol(), s.atol(), n)?;
         }
-        s.breakpoints = self.breakpoints;
+        s = s.with_breakpoints(self.breakpoints);
         Ok(s)
     }
 }

@@ -364,10 +364,10 @@ impl Report {
             throw_angle_deg: so.throw_angle_deg.map(Num),
             check: CheckJson::from(&o.check),
             solver: SolverJson {
-                method: so.settings.method.name(),
-                rtol: Num(so.settings.rtol),
-                atol: Num(so.settings.atol),
-                steps: so.settings.steps,
+                method: so.settings.method().name(),
+                rtol: Num(so.settings.rtol()),
+                atol: Num(so.settings.atol()),
+                steps: so.settings.steps(),
                 rhs_evaluations: o.stats.rhs_evaluations,
                 accepted_steps: o.stats.accepted_steps,
                 rejected_steps: o.stats.rejected_steps,
@@ -400,7 +400,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  profile {} over {:.4e} s, method {}, effects: {}",
         scene.profile.name(),
         scene.profile.duration(),
-        so.settings.method,
+        so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if !o.collision {

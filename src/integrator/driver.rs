@@ -89,7 +89,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     let (mut stage, mut stop) = initial_stage(c);
     run.rec.emit(&problem.units, &y, Some(0.0));
 
-    let breakpoints: &[f64] = if settings.breakpoints {
+    let breakpoints: &[f64] = if settings.breakpoints() {
         profile.breakpoints()
     } else {
         &[]

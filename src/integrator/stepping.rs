@@ -150,7 +150,7 @@ pub(super) struct Advanced<const N: usize> {
 impl Stepper {
     /// The stepper of `settings`; the closed form does not step and is refused.
     pub(super) fn new(settings: &SolverSettings) -> Result<Self, Error> {
-        let method = match settings.method {
+        let method = match settings.method() {
             Method::Rk4 => StepMethod::Rk4,
             Method::Dopri5 => StepMethod::Dopri5,
             Method::Dop853 => StepMethod::Dop853,
@@ -164,9 +164,9 @@ impl Stepper {
         };
         Ok(Stepper {
             method,
-            rtol: settings.rtol,
-            atol: settings.atol,
-            steps_per_unit: f64::from(settings.steps),
+            rtol: settings.rtol(),
+            atol: settings.atol(),
+            steps_per_unit: f64::from(settings.steps()),
             h: 0.0,
             stats: Stats::default(),
         })

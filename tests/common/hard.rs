@@ -203,10 +203,7 @@ pub fn collision(
 
 /// The default tolerance settings of a method (rk4: the default 1000 steps).
 pub fn settings(method: Method) -> SolverSettings {
-    SolverSettings {
-        method,
-        ..SolverSettings::default()
-    }
+    SolverSettings::default().with_method(method)
 }
 
 /// The default scene (data/scenes/default.toml: rolling ball, 30 degree cut, half-sine)
@@ -247,17 +244,17 @@ pub fn run_bounded<P: ForceProfile + ?Sized>(
     baseline: u64,
 ) -> Outcome {
     let o = solve(c, profile, settings, None)
-        .unwrap_or_else(|e| panic!("{label} ({}): {e}", settings.method));
+        .unwrap_or_else(|e| panic!("{label} ({}): {e}", settings.method()));
     let evals = o.stats.rhs_evaluations;
     eprintln!(
         "cost {label:<48} {:>8}: {evals:>7} rhs evaluations ({:.2} x default {baseline})",
-        settings.method.name(),
+        settings.method().name(),
         evals as f64 / baseline as f64
     );
     assert!(
         evals <= COST_FACTOR * baseline,
         "{label} ({}): {evals} rhs evaluations > {COST_FACTOR} x {baseline}",
-        settings.method
+        settings.method()
     );
     o
 }
