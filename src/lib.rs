@@ -18,6 +18,7 @@ pub use apps::work_precision;
 pub use apps::runner::{run_scene, SceneOutcome};
 pub use contact::closed_form::ClosedForm;
 pub use contact::outcome::{solve, Outcome};
+pub use contact::result::ContactResult;
 pub use error::Error;
 pub use formats::report::Report;
 pub use formats::scene::{Incoming, Scene};
@@ -35,7 +36,7 @@ pub use profile::{ForceProfile, Profile};
 /// batch kernel, the checks), for callers who drive them directly.
 pub mod details {
     pub use crate::contact::check::{checks, state_error, Checks};
-    pub use crate::contact::closed_form::{ClosedFormBatch, Resolved};
+    pub use crate::contact::closed_form::ClosedFormBatch;
     pub use crate::integrator::{integrate, Integrated, DEFAULT_RTOL, DEFAULT_STEPS};
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
 }

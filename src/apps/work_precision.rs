@@ -23,7 +23,8 @@
 
 use crate::contact::outcome::{solve, Outcome};
 use crate::error::Error;
-use crate::formats::scene::Scene;
+use crate::formats::number::shortest;
+use crate::formats::scene::{Scene, SolverOverrides};
 use crate::integrator::{Method, SolverSettings, Stats};
 use crate::profile::{
     parse_table, ForceProfile, HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated,
@@ -31,7 +32,6 @@ use crate::profile::{
 use std::hint::black_box;
 use std::io::{Read, Write};
 use std::path::Path;
-use std::str::FromStr;
 use std::time::{Duration, Instant};
 
 /// The columns every study CSV starts with, in this order (issue 3).
@@ -133,22 +133,6 @@ impl ProfileKind {
     }
 }
 
-impl FromStr for ProfileKind {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self, Error> {
-        ProfileKind::ALL
-            .into_iter()
-            .find(|p| p.name() == s)
-            .ok_or_else(|| {
-                Error::invalid(
-                    "--profiles",
-                    format!("\"{s}\""),
-                    "a list of half-sine, hertz, sine-power, rectangle, tabulated",
-                )
-            })
-    }
-}
-
 /// What the study runs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StudyOptions {
@@ -201,18 +185,16 @@ pub struct Setting {
 }
 
 impl Setting {
-    /// The solver settings of this setting.
+    /// The solver settings of this setting: the defaults with its method, rtol (= atol)
+    /// and steps.
     pub fn solver(&self) -> Result<SolverSettings, Error> {
-        let mut s = SolverSettings {
-            method: self.method,
-            ..Default::default()
+        let overrides = SolverOverrides {
+            method: Some(self.method),
+            rtol: self.rtol,
+            atol: None,
+            steps: self.steps,
         };
-        if let Some(r) = self.rtol {
-            s = SolverSettings::new(self.method, r, r, s.steps)?;
-        }
-        if let Some(n) = self.steps {
-            s = SolverSettings::new(self.method, s.rtol, s.atol, n)?;
-        }
+        let mut s = overrides.apply(&SolverSettings::default())?;
         s.breakpoints = self.breakpoints;
         Ok(s)
     }
@@ -379,12 +361,7 @@ pub fn run_job(scene: &Scene, job: &Job, options: &StudyOptions) -> Result<Study
 /// |t_stick - exact| / duration, when the exact solution sticks. A stop the run missed
 /// counts as a stop at the end of the contact.
 pub fn stick_time_error<P: ForceProfile + ?Sized>(outcome: &Outcome, profile: &P) -> Option<f64> {
-    let exact = &outcome.exact;
-    if !(outcome.collision && exact.sticks) {
-        return None;
-    }
-    let p_stick = exact.stick_impulse.unwrap_or(0.0);
-    let s_exact = profile.time_at_cumulative(p_stick / outcome.impulse);
+    let s_exact = outcome.exact.result.stick_fraction(profile)?;
     let s_run = outcome
         .stick_time
         .map(|t| t / profile.duration())
@@ -464,11 +441,6 @@ pub fn run_study(
     Ok(rows)
 }
 
-/// A float as the CSV writes it: the shortest form that reads back to the same value.
-fn num(v: f64) -> String {
-    format!("{v:?}")
-}
-
 fn opt<T: ToString>(v: Option<T>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
@@ -495,17 +467,17 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
             }
         }
         let seconds = if r.seconds_per_contact.is_finite() {
-            num(r.seconds_per_contact)
+            shortest(r.seconds_per_contact)
         } else {
             String::new()
         };
         w.write_record([
             r.profile.clone(),
             r.method.clone(),
-            opt(r.rtol.map(num)),
+            opt(r.rtol.map(shortest)),
             opt(r.steps),
-            opt(r.error.map(num)),
-            opt(r.stick_time_error.map(num)),
+            opt(r.error.map(shortest)),
+            opt(r.stick_time_error.map(shortest)),
             r.stats.rhs_evaluations.to_string(),
             r.stats.accepted_steps.to_string(),
             seconds,

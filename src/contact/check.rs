@@ -58,7 +58,7 @@ pub fn checks(
     let balance = (heat - heat_sliding) - p * (2.0 * u0 - p / m);
     Checks {
         theta_drift: 0.0,
-        closed_form_error: state_error(c, out, &exact.out),
+        closed_form_error: state_error(c, out, &exact.result.out),
         momentum_error: ratio(momentum, sc.impulse),
         angular_momentum_error: ratio(angular, sc.angular_momentum),
         energy_balance_error: ratio(balance.abs(), sc.energy),

@@ -255,7 +255,7 @@ pub fn cloth_slip(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
-    let vh = velocity - up * velocity.dot(up);
+    let vh = crate::model::frame::horizontal(velocity, up);
     vh - ball.radius * spin.cross(up)
 }
 
@@ -277,7 +277,7 @@ pub fn rolling_velocity(
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
     let a = ball.alpha;
-    let vh = velocity - up * velocity.dot(up);
+    let vh = crate::model::frame::horizontal(velocity, up);
     (vh + a * ball.radius * spin.cross(up)) / (1.0 + a)
 }
 
@@ -358,7 +358,7 @@ fn roll_spin(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
-    let vh = velocity - up * velocity.dot(up);
+    let vh = crate::model::frame::horizontal(velocity, up);
     up.cross(&vh) / ball.radius + up * spin.dot(up)
 }
 
@@ -706,7 +706,7 @@ impl TableOutcome {
         let ra = roll_out(ball, &table, a)?;
         let rb = roll_out(ball, &table, b)?;
         let d = b.position - a.position;
-        let line = (d - table.up * d.dot(&table.up)).normalize();
+        let line = crate::model::frame::horizontal(&d, &table.up).normalize();
         let mut out = TableOutcome {
             table,
             line,

@@ -99,7 +99,7 @@ where
         .filter_map(|(r, c)| {
             let (_, s) = r.at(&up, end, true);
             let v = r.rolling.velocity;
-            let vh = v - up * v.dot(&up);
+            let vh = crate::model::frame::horizontal(&v, &up);
             (vh.norm() > 0.0).then(|| {
                 let from = xy(&s.position);
                 let d = xy(&(vh.normalize() * arrow_len));
@@ -107,7 +107,7 @@ where
             })
         })
         .collect();
-    let vin = t.incoming[0] - up * t.incoming[0].dot(&up);
+    let vin = crate::model::frame::horizontal(&t.incoming[0], &up);
     let incoming_from = (vin.norm() > 0.0).then(|| {
         let (ax, ay) = xy(&t.a.start.position);
         let back = xy(&(vin.normalize() * (0.25 * span0)));
