@@ -1,6 +1,6 @@
-//! The closed form per collision in a batch, on one core (issue 3 target: <= 50 ns).
+//! The closed form per collision in a batch, on one core (target: <= 50 ns).
 //!
-//! What the 50 ns covers (CONTRACTS.md): the outgoing state, impulse, S(0), theta, stick flag
+//! What the 50 ns covers (docs/formats.md): the outgoing state, impulse, S(0), theta, stick flag
 //! and p_stick of states already in memory: `batch::closed_form_into` over 4096 states of
 //! the default scene's balls (validation of the state, eqs 24-35 with the stick rule,
 //! theta by atan2). `resolve` adds the stick time and the output record per row.

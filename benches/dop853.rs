@@ -1,5 +1,5 @@
 //! dop853 on the default scene with the half-sine profile at the loosest tolerance of the
-//! study's ladder whose final-state error is <= 1e-10 (issue 3 target: <= 5 us per
+//! study's ladder whose final-state error is <= 1e-10 (target: <= 5 us per
 //! contact), and the other methods at the settings that reach the same error, for scale.
 //! One `solve` per iteration: closed form, integration with stick-event watch, and checks.
 

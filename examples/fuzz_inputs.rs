@@ -1,4 +1,4 @@
-//! Fuzz harness (issue 4): arbitrary and near-valid scene text and profile CSV through the
+//! Fuzz harness: arbitrary and near-valid scene text and profile CSV through the
 //! library's parsers, and every input that parses through a run and the JSON report.
 //!
 //! ```sh

@@ -1,4 +1,4 @@
-//! "No heap allocation per step when no trace is requested" (issue 3, CONTRACTS.md): count
+//! "No heap allocation per step when no trace is requested" (docs/formats.md): count
 //! the allocations of runs whose step counts differ by thousands. The solver's own output
 //! vectors grow amortised (a logarithmic number of reallocations), which the contract
 //! accepts; anything per step would show up as thousands.

@@ -1,4 +1,4 @@
-//! Bad input through the command line (issue 4): every case gives exactly one line on
+//! Bad input through the command line: every case gives exactly one line on
 //! stderr, starting `error: `, naming the field (or file and line), the value and what is
 //! accepted; exit code 2; nothing on stdout; no panic; and the file system as it was: an
 //! existing trace file keeps its bytes and modification time, no new trace file and no

@@ -1,5 +1,5 @@
 //! The command as a user runs it: every scene in `data/scenes/` with every method, the JSON
-//! contract (issue 2, CONTRACTS.md), agreement with the independent first-principles
+//! contract (docs/formats.md), agreement with the independent first-principles
 //! resolution (`common::resolve`, computed from the scene file read here with `toml`, not
 //! through the crate's scene code), the trace CSV, and failures that leave no file behind.
 
@@ -12,28 +12,28 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// Issue 2, done when: closed-form method within 1e-12 of an independent closed form.
+/// The closed-form method within 1e-12 of an independent closed form.
 const CLOSED_FORM_TOL: f64 = 1e-12;
-/// Issue 2, done when: dop853 at rtol 1e-12 within 1e-8 (it lands within ~1e-10).
+/// Dop853 at rtol 1e-12 within 1e-8 (it lands within ~1e-10).
 const DOP853_TOL: f64 = 1e-8;
 /// dopri5 at rtol 1e-12: same bound.
 const DOPRI5_TOL: f64 = 1e-8;
 /// rk4, 1000 steps: O(h^2.5) at the t^(3/2) ends of the Hertz pulse (~3e-9 measured).
 const RK4_TOL: f64 = 1e-7;
-/// Stick times over the duration: issue 2 asks 1e-8 (rk4 is held to that); CONTRACTS asks
+/// Stick times over the duration: the product promises 1e-8 (rk4 is held to that); docs/model.md#locating-the-stop-of-sliding asks
 /// 1e-10 where f is not small (adaptive methods at rtol 1e-12), and the closed form's time
 /// is exact to round-off.
 const STICK_TIME_TOL: f64 = 1e-8;
 const STICK_TIME_TOL_ADAPTIVE: f64 = 1e-10;
 const STICK_TIME_TOL_CLOSED_FORM: f64 = 1e-13;
-/// Stick impulse of a stepping run: CONTRACTS, |p(t_stick) - p_stick| <= 1e-10 P.
+/// Stick impulse of a stepping run (docs/model.md#locating-the-stop-of-sliding): |p(t_stick) - p_stick| <= 1e-10 P.
 const STICK_IMPULSE_TOL: f64 = 1e-10;
 /// Samples of the trace tests.
 const SAMPLES: u64 = 37;
 
 const METHODS: [&str; 4] = ["closed-form", "rk4", "dopri5", "dop853"];
 
-/// The trace header of CONTRACTS.md and issue 2: time, force, cumulative impulse, U, V, W,
+/// The trace header (docs/formats.md#trace-csv): time, force, cumulative impulse, U, V, W,
 /// both balls' spins, S, theta, sliding heat, each `name (unit)`.
 const TRACE_HEADER: [&str; 15] = [
     "t (s)",
@@ -64,7 +64,7 @@ fn scenes() -> Vec<PathBuf> {
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     v.sort();
-    // The scenes issue 2 asks for must be there.
+    // The documented scenes must be there.
     for name in [
         "default",
         "paper_special_case",
@@ -251,7 +251,7 @@ fn read_scene(path: &Path) -> SceneRef {
 }
 
 impl SceneRef {
-    /// The centre-of-mass basis of issue 2: e_x the line of centres, e_z = `up` without its
+    /// The centre-of-mass basis (docs/model.md#the-lab-frame): e_x the line of centres, e_z = `up` without its
     /// e_x part, e_y = e_z x e_x (columns, lab coordinates).
     fn basis(&self) -> Matrix3<f64> {
         let ex = self.pair.n;
@@ -286,7 +286,7 @@ fn f(v: &Value, key: &str) -> f64 {
 // The JSON contract
 // ---------------------------------------------------------------------------------------
 
-/// Fields that may be null (CONTRACTS): nothing else.
+/// Fields that may be null (docs/formats.md): nothing else.
 const NULLABLE: [&str; 4] = ["theta", "stick_time", "stick_impulse", "throw_angle_deg"];
 
 /// Walks the report: no null outside the nullable fields, every number finite.
@@ -540,7 +540,7 @@ fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
 }
 
 /// `billiard-contact` with no arguments and `run` without a scene run the built-in default
-/// scene, which is `data/scenes/default.toml` (CONTRACTS).
+/// scene, which is `data/scenes/default.toml` (docs/formats.md).
 #[test]
 fn default_runs() {
     let bare = ok_stdout(&[]);

@@ -1,9 +1,9 @@
 //! The library's closed form against an independent first-principles resolution of the
 //! collision (`common::resolve`: contact-point velocities, friction opposing the slip,
-//! r x F torques, J = min(mu P, m S(0) / (2 (1 + 1/alpha))) from ERRATA gap 2), and against
+//! r x F torques, J = min(mu P, m S(0) / (2 (1 + 1/alpha))) from docs/model.md#when-sliding-stops-during-contact), and against
 //! the paper's own special case, eqs 59-72, written out literally below.
 //!
-//! All comparisons are scaled by the CONTRACTS.md references: speeds by v_ref, spins by
+//! All comparisons are scaled by the reference scales of docs/model.md#scales-and-scaled-errors: speeds by v_ref, spins by
 //! v_ref / r, impulses by m v_ref, energies by m v_ref^2.
 
 mod common;
@@ -20,7 +20,7 @@ use common::{amax, resolve, theta_cm, Balls, Expected, Law, Pair, Rng, Rule};
 use nalgebra::Vector3;
 use std::path::Path;
 
-/// Scaled agreement of the library's closed form with the independent one (issue 2).
+/// Scaled agreement of the library's closed form with the independent one.
 const CLOSED_FORM_TOL: f64 = 1e-12;
 /// Relative agreement of p_stick (a ratio of the inputs, a few roundings).
 const P_STICK_REL_TOL: f64 = 1e-13;
@@ -308,7 +308,7 @@ fn cm_case(u: [f64; 3], wa: [f64; 3], wb: [f64; 3], mu: f64, rule: Rule, b: Ball
     }
 }
 
-/// S(0) = 0 exactly (ERRATA gap 1): no friction, theta undefined, only U changes by -P/m;
+/// S(0) = 0 exactly (docs/model.md#no-initial-sliding): no friction, theta undefined, only U changes by -P/m;
 /// the contract's stick fields: sticks, stick_time 0, stick_impulse 0.
 #[test]
 fn zero_slip_gets_no_friction_and_no_theta() {
@@ -375,7 +375,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
 }
 
 /// A roundoff-sized S(0) gives a roundoff-sized tangential impulse, directed against the
-/// slip (CONTRACTS: no threshold on S(0)); J = m S(0) / (2 (1 + 1/alpha)) since it sticks.
+/// slip (no threshold on S(0)); J = m S(0) / (2 (1 + 1/alpha)) since it sticks.
 #[test]
 fn tiny_slip_gives_tiny_correctly_directed_friction() {
     let b = Balls {
@@ -586,7 +586,7 @@ fn paper_special_case_eqs_66_to_72() {
     eprintln!("eqs 66-72: largest scaled error {worst:.2e}");
 }
 
-/// The special case past eq 57 (ERRATA gap 2): with mu = 0.3 and alpha = 2/5, a fuller hit
+/// The special case past eq 57 (docs/model.md#when-sliding-stops-during-contact): with mu = 0.3 and alpha = 2/5, a fuller hit
 /// (u / s > 1 / (7 mu)) sticks. Then J = m s / 7 along the slip direction (v, -u)/s, so
 /// lab A leaves with (0, 6v/7, u/7), B with (u, v/7, -u/7), both spins change by
 /// (0, -u/(7 alpha r), -v/(7 alpha r)) = (0, -5u/(14 r), -5v/(14 r)).

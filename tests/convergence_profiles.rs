@@ -1,7 +1,7 @@
 //! Every profile and every time-stepping method converges to the closed form.
 //!
 //! The outgoing state of a collision depends on the profile only through the impulse P
-//! (ERRATA gap 3: while sliding the state is the closed form at p(t); after sticking only U
+//! (docs/model.md#the-exact-state-during-the-contact: while sliding the state is the closed form at p(t); after sticking only U
 //! changes), so the reference for every profile is the same first-principles resolution
 //! (`common::resolve`). Stick events are checked against each profile's p(t) computed in
 //! `common` (closed forms and quadratures that do not use the crate's profile code).
@@ -18,11 +18,11 @@ use ode_solvers::{Dop853, OutputType, System};
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
-/// Issue 2: Dop853 at rtol 1e-12 within 1e-10 of the closed form (scaled).
+/// Dop853 at rtol 1e-12 within 1e-10 of the closed form (scaled).
 const DOP853_RTOL: f64 = 1e-12;
 const DOP853_TOL: f64 = 1e-10;
 /// Dopri5 at rtol 1e-12: a fifth-order method's global error at this tolerance, with the
-/// t^(3/2) ends of the Hertz and sine-power pulses (CONTRACTS, work-precision), stays within
+/// t^(3/2) ends of the Hertz and sine-power pulses (docs/model.md#breakpoints), stays within
 /// a hundred times the tolerance.
 const DOPRI5_RTOL: f64 = 1e-12;
 const DOPRI5_TOL: f64 = 1e-10;
@@ -33,9 +33,9 @@ const RK4_TOL: f64 = 1e-7;
 /// Profiles whose force is piecewise linear (rectangle, tabulated) are integrated exactly
 /// by every method (stepping to the breakpoints): round-off only.
 const EXACT_TOL: f64 = 1e-13;
-/// Stick event: |t - t_exact| <= 1e-10 tau where the force is not small (CONTRACTS).
+/// Stick event: |t - t_exact| <= 1e-10 tau where the force is not small (docs/formats.md).
 const STICK_TIME_TOL: f64 = 1e-10;
-/// Stick event: |p(t_stick) - p_stick| <= 1e-10 P (CONTRACTS).
+/// Stick event: |p(t_stick) - p_stick| <= 1e-10 P (docs/formats.md).
 const STICK_IMPULSE_TOL: f64 = 1e-10;
 /// Observed order of RK4 on the half-sine: 4 within this margin.
 const ORDER_MARGIN: f64 = 0.3;
@@ -164,7 +164,7 @@ fn collision(case: &Case) -> Collision {
     .unwrap()
 }
 
-/// Scaled distance of an outcome from the reference (CONTRACTS scales).
+/// Scaled distance of an outcome from the reference (docs/model.md#scales-and-scaled-errors).
 fn error(case: &Case, o: &Outcome, want: &Expected) -> f64 {
     let v = case.pair.v_ref(BALLS.r);
     let spin = v / BALLS.r;
@@ -416,7 +416,7 @@ fn ode_solvers_dop853_needs_the_autonomous_form() {
 /// Hertz equation, the sin^n quadrature against its Beta total and the half-sine.
 #[test]
 fn independent_references_agree_with_known_values() {
-    // F(1) = (2/5) B(2/5, 1/2); contact time (4/5) B(2/5, 1/2) = 2.9432752... (ERRATA).
+    // F(1) = (2/5) B(2/5, 1/2); contact time (4/5) B(2/5, 1/2) = 2.9432752... (docs/model.md).
     let b = common::beta_fn(0.4, 0.5);
     assert!((common::hertz_half() - 0.4 * b).abs() <= 1e-14);
     assert!((0.8 * b - 2.943_275_2).abs() <= 1e-7);
@@ -450,7 +450,7 @@ fn independent_references_agree_with_known_values() {
         (y[1] + 1.0).abs() <= 1e-9,
         "the balls leave with the reversed speed"
     );
-    // sin^n: total, symmetry, n = 1 is the half-sine, ERRATA's peak c for n = 1.5.
+    // sin^n: total, symmetry, n = 1 is the half-sine, the peak c for n = 1.5.
     assert!((common::sine_power_fraction(1.5, 0.5) - 0.5).abs() <= 1e-15);
     for s in [0.05, 0.3, 0.5, 0.77, 0.99] {
         let d = common::sine_power_fraction(1.0, s) - common::half_sine_fraction(s);

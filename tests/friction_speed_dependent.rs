@@ -22,7 +22,7 @@ use nalgebra::Vector3;
 const M: f64 = 0.17;
 const R: f64 = 0.028575;
 const ALPHA: f64 = 0.4;
-/// The literature fit (issue 5).
+/// The literature fit.
 const A: f64 = 9.951e-3;
 const B: f64 = 0.108;
 const C: f64 = 1.088;

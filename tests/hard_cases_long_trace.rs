@@ -1,4 +1,4 @@
-//! Long traces in constant memory (issue 4): 1,000,000 samples streamed to a sink, and a
+//! Long traces in constant memory: 1,000,000 samples streamed to a sink, and a
 //! million rk4 steps in one segment, measured by peak heap allocation (a counting global
 //! allocator in this test binary), not by time. One test function, so that no other test
 //! of this binary allocates concurrently.

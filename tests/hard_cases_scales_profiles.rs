@@ -1,11 +1,11 @@
-//! Hard cases of scale and profile (issue 4): speeds 1e-8 to 1e4 m/s, spins to 1e6 rad/s,
+//! Hard cases of scale and profile: speeds 1e-8 to 1e4 m/s, spins to 1e6 rad/s,
 //! radius 1e-4 to 10 m, durations 1e-9 to 1 s with the same impulse (forces to 1e9 N and
 //! beyond): the same scaled accuracy and the same work, because the integration runs in
 //! scaled variables; and profiles that are hard for a stepper: the rectangle (jumps), a
 //! table with kinks, zero-force segments and a single spike, sine-power exponents 0.5 and
 //! 4, the Hertz pulse with its t^1.5 ends.
 //!
-//! Expected values: the independent closed form of tests/common at P = p(t) (ERRATA gap 3),
+//! Expected values: the independent closed form of tests/common at P = p(t) (docs/model.md#the-exact-state-during-the-contact),
 //! with p(t) from independent integrals: rectangle s, sin^4 in closed form, sin^0.5 and the
 //! tables by quadrature / exact trapezoids written in tests/common. The Hertz pulse's
 //! p(t) is the library's, which `profile::hertz::tests::matches_the_hertz_ode` checks
@@ -243,7 +243,7 @@ fn hard_profiles() -> Vec<Hard<'static>> {
             name: "sine-power 1.5",
             profile: Box::new(SinePower::new(TAU, 1.5).unwrap()),
             phi: Box::new(|s| sine_power_phi(1.5, s)),
-            // t^1.5 ends lower the observed order (CONTRACTS.md, work-precision); the steps
+            // t^1.5 ends lower the observed order (docs/model.md#breakpoints); the steps
             // are graded toward them (profile::GRADED_ENDS). Observed rk4 3.0e-9 (its
             // fixed first step), dopri5 5.9e-10, dop853 5.9e-10.
             tol: [1e-8, 2e-9, 2e-9],

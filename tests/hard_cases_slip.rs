@@ -1,12 +1,12 @@
-//! Hard cases of the sliding (issue 4): S(0) = 0 and round-off-sized S(0), sliding that
+//! Hard cases of the sliding: S(0) = 0 and round-off-sized S(0), sliding that
 //! stops exactly at the end of the pulse or just after the first step, extreme mu, alpha,
 //! restitution and explicit impulses, theta near +-pi and slips along either axis.
 //!
 //! Every case runs every method (closed form, rk4, dopri5, dop853) at the default settings
 //! and is checked against an independent closed form (tests/common: eqs 24-35, 49-50 and
-//! the stick rule of ERRATA.md gap 2, written out in the test, not the library's
+//! the stick rule of docs/model.md#when-sliding-stops-during-contact, written out in the test, not the library's
 //! `ClosedForm`) with the scaled tolerances of `common::state_tolerance` (closed form 1e-14,
-//! dop853 1e-10, dopri5 1e-9, rk4 1e-9), the event rule of CONTRACTS.md
+//! dop853 1e-10, dopri5 1e-9, rk4 1e-9), the event rule of docs/model.md#locating-the-stop-of-sliding
 //! (|p(t_stick) - p_stick| <= 1e-10 P) and the cost bound (at most 20 times the
 //! right-hand-side evaluations of the default scene with the same settings; counts are
 //! printed with `--nocapture`). The profile is the half-sine, whose p(t) = P sin^2(pi t / 2 tau)
@@ -77,7 +77,7 @@ fn slip_case(u0: f64, s0: f64, phi: f64) -> CmState {
 
 #[test]
 fn zero_slip_head_on_stun() {
-    // S(0) = 0 exactly: only U changes, U -> U - P/m (ERRATA gap 1); theta null.
+    // S(0) = 0 exactly: only U changes, U -> U - P/m (docs/model.md#no-initial-sliding); theta null.
     case(
         "head-on stun, S(0) = 0",
         0.4,

@@ -1,4 +1,4 @@
-//! Property tests (issue 4): invariants over thousands of random collisions spanning the
+//! Property tests: invariants over thousands of random collisions spanning the
 //! hard-case ranges (masses 1e-4..1e3 kg, radii 1e-4..10 m, speeds 1e-8..1e4 m/s, spins
 //! up to ~1e8 rad/s, durations 1e-9..1 s, mu 1e-12..10 and speed-dependent, alpha
 //! 1e-3..2/3, e in [0, 1] or explicit impulses m U(0)..2 m U(0), slips from exactly 0 and
@@ -365,7 +365,7 @@ proptest! {
             }
             None => prop_assert!(o.check.closed_form_error <= tol, "closed form error {:e}", o.check.closed_form_error),
         }
-        // The event rule: |p(t_stick) - p_stick| <= 1e-10 P (CONTRACTS.md) for constant mu,
+        // The event rule: |p(t_stick) - p_stick| <= 1e-10 P (docs/formats.md) for constant mu,
         // where the slip is affine in p. With speed-dependent mu the located stop carries
         // the integration error of the nonlinear S(p) (observed 3e-8 P with rk4 at
         // alpha = 3e-3): there the reported time and impulse agree to 1e-10 P, and the
@@ -424,7 +424,7 @@ proptest! {
     }
 
     /// Time stepping equals the closed form at P = p(t) at every sample, not only at the
-    /// end (ERRATA gap 3), for constant mu.
+    /// end (docs/model.md#the-exact-state-during-the-contact), for constant mu.
     #[test]
     fn trace_equals_closed_form_at_p_of_t(case in case_strategy(ADAPTIVE)) {
         let Some(ex) = case.exact() else { return Ok(()) };

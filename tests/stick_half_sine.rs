@@ -2,9 +2,9 @@
 //!
 //! f(t) = (pi P / (2 tau)) sin(pi t / tau) gives p(t) = (P/2)(1 - cos(pi t/tau)) =
 //! P sin^2(pi t / (2 tau)) (the second form keeps its digits at small t). Sliding stops at
-//! p_stick = m S(0) / (2 mu (1 + 1/alpha)) (ERRATA gap 2), so at
-//! t_stick = (2 tau / pi) asin(sqrt(p_stick / P)) (ERRATA, useful closed forms).
-//! CONTRACTS: |p(t_stick) - p_stick| <= 1e-10 P always; |t - t_stick| <= 1e-10 tau wherever
+//! p_stick = m S(0) / (2 mu (1 + 1/alpha)) (docs/model.md#when-sliding-stops-during-contact), so at
+//! t_stick = (2 tau / pi) asin(sqrt(p_stick / P)) (docs/model.md#the-exact-state-during-the-contact).
+//! |p(t_stick) - p_stick| <= 1e-10 P always; |t - t_stick| <= 1e-10 tau wherever
 //! f(t_stick) >= 1e-3 P / tau.
 
 mod common;
@@ -21,7 +21,7 @@ const TAU: f64 = 2.5e-4;
 const M: f64 = 0.17;
 const R: f64 = 0.028575;
 const ALPHA: f64 = 0.4;
-/// CONTRACTS event accuracy, in the impulse (always) and in time (where f is not small).
+/// Event accuracy (docs/model.md#locating-the-stop-of-sliding), in the impulse (always) and in time (where f is not small).
 const STICK_IMPULSE_TOL: f64 = 1e-10;
 const STICK_TIME_TOL: f64 = 1e-10;
 /// Where the time criterion applies: f(t_stick) >= 1e-3 P / tau.
@@ -290,7 +290,7 @@ fn the_stop_is_one_trace_row() {
             assert!(rows.windows(2).all(|w| w[0].t < w[1].t), "time increases");
             if sampling == Sampling::Uniform(samples) {
                 // A stop that falls on a sample time is written once, in the sample's place
-                // (CONTRACTS.md); otherwise it is one row between two samples.
+                // (docs/formats.md); otherwise it is one row between two samples.
                 let sample_t = |i: u64| i as f64 * TAU / samples as f64;
                 let on_sample = (0..=samples)
                     .any(|i| (t_stick - sample_t(i)).abs() <= 4.0 * f64::EPSILON * TAU);

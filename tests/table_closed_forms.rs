@@ -6,7 +6,9 @@
 mod common;
 
 use billiard_contact::run_scene;
-use billiard_contact::table_phase::{cloth_impact, roll_out, Phase, Table, TableParams};
+use billiard_contact::table_phase::{
+    cloth_impact, roll_out, BallMotion, Table, TableParams, TableSettings,
+};
 use billiard_contact::Ball;
 use billiard_contact::LabBall;
 use common::{cue, lab_scene, M, R};
@@ -25,7 +27,10 @@ fn ball() -> Ball {
 
 fn table(mu: f64, e: f64) -> Table {
     Table {
-        params: TableParams::new(mu, e, 9.81, 0.0, 0.0, None).unwrap(),
+        params: TableParams::default()
+            .with_mu(mu)
+            .and_then(|p| p.with_restitution(e))
+            .unwrap(),
         up: Vector3::z(),
         height: 0.0,
     }
@@ -95,7 +100,7 @@ fn impact_that_sticks_rolls_at_once() {
 }
 
 /// A ball with no vertical velocity: hop_time = hop_height = 0 and an impact with zero
-/// impulses at t = 0 (CONTRACTS).
+/// impulses at t = 0 (docs/model.md#the-table-phase, step 2).
 #[test]
 fn no_vertical_velocity_means_an_empty_impact() {
     let r = roll_out(
@@ -168,7 +173,7 @@ fn hop_time_height_and_landing() {
     assert!(close(imp.time, 0.6 / g, EXACT));
     assert!(close(imp.normal_impulse, M * 0.3, EXACT));
     let (phase, top) = r.at(&tab.up, 0.3 / g, true);
-    assert_eq!(phase, Phase::Flight);
+    assert_eq!(phase, BallMotion::Flight);
     assert!(close(top.position.z - R, 0.09 / (2.0 * g), EXACT));
     let e = |s: &LabBall| {
         0.5 * M * s.velocity.norm_squared()
@@ -341,7 +346,7 @@ fn rolling_cue_ball_path_curves_toward_the_30_degree_rule() {
             let time = t.a.roll_time * f64::from(i) / f64::from(n);
             let (phase, st) = t.a.at(&up, time, true);
             if i < n {
-                assert_eq!(phase, Phase::Sliding);
+                assert_eq!(phase, BallMotion::Sliding);
             }
             let dev = t.angle_deg(&original, &st.velocity).unwrap().abs();
             if i == 0 {
@@ -514,7 +519,13 @@ table = true
 fn rolling_resistance_and_spin_decay() {
     let (g, mu_r, mu_sp) = (9.81, 0.01, 0.044);
     let tab = Table {
-        params: TableParams::new(0.2, 0.0, g, mu_r, mu_sp, None).unwrap(),
+        params: TableParams::new(TableSettings {
+            g,
+            rolling_resistance: mu_r,
+            spin_decay: mu_sp,
+            ..TableSettings::default()
+        })
+        .unwrap(),
         up: Vector3::z(),
         height: 0.0,
     };
@@ -535,7 +546,7 @@ fn rolling_resistance_and_spin_decay() {
         "still rolling"
     );
     let (phase, late) = r.at(&tab.up, 0.5 * (t_spin + t_rest), true);
-    assert_eq!(phase, Phase::Rolling);
+    assert_eq!(phase, BallMotion::Rolling);
     assert_eq!(late.spin.z, 0.0);
 }
 

@@ -2,7 +2,7 @@
 //! profile and every time-stepping method.
 //!
 //! The right-hand side takes the friction direction from the current slip at every
-//! evaluation (CONTRACTS), so a constant theta is a property the run must show, not one it
+//! evaluation (docs/formats.md), so a constant theta is a property the run must show, not one it
 //! assumes. Two measurements: the run's own `check.theta_drift` (max |slip x e0| / v_ref
 //! over accepted steps while sliding), and, independently, every trace row before the stop:
 //! the slip recomputed from the row's velocities and spins, (2V + r Omega_z, 2W - r Omega_y)
@@ -19,7 +19,7 @@ use common::Rng;
 use nalgebra::Vector3;
 use std::path::PathBuf;
 
-/// Issue 2: theta constant to 1e-12 (scaled by v_ref, CONTRACTS).
+/// Theta constant to 1e-12 (scaled by v_ref).
 const THETA_TOL: f64 = 1e-12;
 const STATES: usize = 400;
 const TAU: f64 = 2.5e-4;

@@ -6,9 +6,9 @@
 //! (P, J)/m along (line of centres, side). So tan(throw) = J / P:
 //! - sliding throughout, J = mu P: throw = atan(mu);
 //! - sliding stops (tan c < mu (1 + e)(1 + 1/alpha)), J = m S(0) / (2 (1 + 1/alpha)):
-//!   tan(throw) = tan(c) / ((1 + e)(1 + 1/alpha)), tan(c)/7 for alpha = 2/5, e = 1 (ERRATA).
+//!   tan(throw) = tan(c) / ((1 + e)(1 + 1/alpha)), tan(c)/7 for alpha = 2/5, e = 1 (docs/model.md).
 //!
-//! Sign (CONTRACTS): counter-clockwise about `up`. A moving towards +y drags B's surface
+//! Sign (docs/formats.md): counter-clockwise about `up`. A moving towards +y drags B's surface
 //! towards +y, so with up = +z the throw is positive; mirrored shots and an upside-down
 //! `up` flip it; rotating the whole shot about `up` does not change it.
 

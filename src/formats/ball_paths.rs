@@ -12,7 +12,7 @@
 use crate::error::Error;
 use crate::formats::number::{finite_output, shortest};
 use crate::model::state::LabBall;
-use crate::table_phase::{Phase, RollOut, TableOutcome};
+use crate::table_phase::{BallMotion, RollOut, TableOutcome};
 use std::io::Write;
 
 /// Default number of intervals of the ball paths.
@@ -24,9 +24,9 @@ pub struct BallPathRow {
     /// Time since separation (s).
     pub t: f64,
     /// Ball A: phase and state.
-    pub a: (Phase, LabBall),
+    pub a: (BallMotion, LabBall),
     /// Ball B: phase and state.
-    pub b: (Phase, LabBall),
+    pub b: (BallMotion, LabBall),
 }
 
 /// The header cells.
@@ -86,7 +86,7 @@ pub fn ball_path_rows(t: &TableOutcome, samples: u64) -> Vec<BallPathRow> {
 }
 
 /// The state just before `time`: the separation state at t = 0.
-fn before(r: &RollOut, up: &nalgebra::Vector3<f64>, time: f64) -> (Phase, LabBall) {
+fn before(r: &RollOut, up: &nalgebra::Vector3<f64>, time: f64) -> (BallMotion, LabBall) {
     if time == 0.0 {
         let phase = r.segments[0].phase;
         return (phase, r.start);

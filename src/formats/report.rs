@@ -303,11 +303,11 @@ impl TableJson {
         TableJson {
             a: ball(0, &t.a),
             b: ball(1, &t.b),
-            mu: Num(p.mu),
-            restitution: Num(p.restitution),
-            g: Num(p.g),
-            rolling_resistance: Num(p.rolling_resistance),
-            spin_decay: Num(p.spin_decay),
+            mu: Num(p.mu()),
+            restitution: Num(p.restitution()),
+            g: Num(p.g()),
+            rolling_resistance: Num(p.rolling_resistance()),
+            spin_decay: Num(p.spin_decay()),
             height: Num(t.table.height),
             end_time: Num(t.end_time()),
             check: TableCheckJson {
@@ -471,9 +471,9 @@ fn table_summary(t: &TableOutcome) -> String {
     let _ = writeln!(
         s,
         "  table (cloth mu {}, restitution {}, g {} m/s^2): until both roll, {:.6} s",
-        p.mu,
-        p.restitution,
-        p.g,
+        p.mu(),
+        p.restitution(),
+        p.g(),
         t.end_time()
     );
     for (i, (name, r)) in [("A", &t.a), ("B", &t.b)].into_iter().enumerate() {

@@ -47,7 +47,7 @@ use crate::model::frame::{Frame, LabScene};
 use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
-use crate::table_phase::{Table, TableParams};
+use crate::table_phase::{Table, TableParams, TableSettings};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
@@ -188,15 +188,15 @@ struct RawTable {
 impl RawTable {
     /// The cloth's parameters: the defaults where a key is absent.
     fn build(&self) -> Result<TableParams, Error> {
-        let d = TableParams::default();
-        TableParams::new(
-            self.mu.unwrap_or(d.mu),
-            self.restitution.unwrap_or(d.restitution),
-            self.g.unwrap_or(d.g),
-            self.rolling_resistance.unwrap_or(d.rolling_resistance),
-            self.spin_decay.unwrap_or(d.spin_decay),
-            self.height,
-        )
+        let d = TableSettings::default();
+        TableParams::new(TableSettings {
+            mu: self.mu.unwrap_or(d.mu),
+            restitution: self.restitution.unwrap_or(d.restitution),
+            g: self.g.unwrap_or(d.g),
+            rolling_resistance: self.rolling_resistance.unwrap_or(d.rolling_resistance),
+            spin_decay: self.spin_decay.unwrap_or(d.spin_decay),
+            height: self.height,
+        })
     }
 }
 

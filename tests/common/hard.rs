@@ -1,5 +1,5 @@
 //! Shared helpers of the hard-case and property tests: an independent closed form (written
-//! from the paper's eqs 24-35, 49-50, 52, 56 and ERRATA.md gap 2, not calling the library's
+//! from the paper's eqs 24-35, 49-50, 52, 56 and docs/model.md#when-sliding-stops-during-contact, not calling the library's
 //! `ClosedForm`), exact profile integrals, and scene builders.
 #![allow(dead_code)]
 
@@ -24,7 +24,7 @@ pub const TAU: f64 = 2.5e-4;
 ///
 /// With k = 2 (1 + 1/alpha) / m, S(0) = |slip0|, slip0 = (2V + r Omega_z, 2W - r Omega_y)
 /// (eqs 5-6), e = slip0 / S(0): sliding stops at p_stick = S(0) / (k mu) (eq 48 = 0), the
-/// tangential impulse after a normal impulse p is J = mu min(p, p_stick) (ERRATA gap 2),
+/// tangential impulse after a normal impulse p is J = mu min(p, p_stick) (docs/model.md#when-sliding-stops-during-contact),
 /// U -= p/m (24), (V, W) -= J e / m (25-26), Omega^{A,B}_y += J e_z / (alpha m r) (32),
 /// Omega^{A,B}_z -= J e_y / (alpha m r) (33), H_sfr = J S(0) - (1 + 1/alpha) J^2 / m (49
 /// with the stick rule) and H = H_sfr + 2 U(0) p - p^2 / m (50).
@@ -140,7 +140,7 @@ impl Exact {
         self.at(self.p)
     }
 
-    /// v_ref of CONTRACTS.md.
+    /// v_ref of docs/model.md#scales-and-scaled-errors.
     pub fn v_ref(&self) -> f64 {
         let i = self.incoming;
         i.u_cm
@@ -152,7 +152,7 @@ impl Exact {
             .max(self.r * i.omega_b.norm())
     }
 
-    /// Scaled error of a state against the exact outgoing state (CONTRACTS.md).
+    /// Scaled error of a state against the exact outgoing state (docs/formats.md).
     pub fn scaled_error(&self, got: &CmState, want: &CmState) -> f64 {
         let v = self.v_ref();
         let w = v / self.r;
@@ -167,7 +167,7 @@ pub fn half_sine_phi(s: f64) -> f64 {
     (0.5 * PI * s.clamp(0.0, 1.0)).sin().powi(2)
 }
 
-/// Inverse of the half-sine Phi: (2/pi) asin(sqrt(q)) (ERRATA: not the arccos form).
+/// Inverse of the half-sine Phi: (2/pi) asin(sqrt(q)) (not the arccos form).
 pub fn half_sine_time(q: f64) -> f64 {
     if q <= 0.5 {
         2.0 / PI * q.sqrt().asin()
@@ -263,7 +263,7 @@ pub fn run_bounded<P: ForceProfile + ?Sized>(
 }
 
 /// Scaled accuracy each method must reach on the hard cases (state against the exact
-/// outgoing state, CONTRACTS.md scales), at the default settings: rtol = atol = 1e-10 for
+/// outgoing state, docs/model.md#scales-and-scaled-errors), at the default settings: rtol = atol = 1e-10 for
 /// the adaptive methods, 1000 steps for rk4.
 pub fn state_tolerance(method: Method) -> f64 {
     match method {
@@ -278,7 +278,7 @@ pub fn state_tolerance(method: Method) -> f64 {
 /// random direction).
 pub const DIRECTION_TOL: f64 = 1e-8;
 
-/// CONTRACTS.md event accuracy: |p(t_stick) - p_stick| <= 1e-10 P.
+/// Event accuracy (docs/model.md#locating-the-stop-of-sliding): |p(t_stick) - p_stick| <= 1e-10 P.
 pub const EVENT_IMPULSE_TOL: f64 = 1e-10;
 
 /// What a case expects, checked for one method.
@@ -292,7 +292,7 @@ pub struct Expect<'a> {
     pub sticks_decided: bool,
 }
 
-/// Checks one outcome against the independent closed form and the contracts.
+/// Checks one outcome against the independent closed form and the documented sticking rules.
 pub fn check_outcome(x: &Expect<'_>, o: &Outcome, tau: f64) {
     check_outcome_with(x, o, tau, state_tolerance(o.method))
 }
@@ -387,7 +387,7 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
             along * ex.m
         );
     }
-    // Sticking and the event (CONTRACTS.md).
+    // Sticking and the event (docs/formats.md).
     if ex.p > 0.0 && ex.s0 == 0.0 && ex.mu > 0.0 {
         assert!(o.result.sticks, "{label}: S(0) = 0 must stick");
         assert_eq!(o.stick_time, Some(0.0), "{label}");

@@ -41,7 +41,7 @@ pub struct Law {
     pub rule: Rule,
     /// Friction between the balls at all.
     pub friction: bool,
-    /// Sliding stops at S = 0 (ERRATA gap 2); false: friction keeps acting along e0.
+    /// Sliding stops at S = 0 (docs/model.md#when-sliding-stops-during-contact); false: friction keeps acting along e0.
     pub stick: bool,
 }
 
@@ -94,7 +94,7 @@ impl Pair {
         0.5 * (self.va - self.vb).dot(&self.n)
     }
 
-    /// Reference speed of CONTRACTS.md: max(|U(0)|, S(0), |U|, r |w_A|, r |w_B|), with
+    /// Reference speed (docs/model.md#scales-and-scaled-errors): max(|U(0)|, S(0), |U|, r |w_A|, r |w_B|), with
     /// U = (v_A - v_B)/2 (ball A's velocity in the centre-of-mass frame).
     pub fn v_ref(&self, r: f64) -> f64 {
         let u = 0.5 * (self.va - self.vb);
@@ -315,12 +315,12 @@ pub fn invert(f: impl Fn(f64) -> f64, q: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// Half-sine: p(t)/P = (1 - cos(pi t / tau))/2 (ERRATA, useful closed forms).
+/// Half-sine: p(t)/P = (1 - cos(pi t / tau))/2 (docs/model.md#the-exact-state-during-the-contact).
 pub fn half_sine_fraction(s: f64) -> f64 {
     0.5 * (1.0 - (PI * s).cos())
 }
 
-/// Half-sine: the scaled time at which p = q P, (2/pi) asin(sqrt(q)) (the ERRATA's form that
+/// Half-sine: the scaled time at which p = q P, (2/pi) asin(sqrt(q)) (the form that
 /// keeps its digits for small q).
 pub fn half_sine_time(q: f64) -> f64 {
     2.0 / PI * q.sqrt().asin()
@@ -419,7 +419,7 @@ pub fn hertz_time(q: f64) -> f64 {
     }
 }
 
-/// A (time, force) table as the CONTRACTS describe it: linear between points, time axis
+/// A (time, force) table as docs/formats.md#tabulated-profile-csv describes it: linear between points, time axis
 /// stretched to the duration, scaled to the impulse. `fraction(s)` is p/P at s = t/tau (exact
 /// trapezoids and the quadratic inside a segment), `time(q)` its inverse.
 pub struct Table {

@@ -9,45 +9,176 @@
 
 use super::FONT;
 use crate::error::Error;
-use crate::table_phase::{Phase, RollOut, TableOutcome};
+use crate::table_phase::{horizontal, BallMotion, RollOut, TableOutcome};
 use nalgebra::Vector3;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use std::ops::Range;
 
 /// Figure size in pixels.
 pub const SIZE: (u32, u32) = (900, 820);
 
+/// A point on the figure (m, m).
+type Point = (f64, f64);
 /// An arrow on the figure: from, to, colour.
-type Arrow = ((f64, f64), (f64, f64), RGBColor);
+type Arrow = (Point, Point, RGBColor);
+/// A stretch of a path with one kind of motion, as points on the figure.
+type Run = (BallMotion, Vec<Point>);
+/// The chart: figure coordinates (m) on both axes.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+/// What a drawing step returns.
+type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 const COLOR_A: RGBColor = RGBColor(31, 90, 180);
 const COLOR_B: RGBColor = RGBColor(200, 60, 30);
+/// The line of centres.
+const COLOR_LINE: RGBColor = RGBColor(90, 90, 90);
+/// Points per segment of a path (one for a ball at rest).
+const POINTS_PER_SEGMENT: u32 = 120;
+/// Points on a ball's outline.
+const OUTLINE_POINTS: u32 = 72;
+/// Heights (px) of the x label area and the caption, width (px) of the y label area.
+const LABEL_X: u32 = 60;
+const CAPTION: u32 = 40;
+const LABEL_Y: u32 = 90;
 
-/// The horizontal basis (e1, e2) of the figure.
-fn basis(up: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>, bool) {
-    let mut e1 = Vector3::x() - up * up.x;
-    if e1.norm() < 1e-6 {
-        e1 = Vector3::y() - up * up.y;
-    }
-    let e1 = e1.normalize();
-    let e2 = up.cross(&e1);
-    let lab_xy = (up - Vector3::z()).norm() < 1e-12;
-    (e1, e2, lab_xy)
+/// The figure's horizontal axes: e1 (lab x on the cloth, or lab y when x is vertical) and
+/// e2 = up x e1.
+struct Projection {
+    e1: Vector3<f64>,
+    e2: Vector3<f64>,
+    /// Whether `up` is +z, so that e1, e2 are the lab x and y axes.
+    lab_xy: bool,
 }
 
-/// Points of a ball's path from separation to `end` (s), split into runs of one phase.
-fn runs(r: &RollOut, up: &Vector3<f64>, end: f64) -> Vec<(Phase, Vec<Vector3<f64>>)> {
+impl Projection {
+    /// The axes for the unit vertical `up`.
+    fn new(up: &Vector3<f64>) -> Self {
+        let mut e1 = Vector3::x() - up * up.x;
+        if e1.norm() < 1e-6 {
+            e1 = Vector3::y() - up * up.y;
+        }
+        let e1 = e1.normalize();
+        let e2 = up.cross(&e1);
+        let lab_xy = (up - Vector3::z()).norm() < 1e-12;
+        Projection { e1, e2, lab_xy }
+    }
+
+    /// The point (m) of a lab position (m) on the figure.
+    fn xy(&self, p: &Vector3<f64>) -> Point {
+        (p.dot(&self.e1), p.dot(&self.e2))
+    }
+
+    /// The axis descriptions, x then y.
+    fn axis_names(&self) -> (&'static str, &'static str) {
+        if self.lab_xy {
+            ("x (m)", "y (m)")
+        } else {
+            ("horizontal e1 (m)", "horizontal e2 = up x e1 (m)")
+        }
+    }
+}
+
+/// The smallest box holding some points (m).
+#[derive(Clone, Copy)]
+struct Bounds {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+impl Bounds {
+    /// The box of `points`.
+    fn of(points: impl Iterator<Item = Point>) -> Self {
+        let (x0, x1, y0, y1) = points.fold(
+            (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ),
+            |(a, b, c, d), (x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+        );
+        Bounds { x0, x1, y0, y1 }
+    }
+
+    /// Grows the box to hold `p`.
+    fn include(&mut self, p: Point) {
+        self.x0 = self.x0.min(p.0);
+        self.x1 = self.x1.max(p.0);
+        self.y0 = self.y0.min(p.1);
+        self.y1 = self.y1.max(p.1);
+    }
+
+    /// The larger side (m), at least 8 `radius` (m).
+    fn span(&self, radius: f64) -> f64 {
+        (self.x1 - self.x0).max(self.y1 - self.y0).max(8.0 * radius)
+    }
+}
+
+/// Everything the figure shows, on the figure's axes.
+struct Layout {
+    /// Ball A's and ball B's paths, run by run.
+    runs: [Vec<Run>; 2],
+    /// Arrows along the final rolling directions (none for a ball at rest).
+    arrows: Vec<Arrow>,
+    /// Where the dotted line of ball A's incoming direction starts (it ends at A).
+    incoming_from: Option<Point>,
+    /// The box holding the paths, the outlines at contact and the arrows.
+    bounds: Bounds,
+}
+
+impl Layout {
+    /// The layout of `t`'s figure, balls of radius `radius` (m).
+    fn new(t: &TableOutcome, radius: f64, proj: &Projection) -> Self {
+        let up = t.table.up;
+        let end = t.end_time();
+        let runs = [runs(&t.a, &up, end, proj), runs(&t.b, &up, end, proj)];
+        let outlines = [&t.a, &t.b].into_iter().flat_map(|r| {
+            let (x, y) = proj.xy(&r.start.position);
+            [(x - radius, y - radius), (x + radius, y + radius)]
+        });
+        let paths = runs.iter().flatten().flat_map(|(_, p)| p.iter().copied());
+        let mut bounds = Bounds::of(paths.chain(outlines));
+        let span = bounds.span(radius);
+        let arrows = final_arrows(t, proj, end, 0.2 * span);
+        let vin = horizontal(&t.incoming[0], &up);
+        let incoming_from = (vin.norm() > 0.0).then(|| {
+            let (ax, ay) = proj.xy(&t.a.start.position);
+            let back = proj.xy(&(vin.normalize() * (0.25 * span)));
+            (ax - back.0, ay - back.1)
+        });
+        for to in arrows.iter().map(|a| a.1).chain(incoming_from) {
+            bounds.include(to);
+        }
+        Layout {
+            runs,
+            arrows,
+            incoming_from,
+            bounds,
+        }
+    }
+}
+
+/// Points of a ball's path from separation to `end` (s), split into runs of one motion.
+fn runs(r: &RollOut, up: &Vector3<f64>, end: f64, proj: &Projection) -> Vec<Run> {
     let mut out = Vec::new();
     for seg in &r.segments {
         if seg.t0 > end {
             break;
         }
         let t1 = seg.t1.min(end);
-        let n = if seg.phase == Phase::Rest { 1 } else { 120 };
+        let n = if seg.phase == BallMotion::Rest {
+            1
+        } else {
+            POINTS_PER_SEGMENT
+        };
         let pts = (0..=n)
             .map(|i| {
-                seg.at(up, seg.t0 + (t1 - seg.t0) * i as f64 / n as f64)
-                    .position
+                let t = seg.t0 + (t1 - seg.t0) * f64::from(i) / f64::from(n);
+                proj.xy(&seg.at(up, t).position)
             })
             .collect();
         out.push((seg.phase, pts));
@@ -55,7 +186,42 @@ fn runs(r: &RollOut, up: &Vector3<f64>, end: f64) -> Vec<(Phase, Vec<Vector3<f64
     out
 }
 
-/// Draws the figure on `root` with title `title`.
+/// Arrows of length `len` (m) from each ball's position at `end` (s) along its final
+/// rolling direction.
+fn final_arrows(t: &TableOutcome, proj: &Projection, end: f64, len: f64) -> Vec<Arrow> {
+    let up = t.table.up;
+    [(&t.a, COLOR_A), (&t.b, COLOR_B)]
+        .into_iter()
+        .filter_map(|(r, c)| {
+            let (_, s) = r.at(&up, end, true);
+            let vh = horizontal(&r.rolling.velocity, &up);
+            (vh.norm() > 0.0).then(|| {
+                let from = proj.xy(&s.position);
+                let d = proj.xy(&(vh.normalize() * len));
+                (from, (from.0 + d.0, from.1 + d.1), c)
+            })
+        })
+        .collect()
+}
+
+/// The axis ranges (m): `b` padded by 6 % of its span and widened along the shorter side
+/// so that both axes have the same scale on a figure of `dims` (px).
+fn equal_scale(b: &Bounds, radius: f64, dims: (u32, u32)) -> (Range<f64>, Range<f64>) {
+    let (w, h) = dims;
+    let pw = f64::from(w.saturating_sub(LABEL_Y + 40));
+    let ph = f64::from(h.saturating_sub(LABEL_X + CAPTION + 40));
+    let pad = 0.06 * b.span(radius);
+    let (cx0, cx1, cy0, cy1) = (b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad);
+    let scale = ((cx1 - cx0) / pw).max((cy1 - cy0) / ph);
+    let (mx, my) = (0.5 * (cx0 + cx1), 0.5 * (cy0 + cy1));
+    (
+        mx - 0.5 * scale * pw..mx + 0.5 * scale * pw,
+        my - 0.5 * scale * ph..my + 0.5 * scale * ph,
+    )
+}
+
+/// Draws the figure of the table phase `t` on `root` with title `title`, the balls of
+/// radius `radius` (m); an error carries the backend's message.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     t: &TableOutcome,
@@ -66,87 +232,54 @@ where
     DB::ErrorType: 'static,
 {
     super::register_fonts();
-    let up = t.table.up;
-    let (e1, e2, lab_xy) = basis(&up);
-    let xy = |p: &Vector3<f64>| (p.dot(&e1), p.dot(&e2));
-    let end = t.end_time();
-    let ra = runs(&t.a, &up, end);
-    let rb = runs(&t.b, &up, end);
-    // Bounds: paths, outlines and arrows.
-    let mut pts: Vec<(f64, f64)> = ra
-        .iter()
-        .chain(rb.iter())
-        .flat_map(|(_, p)| p.iter().map(xy))
-        .collect();
-    for r in [&t.a, &t.b] {
-        let (x, y) = xy(&r.start.position);
-        pts.extend([(x - radius, y - radius), (x + radius, y + radius)]);
-    }
-    let (mut x0, mut x1, mut y0, mut y1) = pts.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
-    );
-    let span0 = (x1 - x0).max(y1 - y0).max(8.0 * radius);
-    // Arrows along the final rolling directions: a fifth of the span.
-    let arrow_len = 0.2 * span0;
-    let arrows: Vec<Arrow> = [(&t.a, COLOR_A), (&t.b, COLOR_B)]
-        .into_iter()
-        .filter_map(|(r, c)| {
-            let (_, s) = r.at(&up, end, true);
-            let v = r.rolling.velocity;
-            let vh = crate::model::frame::horizontal(&v, &up);
-            (vh.norm() > 0.0).then(|| {
-                let from = xy(&s.position);
-                let d = xy(&(vh.normalize() * arrow_len));
-                (from, (from.0 + d.0, from.1 + d.1), c)
-            })
-        })
-        .collect();
-    let vin = crate::model::frame::horizontal(&t.incoming[0], &up);
-    let incoming_from = (vin.norm() > 0.0).then(|| {
-        let (ax, ay) = xy(&t.a.start.position);
-        let back = xy(&(vin.normalize() * (0.25 * span0)));
-        (ax - back.0, ay - back.1)
-    });
-    for to in arrows.iter().map(|a| &a.1).chain(incoming_from.iter()) {
-        x0 = x0.min(to.0);
-        x1 = x1.max(to.0);
-        y0 = y0.min(to.1);
-        y1 = y1.max(to.1);
-    }
-    // Equal scales: widen the shorter range to the plotting area's aspect.
-    let (w, h) = root.dim_in_pixel();
-    let (label_x, label_y, caption) = (60u32, 90u32, 40u32);
-    let pw = f64::from(w.saturating_sub(label_y + 40));
-    let ph = f64::from(h.saturating_sub(label_x + caption + 40));
-    let pad = 0.06 * (x1 - x0).max(y1 - y0).max(8.0 * radius);
-    let (mut cx0, mut cx1, mut cy0, mut cy1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
-    let scale = ((cx1 - cx0) / pw).max((cy1 - cy0) / ph);
-    let (mx, my) = (0.5 * (cx0 + cx1), 0.5 * (cy0 + cy1));
-    cx0 = mx - 0.5 * scale * pw;
-    cx1 = mx + 0.5 * scale * pw;
-    cy0 = my - 0.5 * scale * ph;
-    cy1 = my + 0.5 * scale * ph;
+    draw_figure(root, t, radius, title).map_err(|e| e.to_string())
+}
 
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(err)?;
+/// The figure, element by element (in this order, so later ones are on top).
+fn draw_figure<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    t: &TableOutcome,
+    radius: f64,
+    title: &str,
+) -> Drawn<DB> {
+    let proj = Projection::new(&t.table.up);
+    let layout = Layout::new(t, radius, &proj);
+    let (x, y) = equal_scale(&layout.bounds, radius, root.dim_in_pixel());
+    root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(root)
         .caption(title, (FONT, 22))
         .margin(20)
-        .x_label_area_size(label_x)
-        .y_label_area_size(label_y)
-        .build_cartesian_2d(cx0..cx1, cy0..cy1)
-        .map_err(err)?;
-    let (xl, yl) = if lab_xy {
-        ("x (m)", "y (m)")
-    } else {
-        ("horizontal e1 (m)", "horizontal e2 = up x e1 (m)")
-    };
+        .x_label_area_size(LABEL_X)
+        .y_label_area_size(LABEL_Y)
+        .build_cartesian_2d(x.clone(), y.clone())?;
+    draw_axes(&mut chart, &proj)?;
+    let reach = 2.0 * ((x.end - x.start) + (y.end - y.start));
+    draw_line_of_centres(&mut chart, t, &proj, reach)?;
+    if let Some(from) = layout.incoming_from {
+        draw_incoming(&mut chart, from, proj.xy(&t.a.start.position))?;
+    }
+    let balls = [
+        ("A (cue ball)", &t.a, COLOR_A),
+        ("B (object ball)", &t.b, COLOR_B),
+    ];
+    for ((name, r, color), runs) in balls.into_iter().zip(&layout.runs) {
+        draw_outline(&mut chart, proj.xy(&r.start.position), radius, color)?;
+        draw_path(&mut chart, name, runs, color)?;
+        draw_markers(&mut chart, r, &t.table.up, &proj, color, x.end - x.start)?;
+    }
+    for arrow in &layout.arrows {
+        draw_arrow(&mut chart, arrow)?;
+    }
+    draw_legend(&mut chart)?;
+    root.present()
+}
+
+/// The mesh and the axis descriptions.
+fn draw_axes<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    proj: &Projection,
+) -> Drawn<DB> {
+    let (xl, yl) = proj.axis_names();
     chart
         .configure_mesh()
         .x_desc(xl)
@@ -155,13 +288,19 @@ where
         .axis_desc_style((FONT, 17))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
-        .map_err(err)?;
+}
 
-    // Line of centres at contact, across the figure.
-    let ca = xy(&t.a.start.position);
-    let cb = xy(&t.b.start.position);
-    let l = xy(&t.line);
-    let reach = 2.0 * ((cx1 - cx0) + (cy1 - cy0));
+/// The line of centres at contact (dashed, grey), `reach` (m) beyond both balls: across
+/// the figure.
+fn draw_line_of_centres<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    t: &TableOutcome,
+    proj: &Projection,
+    reach: f64,
+) -> Drawn<DB> {
+    let ca = proj.xy(&t.a.start.position);
+    let cb = proj.xy(&t.b.start.position);
+    let l = proj.xy(&t.line);
     let line = [
         (ca.0 - reach * l.0, ca.1 - reach * l.1),
         (cb.0 + reach * l.0, cb.1 + reach * l.1),
@@ -171,124 +310,143 @@ where
             line,
             10,
             6,
-            ShapeStyle::from(RGBColor(90, 90, 90)).stroke_width(2),
-        ))
-        .map_err(err)?
+            ShapeStyle::from(COLOR_LINE).stroke_width(2),
+        ))?
         .label("line of centres at contact")
-        .legend(|(x, y)| {
-            PathElement::new([(x, y), (x + 20, y)], RGBColor(90, 90, 90).stroke_width(2))
-        });
-    // Where the cue ball came from: its incoming direction of travel, dotted.
-    if let Some(from) = incoming_from {
-        chart
-            .draw_series(DashedLineSeries::new(
-                [from, ca],
-                3,
-                5,
-                COLOR_A.mix(0.6).stroke_width(2),
-            ))
-            .map_err(err)?
-            .label("A incoming")
-            .legend(|(x, y)| {
-                PathElement::new([(x, y), (x + 20, y)], COLOR_A.mix(0.6).stroke_width(2))
-            });
-    }
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_LINE.stroke_width(2)));
+    Ok(())
+}
 
-    for (name, r, runs, color) in [
-        ("A (cue ball)", &t.a, &ra, COLOR_A),
-        ("B (object ball)", &t.b, &rb, COLOR_B),
-    ] {
-        // Outline at contact.
-        let (cx, cy) = xy(&r.start.position);
-        let outline: Vec<(f64, f64)> = (0..=72)
-            .map(|i| {
-                let a = std::f64::consts::TAU * f64::from(i) / 72.0;
-                (cx + radius * a.cos(), cy + radius * a.sin())
-            })
-            .collect();
-        chart
-            .draw_series(LineSeries::new(outline, color.stroke_width(1)))
-            .map_err(err)?;
-        let mut labelled = false;
-        for (phase, pts) in runs.iter() {
-            let p: Vec<(f64, f64)> = pts.iter().map(xy).collect();
-            let style = match phase {
-                Phase::Flight => color.mix(0.45).stroke_width(1),
-                Phase::Sliding => color.stroke_width(2),
-                Phase::Rolling | Phase::Rest => color.stroke_width(4),
-            };
-            let s = chart.draw_series(LineSeries::new(p, style)).map_err(err)?;
-            if !labelled {
-                labelled = true;
-                s.label(format!("{name}: flight thin, sliding, rolling thick"))
-                    .legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 20, y)], color.stroke_width(3))
-                    });
-            }
-        }
-        // Landing points, start of rolling, rest.
-        let landings: Vec<(f64, f64)> = r
-            .impacts
-            .iter()
-            .filter(|i| i.time > 0.0)
-            .map(|i| xy(&r.at(&up, i.time, true).1.position))
-            .collect();
-        chart
-            .draw_series(
-                landings
-                    .into_iter()
-                    .map(|p| Cross::new(p, 7, color.stroke_width(2))),
-            )
-            .map_err(err)?;
-        chart
-            .draw_series(std::iter::once(Circle::new(
-                xy(&r.rolling.position),
-                5,
-                color.filled(),
-            )))
-            .map_err(err)?;
-        if let Some((_, p)) = r.rest {
-            let (px, py) = xy(&p);
-            let d = 0.006 * (cx1 - cx0);
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [(px - d, py - d), (px + d, py + d)],
-                    color.filled(),
-                )))
-                .map_err(err)?;
-        }
-    }
-    for (from, to, color) in arrows {
-        let (dx, dy) = (to.0 - from.0, to.1 - from.1);
-        let len = dx.hypot(dy);
-        let (ux, uy) = (dx / len, dy / len);
-        let head = 0.25 * len;
-        let wing = |s: f64| {
-            (
-                to.0 - head * (ux * 0.94 - s * uy * 0.34),
-                to.1 - head * (uy * 0.94 + s * ux * 0.34),
-            )
+/// Where the cue ball came from: its incoming direction of travel, dotted, `from` to its
+/// centre at contact `to`.
+fn draw_incoming<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    from: Point,
+    to: Point,
+) -> Drawn<DB> {
+    chart
+        .draw_series(DashedLineSeries::new(
+            [from, to],
+            3,
+            5,
+            COLOR_A.mix(0.6).stroke_width(2),
+        ))?
+        .label("A incoming")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_A.mix(0.6).stroke_width(2)));
+    Ok(())
+}
+
+/// A ball's outline at contact: the circle of `radius` (m) about `centre`.
+fn draw_outline<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    centre: Point,
+    radius: f64,
+    color: RGBColor,
+) -> Drawn<DB> {
+    let (cx, cy) = centre;
+    let outline: Vec<Point> = (0..=OUTLINE_POINTS)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(OUTLINE_POINTS);
+            (cx + radius * a.cos(), cy + radius * a.sin())
+        })
+        .collect();
+    chart.draw_series(LineSeries::new(outline, color.stroke_width(1)))?;
+    Ok(())
+}
+
+/// A ball's path, run by run: flight thin and light, sliding solid, rolling thick; one
+/// legend entry `name`.
+fn draw_path<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    name: &str,
+    runs: &[Run],
+    color: RGBColor,
+) -> Drawn<DB> {
+    for (i, (motion, pts)) in runs.iter().enumerate() {
+        let style = match motion {
+            BallMotion::Flight => color.mix(0.45).stroke_width(1),
+            BallMotion::Sliding => color.stroke_width(2),
+            BallMotion::Rolling | BallMotion::Rest => color.stroke_width(4),
         };
-        chart
-            .draw_series(DashedLineSeries::new(
-                [from, to],
-                6,
-                4,
-                color.stroke_width(2),
-            ))
-            .map_err(err)?;
-        chart
-            .draw_series(LineSeries::new(
-                [wing(1.0), to, wing(-1.0)],
-                color.stroke_width(2),
-            ))
-            .map_err(err)?;
+        let s = chart.draw_series(LineSeries::new(pts.iter().copied(), style))?;
+        if i == 0 {
+            s.label(format!("{name}: flight thin, sliding, rolling thick"))
+                .legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 20, y)], color.stroke_width(3))
+                });
+        }
     }
-    // Legend entries for the markers.
+    Ok(())
+}
+
+/// A ball's landing points (crosses), where it starts to roll (filled dot) and, with
+/// rolling resistance, where it rests (a square of 1.2 % of the x range `x_span` (m)).
+fn draw_markers<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    r: &RollOut,
+    up: &Vector3<f64>,
+    proj: &Projection,
+    color: RGBColor,
+    x_span: f64,
+) -> Drawn<DB> {
+    let landings: Vec<Point> = r
+        .impacts
+        .iter()
+        .filter(|i| i.time > 0.0)
+        .map(|i| proj.xy(&r.at(up, i.time, true).1.position))
+        .collect();
+    chart.draw_series(
+        landings
+            .into_iter()
+            .map(|p| Cross::new(p, 7, color.stroke_width(2))),
+    )?;
+    chart.draw_series(std::iter::once(Circle::new(
+        proj.xy(&r.rolling.position),
+        5,
+        color.filled(),
+    )))?;
+    if let Some((_, p)) = r.rest {
+        let (px, py) = proj.xy(&p);
+        let d = 0.006 * x_span;
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(px - d, py - d), (px + d, py + d)],
+            color.filled(),
+        )))?;
+    }
+    Ok(())
+}
+
+/// A dashed arrow with an open head a quarter of its length.
+fn draw_arrow<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>, arrow: &Arrow) -> Drawn<DB> {
+    let &(from, to, color) = arrow;
+    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+    let len = dx.hypot(dy);
+    let (ux, uy) = (dx / len, dy / len);
+    let head = 0.25 * len;
+    let wing = |s: f64| {
+        (
+            to.0 - head * (ux * 0.94 - s * uy * 0.34),
+            to.1 - head * (uy * 0.94 + s * ux * 0.34),
+        )
+    };
+    chart.draw_series(DashedLineSeries::new(
+        [from, to],
+        6,
+        4,
+        color.stroke_width(2),
+    ))?;
+    chart.draw_series(LineSeries::new(
+        [wing(1.0), to, wing(-1.0)],
+        color.stroke_width(2),
+    ))?;
+    Ok(())
+}
+
+/// The legend: the series' entries and one for the markers, upper left.
+fn draw_legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> Drawn<DB> {
     let gray = RGBColor(60, 60, 60);
     chart
-        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-        .map_err(err)?
+        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
         .label("x landing on the cloth, dot: starts rolling, dashed arrow: rolling direction")
         .legend(move |(x, y)| Cross::new((x + 10, y), 5, gray.stroke_width(2)));
     chart
@@ -298,12 +456,9 @@ where
         .border_style(RGBColor(160, 160, 160))
         .position(SeriesLabelPosition::UpperLeft)
         .draw()
-        .map_err(err)?;
-    root.present().map_err(err)?;
-    Ok(())
 }
 
-/// The figure as SVG text.
+/// The figure of `t` (balls of radius `radius`, m) as SVG text.
 pub fn svg(t: &TableOutcome, radius: f64, title: &str) -> Result<String, Error> {
     let mut out = String::new();
     {
@@ -313,7 +468,8 @@ pub fn svg(t: &TableOutcome, radius: f64, title: &str) -> Result<String, Error> 
     Ok(out)
 }
 
-/// Renders the figure as PNG at `path` (written directly; the CLI renames it into place).
+/// Renders the figure of `t` (balls of radius `radius`, m) as PNG at `path` (written
+/// directly; the CLI renames it into place).
 pub fn png(
     t: &TableOutcome,
     radius: f64,

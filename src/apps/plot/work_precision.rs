@@ -2,18 +2,21 @@
 //! contact (log y), one line per method, one panel per profile, one row of panels per
 //! scene. Each panel's legend gives the observed order p (error ~ evaluations^-p,
 //! [`crate::apps::work_precision::Series::observed_order`]). Errors of exactly 0 (the closed form, and
-//! runs that are exact to round-off) are drawn at 1e-17 as hollow markers (CONTRACTS.md).
+//! runs that are exact to round-off) are drawn at 1e-17 as hollow markers
+//! (docs/formats.md#work-precision-csv).
 
 use super::FONT;
-use crate::apps::work_precision::{series, StudyRow};
+use crate::apps::work_precision::{series, Series, StudyRow};
 use crate::error::Error;
 use crate::formats::atomic_file::AtomicFile;
+use plotters::coord::combinators::LogCoord;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Where errors of exactly 0 are drawn (CONTRACTS.md).
+/// Where errors of exactly 0 are drawn (dimensionless, scaled error;
+/// docs/formats.md#work-precision-csv).
 pub const ZERO_ERROR_AT: f64 = 1e-17;
 
 /// Width and height (px) of one panel.
@@ -89,7 +92,7 @@ fn x_of(error: f64) -> f64 {
     }
 }
 
-/// Draws the diagram on `root`.
+/// Draws the diagram on `root`: the title strip, then one panel per scene and profile.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     rows: &[StudyRow],
@@ -97,6 +100,35 @@ pub fn draw<DB: DrawingBackend>(
     super::register_fonts();
     root.fill(&WHITE)?;
     let (header, body) = root.split_vertically(HEADER);
+    draw_header(&header)?;
+    let (scenes, profiles) = layout(rows);
+    let times = time_range(rows);
+    let lines = series(rows);
+    let panels = body.split_evenly((scenes.len().max(1), profiles.len().max(1)));
+    for (i, scene) in scenes.iter().enumerate() {
+        for (j, profile) in profiles.iter().enumerate() {
+            let title = if j == 0 {
+                format!("{profile}  [{}]", shorten(scene, 34))
+            } else {
+                profile.to_string()
+            };
+            let panel_lines = lines
+                .iter()
+                .filter(|l| l.scene == *scene && l.profile == *profile);
+            draw_panel(&panels[i * profiles.len() + j], &title, times, panel_lines)?;
+        }
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// The chart of one panel: error (scaled, log) across, seconds per contact (log) up.
+type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+/// What a drawing step returns.
+type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// The title strip: what the figure shows and how to read its markers.
+fn draw_header<DB: DrawingBackend>(header: &DrawingArea<DB, Shift>) -> Drawn<DB> {
     header.draw(&Text::new(
         "Work-precision: wall time per contact against the error of the outgoing state",
         (14, 10),
@@ -108,127 +140,156 @@ pub fn draw<DB: DrawingBackend>(
          dashed: breakpoints off",
         (14, 42),
         (FONT, 15).into_font(),
+    ))
+}
+
+/// One panel titled `title`, time axis `times` (s): axes, the column of zero errors, the
+/// `lines` and their legend.
+fn draw_panel<'r, DB: DrawingBackend + 'r>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    (t_lo, t_hi): (f64, f64),
+    lines: impl Iterator<Item = &'r Series<'r>>,
+) -> Drawn<DB> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, (FONT, 17))
+        .margin(10)
+        .x_label_area_size(42)
+        .y_label_area_size(62)
+        .build_cartesian_2d((1e-18f64..1.0f64).log_scale(), (t_lo..t_hi).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("error (scaled)")
+        .y_desc("seconds per contact")
+        .x_labels(7)
+        .y_labels(6)
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .label_style((FONT, 12))
+        .axis_desc_style((FONT, 13))
+        .light_line_style(WHITE.mix(0.0))
+        .bold_line_style(BLACK.mix(0.08))
+        .draw()?;
+    // The column where errors of exactly 0 are drawn.
+    chart.draw_series(DashedLineSeries::new(
+        [(ZERO_ERROR_AT, t_lo), (ZERO_ERROR_AT, t_hi)],
+        4,
+        4,
+        BLACK.mix(0.35).stroke_width(1),
     ))?;
-    let (scenes, profiles) = layout(rows);
-    let (t_lo, t_hi) = time_range(rows);
-    let lines = series(rows);
-    let panels = body.split_evenly((scenes.len().max(1), profiles.len().max(1)));
-    for (i, scene) in scenes.iter().enumerate() {
-        for (j, profile) in profiles.iter().enumerate() {
-            let area = &panels[i * profiles.len() + j];
-            let title = if j == 0 {
-                format!("{profile}  [{}]", shorten(scene, 34))
-            } else {
-                profile.to_string()
-            };
-            let mut chart = ChartBuilder::on(area)
-                .caption(title, (FONT, 17))
-                .margin(10)
-                .x_label_area_size(42)
-                .y_label_area_size(62)
-                .build_cartesian_2d((1e-18f64..1.0f64).log_scale(), (t_lo..t_hi).log_scale())?;
-            chart
-                .configure_mesh()
-                .x_desc("error (scaled)")
-                .y_desc("seconds per contact")
-                .x_labels(7)
-                .y_labels(6)
-                .x_label_formatter(&|v| format!("{v:.0e}"))
-                .y_label_formatter(&|v| format!("{v:.0e}"))
-                .label_style((FONT, 12))
-                .axis_desc_style((FONT, 13))
-                .light_line_style(WHITE.mix(0.0))
-                .bold_line_style(BLACK.mix(0.08))
-                .draw()?;
-            // The column where errors of exactly 0 are drawn.
-            chart.draw_series(DashedLineSeries::new(
-                [(ZERO_ERROR_AT, t_lo), (ZERO_ERROR_AT, t_hi)],
-                4,
-                4,
-                BLACK.mix(0.35).stroke_width(1),
-            ))?;
-            for line in lines
-                .iter()
-                .filter(|l| l.scene == *scene && l.profile == *profile)
-            {
-                let c = colour(line.method);
-                let pts: Vec<(f64, f64, bool)> = line
-                    .rows
-                    .iter()
-                    .filter_map(|r| {
-                        let e = r.error?;
-                        let t = r.seconds_per_contact;
-                        (t.is_finite() && t > 0.0).then(|| (x_of(e), t, e == 0.0))
-                    })
-                    .collect();
-                if pts.is_empty() {
-                    continue;
-                }
-                let style = c.stroke_width(2);
-                // Consecutive points on the same pixel make the bitmap backend's wide-line
-                // polygon degenerate (stray strokes across the figure): keep one of them.
-                let mut xy: Vec<(f64, f64)> = Vec::with_capacity(pts.len());
-                let mut last_px: Option<(i32, i32)> = None;
-                for p in &pts {
-                    let px = chart.backend_coord(&(p.0, p.1));
-                    let near =
-                        last_px.is_some_and(|q| (q.0 - px.0).abs() <= 2 && (q.1 - px.1).abs() <= 2);
-                    if !near {
-                        xy.push((p.0, p.1));
-                        last_px = Some(px);
-                    }
-                }
-                let label = match line.observed_order() {
-                    Some(p) => format!("{}  p = {p:.1}", line.label()),
-                    None => line.label(),
-                };
-                // Segment by segment: the bitmap backend joins wide polylines with unlimited
-                // miters, which spike across the figure where a ladder doubles back.
-                let drawn = if line.breakpoints {
-                    chart.draw_series(
-                        xy.windows(2)
-                            .map(|w| PathElement::new(vec![w[0], w[1]], style)),
-                    )?
-                } else {
-                    chart.draw_series(
-                        xy.windows(2)
-                            .flat_map(|w| DashedLineSeries::new(vec![w[0], w[1]], 7, 4, style)),
-                    )?
-                };
-                drawn.label(label).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
-                });
-                let peer = line.method.starts_with("scipy");
-                let marker = |&(x, y, zero): &(f64, f64, bool)| {
-                    let st = if zero { c.stroke_width(2) } else { c.filled() };
-                    (x, y, if zero { 6 } else { 3 }, st)
-                };
-                if peer {
-                    chart.draw_series(pts.iter().map(marker).map(|(x, y, r, st)| {
-                        EmptyElement::at((x, y)) + TriangleMarker::new((0, 0), r + 1, st)
-                    }))?;
-                } else if line.breakpoints {
-                    chart.draw_series(pts.iter().map(marker).map(|(x, y, r, st)| {
-                        EmptyElement::at((x, y)) + Circle::new((0, 0), r, st)
-                    }))?;
-                } else {
-                    chart.draw_series(pts.iter().map(marker).map(|(x, y, r, _)| {
-                        EmptyElement::at((x, y)) + Cross::new((0, 0), r + 1, c.stroke_width(2))
-                    }))?;
-                }
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .margin(6)
-                .legend_area_size(22)
-                .label_font((FONT, 12))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.3))
-                .draw()?;
+    for line in lines {
+        let pts = points(line);
+        if pts.is_empty() {
+            continue;
+        }
+        draw_line(&mut chart, line, &pts)?;
+        draw_markers(&mut chart, line, &pts)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .margin(6)
+        .legend_area_size(22)
+        .label_font((FONT, 12))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .draw()
+}
+
+/// A line's drawable points: (x of the error, seconds per contact, whether the error is
+/// exactly 0), for runs with an error and a finite positive time.
+fn points(line: &Series) -> Vec<(f64, f64, bool)> {
+    line.rows
+        .iter()
+        .filter_map(|r| {
+            let e = r.error?;
+            let t = r.seconds_per_contact;
+            (t.is_finite() && t > 0.0).then(|| (x_of(e), t, e == 0.0))
+        })
+        .collect()
+}
+
+/// The line through `pts` in its method's colour, solid with breakpoints and dashed
+/// without, with its legend entry (the observed order when there is one).
+fn draw_line<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Panel<'a, DB>,
+    line: &Series,
+    pts: &[(f64, f64, bool)],
+) -> Drawn<DB> {
+    let c = colour(line.method);
+    let style = c.stroke_width(2);
+    let xy = apart_by_pixels(chart, pts);
+    let label = match line.observed_order() {
+        Some(p) => format!("{}  p = {p:.1}", line.label()),
+        None => line.label(),
+    };
+    // Segment by segment: the bitmap backend joins wide polylines with unlimited
+    // miters, which spike across the figure where a ladder doubles back.
+    let drawn = if line.breakpoints {
+        chart.draw_series(
+            xy.windows(2)
+                .map(|w| PathElement::new(vec![w[0], w[1]], style)),
+        )?
+    } else {
+        chart.draw_series(
+            xy.windows(2)
+                .flat_map(|w| DashedLineSeries::new(vec![w[0], w[1]], 7, 4, style)),
+        )?
+    };
+    drawn
+        .label(label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+    Ok(())
+}
+
+/// The points of `pts` at least 3 px (in x or y) from the previously kept one.
+/// Consecutive points on the same pixel make the bitmap backend's wide-line polygon
+/// degenerate (stray strokes across the figure): keep one of them.
+fn apart_by_pixels<'a, DB: DrawingBackend + 'a>(
+    chart: &Panel<'a, DB>,
+    pts: &[(f64, f64, bool)],
+) -> Vec<(f64, f64)> {
+    let mut xy: Vec<(f64, f64)> = Vec::with_capacity(pts.len());
+    let mut last_px: Option<(i32, i32)> = None;
+    for p in pts {
+        let px = chart.backend_coord(&(p.0, p.1));
+        let near = last_px.is_some_and(|q| (q.0 - px.0).abs() <= 2 && (q.1 - px.1).abs() <= 2);
+        if !near {
+            xy.push((p.0, p.1));
+            last_px = Some(px);
         }
     }
-    root.present()?;
+    xy
+}
+
+/// The markers of a line's points: triangles for the peers (scipy), circles with
+/// breakpoints, crosses without; hollow and larger for errors of exactly 0.
+fn draw_markers<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Panel<'a, DB>,
+    line: &Series,
+    pts: &[(f64, f64, bool)],
+) -> Drawn<DB> {
+    let c = colour(line.method);
+    let peer = line.method.starts_with("scipy");
+    let marker = |&(x, y, zero): &(f64, f64, bool)| {
+        let st = if zero { c.stroke_width(2) } else { c.filled() };
+        (x, y, if zero { 6 } else { 3 }, st)
+    };
+    if peer {
+        chart.draw_series(pts.iter().map(marker).map(|(x, y, r, st)| {
+            EmptyElement::at((x, y)) + TriangleMarker::new((0, 0), r + 1, st)
+        }))?;
+    } else if line.breakpoints {
+        chart.draw_series(
+            pts.iter()
+                .map(marker)
+                .map(|(x, y, r, st)| EmptyElement::at((x, y)) + Circle::new((0, 0), r, st)),
+        )?;
+    } else {
+        chart.draw_series(pts.iter().map(marker).map(|(x, y, r, _)| {
+            EmptyElement::at((x, y)) + Cross::new((0, 0), r + 1, c.stroke_width(2))
+        }))?;
+    }
     Ok(())
 }
 

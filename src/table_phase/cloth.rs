@@ -1,0 +1,129 @@
+//! The cloth under a collision: the plane at `height` along the unit vertical n = `up`,
+//! checked against the balls' positions at contact, and the kinematics of a ball's contact
+//! point with it.
+//!
+//! The contact point with the cloth is x - r n; its velocity is v + w x (-r n), whose
+//! horizontal part is the slip
+//!
+//! ```text
+//! u = v_h - r (w x n)          (v_h = v - (v.n) n)
+//! ```
+
+use super::params::TableParams;
+use crate::error::Error;
+use crate::model::params::Ball;
+use nalgebra::Vector3;
+
+/// Relative tolerance (of 2r) on the line of centres being horizontal and on the ball
+/// centres' height r above the cloth.
+pub const LEVEL_TOLERANCE: f64 = 1e-9;
+
+/// The cloth under a collision: parameters, `up` and the plane's height, validated
+/// against the balls' positions at contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Table {
+    /// Parameters.
+    pub params: TableParams,
+    /// Unit vector away from the cloth (dimensionless).
+    pub up: Vector3<f64>,
+    /// Height of the cloth along `up` (m).
+    pub height: f64,
+}
+
+impl Table {
+    /// The cloth under balls of radius `radius` (m) touching at `pos_a`, `pos_b` (m, lab):
+    /// the line of centres must be horizontal (perpendicular to `up`) and, when the
+    /// parameters give a height, both centres must be r above it.
+    pub fn new(
+        params: TableParams,
+        up: Vector3<f64>,
+        pos_a: Vector3<f64>,
+        pos_b: Vector3<f64>,
+        radius: f64,
+    ) -> Result<Self, Error> {
+        let norm = up.norm();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err(Error::invalid(
+                "incoming.lab.up",
+                format!("[{}, {}, {}]", up.x, up.y, up.z),
+                "a non-zero direction",
+            ));
+        }
+        let n = up / norm;
+        let tol = LEVEL_TOLERANCE * 2.0 * radius;
+        let rise = (pos_b - pos_a).dot(&n);
+        if rise.abs() > tol {
+            return Err(Error::invalid(
+                "incoming.lab.b.position",
+                format!(
+                    "[{}, {}, {}] ((p_B - p_A).up = {rise:e} m)",
+                    pos_b.x, pos_b.y, pos_b.z
+                ),
+                "a horizontal line of centres for the table effect: both balls on the cloth, \
+                 (p_B - p_A) perpendicular to up",
+            ));
+        }
+        let height = match params.height() {
+            None => pos_a.dot(&n) - radius,
+            Some(h) => {
+                both_centres_r_above(h, &n, [pos_a, pos_b], radius, tol)?;
+                h
+            }
+        };
+        Ok(Table {
+            params,
+            up: n,
+            height,
+        })
+    }
+
+    /// Gravitational potential energy (J) of a ball centred at `position` (m, lab), zero on
+    /// the cloth: m g (x.n - height - r).
+    pub fn potential_energy(&self, ball: &Ball, position: &Vector3<f64>) -> f64 {
+        ball.mass * self.params.g() * (position.dot(&self.up) - self.height - ball.radius)
+    }
+}
+
+/// Checks that the centres `[pos_a, pos_b]` (m, lab) lie `radius` (m) above the cloth at
+/// height `h` (m along the unit `n`), within `tol` (m).
+fn both_centres_r_above(
+    h: f64,
+    n: &Vector3<f64>,
+    positions: [Vector3<f64>; 2],
+    radius: f64,
+    tol: f64,
+) -> Result<(), Error> {
+    for (field, p) in ["incoming.lab.a.position", "incoming.lab.b.position"]
+        .into_iter()
+        .zip(positions)
+    {
+        let above = p.dot(n) - h;
+        if (above - radius).abs() > tol {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "[{}, {}, {}] (centre {above} m above the cloth)",
+                    p.x, p.y, p.z
+                ),
+                format!(
+                    "the centre r = {radius} m above the cloth (table.height = {h} m along up) \
+                     for the table effect"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub(crate) use crate::model::frame::horizontal;
+
+/// The horizontal slip u = v_h - r (w x n) (m/s) of the contact point with the cloth, for
+/// a ball with `velocity` (m/s) and `spin` (rad/s), `up` the unit vertical n.
+pub fn cloth_slip(
+    ball: &Ball,
+    up: &Vector3<f64>,
+    velocity: &Vector3<f64>,
+    spin: &Vector3<f64>,
+) -> Vector3<f64> {
+    horizontal(velocity, up) - ball.radius * spin.cross(up)
+}

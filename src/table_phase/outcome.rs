@@ -1,0 +1,156 @@
+//! Both balls on the table ([`TableOutcome`]): their roll-outs, the directions and
+//! deflections they end up with, and the self-checks (docs/model.md#checks-of-the-table-phase).
+
+use super::cloth::{horizontal, Table};
+use super::roll_out::{roll_out, RollOut};
+use crate::error::Error;
+use crate::model::params::Ball;
+use crate::model::state::LabBall;
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// Evaluation points inside each segment for the energy check (plus both ends).
+const ENERGY_POINTS: u32 = 16;
+
+/// Kinetic energy (J) of one ball with `velocity` (m/s) and `spin` (rad/s):
+/// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2.
+pub fn kinetic_energy(ball: &Ball, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> f64 {
+    0.5 * ball.mass * velocity.norm_squared() + 0.5 * ball.inertia() * spin.norm_squared()
+}
+
+/// Self-checks of a table phase, scaled like the contact's checks
+/// (docs/model.md#scales-and-scaled-errors).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct TableChecks {
+    /// Largest increase of a ball's energy (kinetic + gravitational) between consecutive
+    /// evaluation points (segment ends, impacts, 16 points inside each segment), over
+    /// m v_ref^2 (dimensionless); 0 when it never increases.
+    pub energy_increase: f64,
+    /// Largest component of m (v_end - v_0) - (table impulse - m g n t_end) over both
+    /// balls, over m v_ref (dimensionless): linear momentum changes only by the cloth's
+    /// impulses and gravity.
+    pub momentum_error: f64,
+}
+
+/// Both balls on the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableOutcome {
+    /// The cloth.
+    pub table: Table,
+    /// Unit horizontal line of centres, A to B (lab, dimensionless).
+    pub line: Vector3<f64>,
+    /// Ball A.
+    pub a: RollOut,
+    /// Ball B.
+    pub b: RollOut,
+    /// Incoming lab velocities of A and B (m/s, before the collision), for deflections.
+    pub incoming: [Vector3<f64>; 2],
+    /// Self-checks.
+    pub check: TableChecks,
+}
+
+impl TableOutcome {
+    /// Runs the table phase for balls starting at `a`, `b` (lab, at separation) with
+    /// incoming velocities `incoming` (m/s, before the collision); `speed_scale` (m/s)
+    /// scales the checks.
+    pub fn new(
+        ball: &Ball,
+        table: Table,
+        a: &LabBall,
+        b: &LabBall,
+        incoming: [Vector3<f64>; 2],
+        speed_scale: f64,
+    ) -> Result<Self, Error> {
+        let ra = roll_out(ball, &table, a)?;
+        let rb = roll_out(ball, &table, b)?;
+        let line = horizontal(&(b.position - a.position), &table.up).normalize();
+        let mut out = TableOutcome {
+            table,
+            line,
+            a: ra,
+            b: rb,
+            incoming,
+            check: TableChecks::default(),
+        };
+        out.check = out.checks(ball, speed_scale);
+        Ok(out)
+    }
+
+    /// The later of the two balls' end times (s): the path runs until both roll (or rest).
+    pub fn end_time(&self) -> f64 {
+        self.a.end_time.max(self.b.end_time)
+    }
+
+    /// The signed angle (degrees, counter-clockwise about up) from `from` to `to`, both
+    /// projected on the cloth; `None` when either is zero there.
+    pub fn angle_deg(&self, from: &Vector3<f64>, to: &Vector3<f64>) -> Option<f64> {
+        let n = self.table.up;
+        let f = horizontal(from, &n);
+        let t = horizontal(to, &n);
+        if f.norm() == 0.0 || t.norm() == 0.0 {
+            return None;
+        }
+        Some(f.cross(&t).dot(&n).atan2(f.dot(&t)).to_degrees())
+    }
+
+    /// Direction of travel once rolling (degrees, counter-clockwise about up from the line
+    /// of centres A to B): the object ball's throw after the roll-out.
+    pub fn direction_deg(&self, r: &RollOut) -> Option<f64> {
+        self.angle_deg(&self.line, &r.rolling.velocity)
+    }
+
+    /// Deflection (degrees, counter-clockwise about up) from a ball's incoming direction of
+    /// travel to its rolling direction: the cue ball's deflection. `which` is 0 for A, 1
+    /// for B. `None` for a ball that came in at rest or ends at rest.
+    pub fn deflection_deg(&self, which: usize, r: &RollOut) -> Option<f64> {
+        self.angle_deg(&self.incoming[which], &r.rolling.velocity)
+    }
+
+    fn checks(&self, ball: &Ball, speed_scale: f64) -> TableChecks {
+        let n = self.table.up;
+        let m = ball.mass;
+        let g = self.table.params.g();
+        let mut increase: f64 = 0.0;
+        let mut momentum: f64 = 0.0;
+        for r in [&self.a, &self.b] {
+            increase = increase.max(self.largest_energy_increase(ball, r));
+            let (_, end) = r.at(&n, r.end_time, true);
+            let dp = m * (end.velocity - r.start.velocity)
+                - (r.table_impulse - n * (m * g * r.end_time));
+            momentum = momentum.max(dp.amax());
+        }
+        let ev = m * speed_scale * speed_scale;
+        let pv = m * speed_scale;
+        TableChecks {
+            energy_increase: if increase <= 0.0 { 0.0 } else { increase / ev },
+            momentum_error: if momentum == 0.0 { 0.0 } else { momentum / pv },
+        }
+    }
+
+    /// The largest increase (J) of one ball's energy between consecutive evaluation points
+    /// of its roll-out (0 when it never increases); the open-ended last segment is followed
+    /// 1 s past the end time.
+    fn largest_energy_increase(&self, ball: &Ball, r: &RollOut) -> f64 {
+        let n = self.table.up;
+        let energy = |s: &LabBall| {
+            kinetic_energy(ball, &s.velocity, &s.spin)
+                + self.table.potential_energy(ball, &s.position)
+        };
+        let mut increase: f64 = 0.0;
+        let mut last = energy(&r.start);
+        for seg in &r.segments {
+            let t1 = if seg.t1.is_finite() {
+                seg.t1
+            } else {
+                seg.t0 + (r.end_time - seg.t0).max(0.0) + 1.0
+            };
+            for i in 0..=ENERGY_POINTS {
+                let t = seg.t0 + (t1 - seg.t0) * f64::from(i) / f64::from(ENERGY_POINTS);
+                let e = energy(&seg.at(&n, t));
+                increase = increase.max(e - last);
+                last = e;
+            }
+        }
+        increase
+    }
+}

@@ -1,0 +1,196 @@
+//! One ball from separation until it rolls (and, with rolling resistance, until it
+//! rests): [`roll_out`] runs the stages in order on a [`Track`], the motion built so far.
+//!
+//! 1. The hop ([`Track::hop`], flight.rs), when the ball leaves the cloth moving up.
+//! 2. Impacts with the cloth, bouncing until settled ([`Track::bounce_until_settled`],
+//!    flight.rs; one impact in impact.rs).
+//! 3. Sliding until rolling ([`Track::slide_until_rolling`], rolling.rs).
+//! 4. Rolling to rest with rolling resistance ([`Track::roll_to_rest`], rolling.rs), then
+//!    the open-ended last segment and the cloth's support ([`Track::finish`]).
+
+use super::cloth::Table;
+use super::impact::ClothImpact;
+use super::segment::{BallMotion, Segment};
+use crate::error::Error;
+use crate::model::params::Ball;
+use crate::model::state::LabBall;
+use nalgebra::Vector3;
+
+/// One ball's motion on the table after separation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollOut {
+    /// State at separation (lab).
+    pub start: LabBall,
+    /// Duration of the initial hop (s): 2 v.n / g, 0 for a ball not moving up.
+    pub hop_time: f64,
+    /// Highest rise of the centre during the hop (m): (v.n)^2 / (2 g).
+    pub hop_height: f64,
+    /// Impacts with the cloth in order (the first is the reported `impact`).
+    pub impacts: Vec<ClothImpact>,
+    /// Times the ball left the cloth again after an impact (restitution > 0).
+    pub bounces: u32,
+    /// Time (s) from which the ball stays on the cloth.
+    pub settle_time: f64,
+    /// Duration of the slide until rolling (s), from `settle_time`.
+    pub slide_time: f64,
+    /// Displacement of the centre during the slide (m, lab).
+    pub slide_displacement: Vector3<f64>,
+    /// Time (s) at which the ball starts to roll: settle_time + slide_time.
+    pub roll_time: f64,
+    /// State when it starts to roll (lab).
+    pub rolling: LabBall,
+    /// With rolling resistance: when (s) and where (m, lab) the ball comes to rest.
+    pub rest: Option<(f64, Vector3<f64>)>,
+    /// Total impulse of the cloth on the ball up to `end_time` (N s, lab): impacts,
+    /// friction, rolling resistance and the normal support while on the cloth.
+    pub table_impulse: Vector3<f64>,
+    /// The time (s) the roll-out is followed to: `rest` when there is one, else `roll_time`.
+    pub end_time: f64,
+    /// The motion, segment by segment (the last one open-ended).
+    pub segments: Vec<Segment>,
+}
+
+impl RollOut {
+    /// The state at time `t` >= 0 (s); `after` picks the state just after an impact at `t`.
+    pub fn at(&self, up: &Vector3<f64>, t: f64, after: bool) -> (BallMotion, LabBall) {
+        let seg = if after {
+            self.segments.iter().rev().find(|s| s.t0 <= t)
+        } else {
+            self.segments.iter().find(|s| s.t1 >= t)
+        }
+        .unwrap_or(&self.segments[self.segments.len() - 1]);
+        (seg.phase, seg.at(up, t))
+    }
+
+    /// Impact times (s): where velocity and spin jump.
+    pub fn impact_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.impacts.iter().map(|i| i.time)
+    }
+}
+
+/// Follows one ball from separation (`start`, lab) until it rolls (and, with rolling
+/// resistance, until it rests): the stages of the module docs, in order.
+///
+/// ```
+/// use billiard_contact::{table_phase::{roll_out, Table, TableParams}, Ball, LabBall};
+/// use nalgebra::Vector3;
+/// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+/// let up = Vector3::z();
+/// let table = Table { params: TableParams::default(), up, height: 0.0 };
+/// let start = LabBall { position: Vector3::new(0.0, 0.0, 0.028575),
+///                       velocity: Vector3::new(1.4, 0.0, 0.0), spin: Vector3::zeros() };
+/// let r = roll_out(&ball, &table, &start).unwrap();
+/// // A stun ball rolls after 2 v / (7 mu g) at 5/7 of its speed.
+/// assert!((r.slide_time - 2.0 * 1.4 / (7.0 * 0.2 * 9.81)).abs() < 1e-15);
+/// assert!((r.rolling.velocity.x - 1.0).abs() < 1e-14);
+/// ```
+pub fn roll_out(ball: &Ball, table: &Table, start: &LabBall) -> Result<RollOut, Error> {
+    let mut track = Track::new(ball, table, start);
+    let (hop_time, hop_height) = track.hop();
+    let bounces = track.bounce_until_settled()?;
+    let settle_time = track.t;
+    let slide_start = track.state.position;
+    let slide_time = track.slide_until_rolling();
+    let slide_displacement = track.state.position - slide_start;
+    let roll_time = track.t;
+    let rolling = track.state;
+    let rest = track.roll_to_rest();
+    let end_time = track.t;
+    track.finish();
+    Ok(RollOut {
+        start: *start,
+        hop_time,
+        hop_height,
+        impacts: track.impacts,
+        bounces,
+        settle_time,
+        slide_time,
+        slide_displacement,
+        roll_time,
+        rolling,
+        rest,
+        table_impulse: track.impulse,
+        end_time,
+        segments: track.segments,
+    })
+}
+
+/// One ball's motion under construction: where the stages have brought it so far. Each
+/// stage appends its segments and impacts, adds the cloth's impulse and moves `state` and
+/// `t` to its end.
+pub(super) struct Track<'a> {
+    /// The ball.
+    pub(super) ball: &'a Ball,
+    /// The cloth.
+    pub(super) table: &'a Table,
+    /// Unit vertical n (= `table.up`).
+    pub(super) n: Vector3<f64>,
+    /// Gravitational acceleration g (m/s^2).
+    pub(super) g: f64,
+    /// Rate (rad/s^2) at which |w.n| falls on the cloth: mu_sp g / (alpha r).
+    pub(super) decay_rate: f64,
+    /// State at `t` (lab).
+    pub(super) state: LabBall,
+    /// Time reached (s after separation).
+    pub(super) t: f64,
+    /// Segments so far.
+    pub(super) segments: Vec<Segment>,
+    /// Impacts with the cloth so far.
+    pub(super) impacts: Vec<ClothImpact>,
+    /// Impulse of the cloth so far (N s, lab), without the normal support (see `finish`).
+    pub(super) impulse: Vector3<f64>,
+}
+
+impl<'a> Track<'a> {
+    /// The ball at separation, at t = 0.
+    fn new(ball: &'a Ball, table: &'a Table, start: &LabBall) -> Self {
+        let g = table.params.g();
+        Track {
+            ball,
+            table,
+            n: table.up,
+            g,
+            decay_rate: table.params.spin_decay() * g / (ball.alpha * ball.radius),
+            state: *start,
+            t: 0.0,
+            segments: Vec::new(),
+            impacts: Vec::new(),
+            impulse: Vector3::zeros(),
+        }
+    }
+
+    /// Appends `seg` (which starts at `t`) and moves `t` to its end; returns the state
+    /// there.
+    pub(super) fn run(&mut self, seg: Segment) -> LabBall {
+        self.segments.push(seg);
+        self.t = seg.t1;
+        seg.at(&self.n, self.t)
+    }
+
+    /// The last, open-ended segment (rolling on, or at rest) and the cloth's normal
+    /// support m g n over the time spent on the cloth.
+    fn finish(&mut self) {
+        let (n, m, g) = (self.n, self.ball.mass, self.g);
+        let end_time = self.t;
+        self.segments.push(Segment {
+            phase: if self.state.velocity == Vector3::zeros() {
+                BallMotion::Rest
+            } else {
+                BallMotion::Rolling
+            },
+            t0: end_time,
+            t1: f64::INFINITY,
+            start: self.state,
+            accel: Vector3::zeros(),
+            spin_accel: Vector3::zeros(),
+            spin_decay_rate: self.decay_rate,
+        });
+        let airborne: f64 = self
+            .segments
+            .iter()
+            .filter(|s| s.phase == BallMotion::Flight)
+            .map(|s| s.t1 - s.t0)
+            .sum();
+        self.impulse += n * (m * g * (end_time - airborne));
+    }
+}
