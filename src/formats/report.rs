@@ -139,10 +139,10 @@ impl SolverJson {
     /// The settings of a run and the work it did.
     pub fn new(settings: &SolverSettings, stats: &Stats) -> Self {
         SolverJson {
-            method: settings.method.name(),
-            rtol: Num(settings.rtol),
-            atol: Num(settings.atol),
-            steps: settings.steps,
+            method: settings.method().name(),
+            rtol: Num(settings.rtol()),
+            atol: Num(settings.atol()),
+            steps: settings.steps(),
             rhs_evaluations: stats.rhs_evaluations,
             accepted_steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
@@ -389,7 +389,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  profile {} over {:.4e} s, method {}, effects: {}",
         scene.profile.name(),
         scene.profile.duration(),
-        so.settings.method,
+        so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if !r.collided() {

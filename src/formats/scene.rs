@@ -142,23 +142,22 @@ impl SolverOverrides {
     /// let base = SolverSettings::new(Method::Dop853, 1e-10, 1e-12, 1000).unwrap();
     /// let tighter = SolverOverrides { rtol: Some(1e-12), ..Default::default() };
     /// let s = tighter.apply(&base).unwrap();
-    /// assert_eq!((s.method, s.rtol, s.atol, s.steps), (Method::Dop853, 1e-12, 1e-12, 1000));
+    /// assert_eq!((s.method(), s.rtol(), s.atol(), s.steps()), (Method::Dop853, 1e-12, 1e-12, 1000));
     /// let rk4 = SolverOverrides { method: Some(Method::Rk4), ..Default::default() };
-    /// assert_eq!(rk4.apply(&base).unwrap().atol, 1e-12);
+    /// assert_eq!(rk4.apply(&base).unwrap().atol(), 1e-12);
     /// ```
     pub fn apply(&self, base: &SolverSettings) -> Result<SolverSettings, Error> {
-        let rtol = self.rtol.unwrap_or(base.rtol);
+        let rtol = self.rtol.unwrap_or(base.rtol());
         let atol = self
             .atol
-            .unwrap_or(if self.rtol.is_some() { rtol } else { base.atol });
-        let mut settings = SolverSettings::new(
-            self.method.unwrap_or(base.method),
+            .unwrap_or(if self.rtol.is_some() { rtol } else { base.atol() });
+        let settings = SolverSettings::new(
+            self.method.unwrap_or(base.method()),
             rtol,
             atol,
-            self.steps.unwrap_or(base.steps),
+            self.steps.unwrap_or(base.steps()),
         )?;
-        settings.breakpoints = base.breakpoints;
-        Ok(settings)
+        Ok(settings.with_breakpoints(base.breakpoints()))
     }
 }
 
@@ -692,7 +691,7 @@ mod tests {
             let text = format!("{DEFAULT_SCENE}\n[solver]\nmethod = {m}\n");
             Scene::parse(&text, Path::new("."), None)
         };
-        assert_eq!(with("\"rk4\"").unwrap().solver.method, Method::Rk4);
+        assert_eq!(with("\"rk4\"").unwrap().solver.method(), Method::Rk4);
         let e = with("\"euler\"").unwrap_err().to_string();
         assert!(
             e.contains(

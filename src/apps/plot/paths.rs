@@ -481,8 +481,8 @@ pub fn png(
 }
 
 fn plot_error(message: String) -> Error {
-    Error::io(
-        "plot",
-        std::io::Error::other(format!("drawing the path figure: {message}")),
-    )
+    Error::Plot {
+        path: "plot".into(),
+        message: format!("drawing the path figure: {message}"),
+    }
 }

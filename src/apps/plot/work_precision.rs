@@ -304,10 +304,10 @@ fn shorten(s: &str, n: usize) -> String {
 }
 
 fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::io(
-        path,
-        std::io::Error::other(format!("drawing the figure: {e}")),
-    )
+    Error::Plot {
+        path: path.into(),
+        message: format!("drawing the figure: {e}"),
+    }
 }
 
 /// Writes the diagram as SVG to `svg` and as PNG to `png`, each replacing its file only
