@@ -148,9 +148,11 @@ impl SolverOverrides {
     /// ```
     pub fn apply(&self, base: &SolverSettings) -> Result<SolverSettings, Error> {
         let rtol = self.rtol.unwrap_or(base.rtol());
-        let atol = self
-            .atol
-            .unwrap_or(if self.rtol.is_some() { rtol } else { base.atol() });
+        let atol = self.atol.unwrap_or(if self.rtol.is_some() {
+            rtol
+        } else {
+            base.atol()
+        });
         let settings = SolverSettings::new(
             self.method.unwrap_or(base.method()),
             rtol,
