@@ -1,0 +1,129 @@
+//! Lab frame <-> the paper's centre-of-mass frame, for one row of `resolve_lab`.
+//!
+//! The library builds this frame for lab scenes and lab batch rows (e_x along the line of
+//! centres from A to B, e_z = `up` without its e_x part, e_y = e_z x e_x; the frame moves
+//! with the centre of mass and does not rotate). The bindings reach the library through its
+//! centre-of-mass entry points (`Incoming::Cm`), so the change of frame is written out
+//! here, with the same formulas, tolerances and error messages as the library's lab rows;
+//! the tests compare every output and message with the command line's lab-frame batch.
+
+use billiard_contact::nalgebra::{Matrix3, Vector3};
+use billiard_contact::{CmState, Error, LabMotion};
+
+/// Relative tolerance on |p_B - p_A| = 2r (the library's, for lab scenes and rows).
+pub const TOUCH_TOLERANCE: f64 = 1e-9;
+
+/// One row of lab-frame input.
+#[derive(Debug, Clone, Copy)]
+pub struct LabRow {
+    pub pa: Vector3<f64>,
+    pub va: Vector3<f64>,
+    pub wa: Vector3<f64>,
+    pub pb: Vector3<f64>,
+    pub vb: Vector3<f64>,
+    pub wb: Vector3<f64>,
+    pub up: Vector3<f64>,
+}
+
+/// The centre-of-mass frame of one row.
+#[derive(Debug, Clone)]
+pub struct Frame {
+    /// Columns e_x, e_y, e_z in lab coordinates.
+    basis: Matrix3<f64>,
+    /// Velocity of the centre of mass (m/s).
+    v_cm: Vector3<f64>,
+    /// Unit `up`.
+    up: Vector3<f64>,
+}
+
+impl Frame {
+    /// The frame of a row whose balls touch (|p_B - p_A| = 2r within [`TOUCH_TOLERANCE`]).
+    pub fn new(row: &LabRow, radius: f64) -> Result<Self, Error> {
+        let d = row.pb - row.pa;
+        let dist = d.norm();
+        let touching = (dist - 2.0 * radius).abs() <= TOUCH_TOLERANCE * 2.0 * radius;
+        if !touching {
+            return Err(not_touching(row, dist, radius));
+        }
+        let up_norm = row.up.norm();
+        if !(up_norm > 0.0 && up_norm.is_finite()) {
+            return Err(Error::invalid(
+                "up",
+                format!("[{}, {}, {}]", row.up.x, row.up.y, row.up.z),
+                "a non-zero direction",
+            ));
+        }
+        let up = row.up / up_norm;
+        let ex = d / dist;
+        let mut ez = up - ex * up.dot(&ex);
+        if ez.norm() < 1e-12 {
+            // `up` along the line of centres: any perpendicular gives the same result; the
+            // lab axis least aligned with e_x, as the library takes.
+            let i = ex.iamin();
+            let mut axis = Vector3::zeros();
+            axis[i] = 1.0;
+            ez = axis - ex * axis.dot(&ex);
+        }
+        let ez = ez.normalize();
+        let ey = ez.cross(&ex);
+        Ok(Frame {
+            basis: Matrix3::from_columns(&[ex, ey, ez]),
+            v_cm: 0.5 * (row.va + row.vb),
+            up,
+        })
+    }
+
+    /// The centre-of-mass state of the row.
+    #[inline]
+    pub fn to_cm(&self, row: &LabRow) -> CmState {
+        let rt = self.basis.transpose();
+        CmState::new(rt * (0.5 * (row.va - row.vb)), rt * row.wa, rt * row.wb)
+    }
+
+    /// Lab motions of A and B for a centre-of-mass state.
+    #[inline]
+    pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
+        let u = self.basis * cm.u_cm;
+        (
+            LabMotion {
+                velocity: self.v_cm + u,
+                spin: self.basis * cm.omega_a,
+            },
+            LabMotion {
+                velocity: self.v_cm - u,
+                spin: self.basis * cm.omega_b,
+            },
+        )
+    }
+
+    /// Throw angle (degrees), counter-clockwise about `up`, from the horizontal line of
+    /// centres to the horizontal part of B's velocity change; `None` when either vanishes.
+    #[inline]
+    pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
+        let ex = self.basis.column(0).into_owned();
+        let line = ex - self.up * ex.dot(&self.up);
+        let dv = delta_v_b - self.up * delta_v_b.dot(&self.up);
+        if line.norm() < 1e-12 || dv.norm() <= 1e-12 * delta_v_b.norm() || dv.norm() == 0.0 {
+            return None;
+        }
+        let sin = line.cross(&dv).dot(&self.up);
+        let cos = line.dot(&dv);
+        Some(sin.atan2(cos).to_degrees())
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn not_touching(row: &LabRow, dist: f64, radius: f64) -> Error {
+    Error::invalid(
+        "pb",
+        format!(
+            "[{}, {}, {}] (|pb - pa| = {dist} m)",
+            row.pb.x, row.pb.y, row.pb.z
+        ),
+        format!(
+            "the balls must touch: |pb - pa| = 2r = {} m within a relative {TOUCH_TOLERANCE:e}",
+            2.0 * radius
+        ),
+    )
+}

@@ -1,0 +1,703 @@
+//! `BallBall`, `SpeedDependentFriction` and `BallBall.resolve_lab`: many lab-frame
+//! collisions from numpy arrays, in Rust, without the GIL.
+
+use crate::errors::to_py;
+use crate::frame::{Frame, LabRow};
+use crate::settings;
+use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::{Error, Friction, Incoming, Scene};
+use numpy::ndarray::IxDyn;
+use numpy::{AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Rows from which `resolve_lab` releases the GIL and works on all cores (below, the
+/// thread hand-over costs more than the rows).
+const PARALLEL_ROWS: usize = 2048;
+/// Rows per parallel work item.
+const CHUNK_ROWS: usize = 1024;
+
+/// Ball-ball friction mu(S) = a + b exp(-c S), S the sliding speed of the contact
+/// points (m/s); a, b dimensionless, c in s/m.
+///
+/// `evaluate="contact"` (default): mu at the current sliding speed all along the contact
+/// (the sliding speed falls as the friction acts).
+/// `evaluate="initial-slip"`: mu frozen at the sliding speed before the collision,
+/// mu(S(0)), and used as a constant coefficient (pooltool's convention).
+#[pyclass(
+    frozen,
+    module = "billiard_contact._core",
+    name = "SpeedDependentFriction"
+)]
+#[derive(Clone, Copy)]
+pub struct SpeedDependentFriction {
+    friction: Friction,
+    #[pyo3(get)]
+    a: f64,
+    #[pyo3(get)]
+    b: f64,
+    #[pyo3(get)]
+    c: f64,
+    initial_slip: bool,
+}
+
+#[pymethods]
+impl SpeedDependentFriction {
+    #[new]
+    #[pyo3(signature = (a, b, c, evaluate = "contact"))]
+    fn new(a: f64, b: f64, c: f64, evaluate: &str) -> PyResult<Self> {
+        let friction = Friction::speed_dependent(a, b, c).map_err(to_py)?;
+        let initial_slip = match evaluate {
+            "contact" => false,
+            "initial-slip" => true,
+            other => {
+                return Err(to_py(Error::invalid(
+                    "evaluate",
+                    format!("\"{other}\""),
+                    "\"contact\" (mu(S) along the contact) or \"initial-slip\" (mu(S(0)) \
+                     frozen, pooltool's convention)",
+                )))
+            }
+        };
+        Ok(SpeedDependentFriction {
+            friction,
+            a,
+            b,
+            c,
+            initial_slip,
+        })
+    }
+
+    /// Where mu(S) is evaluated: "contact" or "initial-slip".
+    #[getter]
+    fn evaluate(&self) -> &'static str {
+        if self.initial_slip {
+            "initial-slip"
+        } else {
+            "contact"
+        }
+    }
+
+    /// mu at sliding speed `s` (m/s).
+    fn mu(&self, s: f64) -> f64 {
+        self.friction.mu(s)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "SpeedDependentFriction(a={:?}, b={:?}, c={:?}, evaluate=\"{}\")",
+            self.a,
+            self.b,
+            self.c,
+            self.evaluate()
+        )
+    }
+}
+
+/// The friction argument of `BallBall`: a number or a `SpeedDependentFriction`.
+#[derive(Clone, Copy)]
+enum Mu {
+    Constant(f64),
+    Speed(SpeedDependentFriction),
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Mu {
+    type Error = PyErr;
+    fn extract(ob: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if let Ok(s) = ob.cast::<SpeedDependentFriction>() {
+            return Ok(Mu::Speed(*s.get()));
+        }
+        match ob.extract::<f64>() {
+            Ok(x) => Ok(Mu::Constant(x)),
+            Err(_) => Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "mu: expected a number or SpeedDependentFriction, got {}",
+                ob.get_type().name()?
+            ))),
+        }
+    }
+}
+
+/// A TOML number the library reads back to the same f64 (inf and nan included, so the
+/// library's own validation names them).
+fn toml_f64(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// Two identical balls and their contact: mass (kg), radius (m), alpha (I = alpha m r^2),
+/// ball-ball friction mu (a number, or SpeedDependentFriction), restitution e
+/// (P = (1 + e) m U(0)), the normal-force profile and its duration (s; used by the
+/// time-stepping methods and for stick times; the closed form does not depend on them),
+/// and the effects `friction` and `stick`.
+///
+/// Bad values raise ValueError with the command line's message, e.g.
+/// "balls.mass = -1: > 0 kg".
+#[pyclass(frozen, module = "billiard_contact._core", name = "BallBall")]
+pub struct BallBall {
+    scene: Scene,
+    /// The closed form over this model (resolve_lab's default).
+    closed_form: BatchSetup,
+    mass: f64,
+    radius: f64,
+    alpha: f64,
+    mu: Mu,
+    restitution: f64,
+    profile: String,
+    duration: f64,
+    friction: bool,
+    stick: bool,
+}
+
+/// One output row.
+#[derive(Clone, Copy)]
+struct RowOut {
+    va: Vector3<f64>,
+    wa: Vector3<f64>,
+    vb: Vector3<f64>,
+    wb: Vector3<f64>,
+    impulse: f64,
+    tangential_impulse: f64,
+    sticks: bool,
+    throw: f64,
+}
+
+/// The output columns of a range of rows.
+struct OutSlices<'a> {
+    va: &'a mut [f64],
+    wa: &'a mut [f64],
+    vb: &'a mut [f64],
+    wb: &'a mut [f64],
+    impulse: &'a mut [f64],
+    tangential_impulse: &'a mut [f64],
+    sticks: &'a mut [bool],
+    throw: &'a mut [f64],
+}
+
+impl<'a> OutSlices<'a> {
+    /// Rows [0, k) and [k, n).
+    fn split_at(self, k: usize) -> (OutSlices<'a>, OutSlices<'a>) {
+        let (va0, va1) = self.va.split_at_mut(3 * k);
+        let (wa0, wa1) = self.wa.split_at_mut(3 * k);
+        let (vb0, vb1) = self.vb.split_at_mut(3 * k);
+        let (wb0, wb1) = self.wb.split_at_mut(3 * k);
+        let (p0, p1) = self.impulse.split_at_mut(k);
+        let (j0, j1) = self.tangential_impulse.split_at_mut(k);
+        let (s0, s1) = self.sticks.split_at_mut(k);
+        let (t0, t1) = self.throw.split_at_mut(k);
+        (
+            OutSlices {
+                va: va0,
+                wa: wa0,
+                vb: vb0,
+                wb: wb0,
+                impulse: p0,
+                tangential_impulse: j0,
+                sticks: s0,
+                throw: t0,
+            },
+            OutSlices {
+                va: va1,
+                wa: wa1,
+                vb: vb1,
+                wb: wb1,
+                impulse: p1,
+                tangential_impulse: j1,
+                sticks: s1,
+                throw: t1,
+            },
+        )
+    }
+
+    #[inline(always)]
+    fn put(&mut self, i: usize, o: &RowOut) {
+        self.va[3 * i..3 * i + 3].copy_from_slice(o.va.as_slice());
+        self.wa[3 * i..3 * i + 3].copy_from_slice(o.wa.as_slice());
+        self.vb[3 * i..3 * i + 3].copy_from_slice(o.vb.as_slice());
+        self.wb[3 * i..3 * i + 3].copy_from_slice(o.wb.as_slice());
+        self.impulse[i] = o.impulse;
+        self.tangential_impulse[i] = o.tangential_impulse;
+        self.sticks[i] = o.sticks;
+        self.throw[i] = o.throw;
+    }
+}
+
+/// One input, read through its own strides (any memory order; a (3,) input has row
+/// stride 0, so it is broadcast over the rows).
+#[derive(Clone, Copy)]
+struct Strided {
+    ptr: *const f64,
+    /// Strides in elements.
+    row: isize,
+    col: isize,
+}
+
+// SAFETY: the pointer reads the numpy buffers that `resolve_lab` holds read-only borrows of
+// (or a static) for the whole computation; nothing writes through it.
+unsafe impl Send for Strided {}
+unsafe impl Sync for Strided {}
+
+/// The seven inputs, each of n rows.
+struct Inputs {
+    views: [Strided; 7],
+}
+
+const NAMES: [&str; 7] = ["pa", "va", "wa", "pb", "vb", "wb", "up"];
+static UP_DEFAULT: [f64; 3] = [0.0, 0.0, 1.0];
+
+impl Inputs {
+    #[inline(always)]
+    fn vec(&self, k: usize, i: usize) -> Vector3<f64> {
+        let v = self.views[k];
+        let base = i as isize * v.row;
+        // SAFETY: i < n, and each view addresses an (n, 3) (or broadcast (3,)) array that
+        // outlives the call (checked and borrowed in `resolve_lab`).
+        unsafe {
+            Vector3::new(
+                *v.ptr.offset(base),
+                *v.ptr.offset(base + v.col),
+                *v.ptr.offset(base + 2 * v.col),
+            )
+        }
+    }
+
+    /// Row i, every component checked finite.
+    #[inline(always)]
+    fn row(&self, i: usize) -> Result<LabRow, Error> {
+        let r = LabRow {
+            pa: self.vec(0, i),
+            va: self.vec(1, i),
+            wa: self.vec(2, i),
+            pb: self.vec(3, i),
+            vb: self.vec(4, i),
+            wb: self.vec(5, i),
+            up: self.vec(6, i),
+        };
+        let all = [r.pa, r.va, r.wa, r.pb, r.vb, r.wb, r.up];
+        // x * 0 is 0 for finite x, NaN otherwise: one comparison for the 21 numbers.
+        let zero: f64 = all.iter().map(|v| v.x * 0.0 + v.y * 0.0 + v.z * 0.0).sum();
+        if zero != 0.0 {
+            return Err(non_finite(&all));
+        }
+        Ok(r)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn non_finite(all: &[Vector3<f64>; 7]) -> Error {
+    for (name, v) in NAMES.iter().zip(all) {
+        for k in 0..3 {
+            if !v[k].is_finite() {
+                return Error::invalid(format!("{name}[{k}]"), v[k], "a finite number");
+            }
+        }
+    }
+    Error::invalid("input", "a non-finite number", "finite numbers")
+}
+
+impl BallBall {
+    /// One collision: lab row -> centre-of-mass state -> the library -> lab motions.
+    #[inline(always)]
+    fn resolve_row(
+        &self,
+        setup: &BatchSetup,
+        frozen: Option<&Friction>,
+        inputs: &Inputs,
+        i: usize,
+    ) -> Result<RowOut, Error> {
+        let row = inputs.row(i)?;
+        let frame = Frame::new(&row, self.radius)?;
+        let cm = frame.to_cm(&row);
+        let input = match frozen {
+            None => BatchInput::cm(cm),
+            // mu(S(0)) from the incoming slip, then a constant coefficient for this row.
+            Some(f) => BatchInput {
+                incoming: Incoming::Cm(cm),
+                overrides: Overrides {
+                    mu: Some(f.mu(cm.sliding_speed(self.radius))),
+                    ..Overrides::default()
+                },
+            },
+        };
+        let o = resolve(setup, &input)?;
+        let (a, b) = frame.to_lab(&o.out);
+        Ok(RowOut {
+            va: a.velocity,
+            wa: a.spin,
+            vb: b.velocity,
+            wb: b.spin,
+            impulse: o.impulse,
+            tangential_impulse: o.tangential_impulse,
+            sticks: o.sticks,
+            throw: frame
+                .throw_angle_deg(&(b.velocity - row.vb))
+                .unwrap_or(f64::NAN),
+        })
+    }
+
+    /// Rows [start, start + out.len) into `out`; the first failing row and its error.
+    fn fill_range(
+        &self,
+        setup: &BatchSetup,
+        frozen: Option<&Friction>,
+        inputs: &Inputs,
+        start: usize,
+        mut out: OutSlices,
+    ) -> Result<(), (usize, Error)> {
+        for k in 0..out.impulse.len() {
+            let i = start + k;
+            match self.resolve_row(setup, frozen, inputs, i) {
+                Ok(o) => out.put(k, &o),
+                Err(e) => return Err((i, e)),
+            }
+        }
+        Ok(())
+    }
+
+    /// All n rows, in parallel chunks when `parallel`.
+    fn fill(
+        &self,
+        setup: &BatchSetup,
+        frozen: Option<&Friction>,
+        inputs: &Inputs,
+        out: OutSlices,
+        parallel: bool,
+    ) -> Result<(), (usize, Error)> {
+        let n = out.impulse.len();
+        if !parallel {
+            return self.fill_range(setup, frozen, inputs, 0, out);
+        }
+        let mut chunks = Vec::with_capacity(n.div_ceil(CHUNK_ROWS));
+        let mut rest = out;
+        let mut start = 0;
+        while start < n {
+            let k = CHUNK_ROWS.min(n - start);
+            let (head, tail) = rest.split_at(k);
+            chunks.push((start, head));
+            rest = tail;
+            start += k;
+        }
+        chunks
+            .into_par_iter()
+            .map(|(start, chunk)| self.fill_range(setup, frozen, inputs, start, chunk))
+            .reduce(
+                || Ok(()),
+                |a, b| match (a, b) {
+                    (Err(x), Err(y)) => Err(if x.0 <= y.0 { x } else { y }),
+                    (Err(x), _) | (_, Err(x)) => Err(x),
+                    _ => Ok(()),
+                },
+            )
+    }
+}
+
+/// The inputs and the number of rows n; `single` when every input has shape (3,).
+fn shaped(
+    arrays: &[Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>; 7],
+) -> PyResult<(Inputs, usize, bool)> {
+    let mut n: Option<(usize, &str)> = None;
+    for (k, a) in arrays.iter().enumerate() {
+        let Some(a) = a else { continue };
+        let shape = a.shape();
+        if !matches!(shape, [3] | [_, 3]) {
+            return Err(PyValueError::new_err(format!(
+                "{} has shape {}: expected (3,) or (N, 3)",
+                NAMES[k],
+                shape_str(shape)
+            )));
+        }
+        if let [rows, 3] = shape {
+            match n {
+                None => n = Some((*rows, NAMES[k])),
+                Some((m, first)) if m != *rows => {
+                    return Err(PyValueError::new_err(format!(
+                        "{} has {rows} rows but {first} has {m}: arrays of shape (N, 3) must \
+                         have the same N",
+                        NAMES[k]
+                    )))
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut views = [Strided {
+        ptr: UP_DEFAULT.as_ptr(),
+        row: 0,
+        col: 1,
+    }; 7];
+    for (k, a) in arrays.iter().enumerate() {
+        let Some(a) = a else { continue };
+        let v = a.as_array();
+        let s = v.strides();
+        views[k] = Strided {
+            ptr: v.as_ptr(),
+            row: if v.ndim() == 1 { 0 } else { s[0] },
+            col: s[v.ndim() - 1],
+        };
+    }
+    Ok((Inputs { views }, n.map_or(1, |(m, _)| m), n.is_none()))
+}
+
+fn shape_str(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// A new numpy array of `dims`, and its elements as a slice to fill.
+///
+/// SAFETY of the slice: the array was just created, is C-contiguous and nothing else
+/// refers to it until it is returned to Python (after the slice is dropped).
+fn new_array<'py, T: numpy::Element>(py: Python<'py>, dims: &[usize]) -> Bound<'py, PyArrayDyn<T>> {
+    // SAFETY: every element is written before the array reaches Python (or the array is
+    // dropped on error).
+    unsafe { PyArrayDyn::<T>::new(py, IxDyn(dims), false) }
+}
+
+#[pymethods]
+impl BallBall {
+    #[new]
+    #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0,
+                        profile = "half-sine", duration = 2.5e-4, friction = true, stick = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        mass: f64,
+        radius: f64,
+        alpha: f64,
+        mu: Mu,
+        restitution: f64,
+        profile: &str,
+        duration: f64,
+        friction: bool,
+        stick: bool,
+    ) -> PyResult<Self> {
+        // The model is a scene (with a placeholder incoming state): the library validates
+        // every parameter and names it as in a scene file.
+        let mu_toml = match mu {
+            Mu::Constant(x) => toml_f64(x),
+            Mu::Speed(s) => format!(
+                "{{ model = \"speed-dependent\", a = {}, b = {}, c = {} }}",
+                toml_f64(s.a),
+                toml_f64(s.b),
+                toml_f64(s.c)
+            ),
+        };
+        let profile_toml = serde_json::to_string(profile).expect("a string serialises");
+        let text = format!(
+            "name = \"BallBall\"\n\
+             [balls]\nmass = {}\nradius = {}\nalpha = {}\n\
+             [contact]\nmu = {mu_toml}\nrestitution = {}\n\
+             [contact.profile]\nshape = {profile_toml}\nduration = {}\n\
+             [incoming.cm]\nu = [1.0, 0.0, 0.0]\n\
+             [effects]\nfriction = {friction}\nstick = {stick}\n",
+            toml_f64(mass),
+            toml_f64(radius),
+            toml_f64(alpha),
+            toml_f64(restitution),
+            toml_f64(duration),
+        );
+        let scene = Scene::parse(&text, Path::new("."), None)
+            .map_err(crate::errors::unwrap_scene_message)
+            .map_err(to_py)?;
+        let closed_form =
+            BatchSetup::from_scene(&scene, settings::for_batch(None, None).map_err(to_py)?);
+        Ok(BallBall {
+            scene,
+            closed_form,
+            mass,
+            radius,
+            alpha,
+            mu,
+            restitution,
+            profile: profile.to_string(),
+            duration,
+            friction,
+            stick,
+        })
+    }
+
+    /// Resolves collisions given in the lab frame.
+    ///
+    /// pa, va, wa, pb, vb, wb: positions (m), velocities (m/s) and spins (rad/s) of
+    /// balls A and B, each of shape (3,) or (N, 3) (any memory order; lists work too; a
+    /// (3,) array is used for every row). up: the direction away from the table (need
+    /// not be unit), (3,) or (N, 3), default (0, 0, 1). The centres must touch:
+    /// |pb - pa| = 2 radius within a relative 1e-9.
+    ///
+    /// method: None (the closed form), "closed-form", "rk4", "dopri5" or "dop853";
+    /// rtol: relative tolerance of the adaptive methods (atol = rtol), default 1e-10.
+    ///
+    /// Returns a dict of numpy arrays: "va", "wa", "vb", "wb" (outgoing velocities, m/s,
+    /// and spins, rad/s; the input's shape), "impulse" (normal impulse P, N s),
+    /// "tangential_impulse" (J, N s), "sticks" (bool: sliding stopped during contact),
+    /// "throw_angle_deg" (degrees, counter-clockwise about up, from the line of centres
+    /// to B's horizontal velocity change; NaN where undefined: no collision, a vertical
+    /// line of centres), each of shape () or (N,).
+    ///
+    /// Bad input raises ValueError naming the row and the field, with the command
+    /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.
+    #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn resolve_lab<'py>(
+        &self,
+        py: Python<'py>,
+        pa: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        va: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        wa: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        pb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        vb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        wb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        up: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+        method: Option<&str>,
+        rtol: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let arrays = [
+            Some(pa),
+            Some(va),
+            Some(wa),
+            Some(pb),
+            Some(vb),
+            Some(wb),
+            up,
+        ];
+        let (inputs, n, single) = shaped(&arrays)?;
+        let own_setup;
+        let setup = if method.is_none() && rtol.is_none() {
+            &self.closed_form
+        } else {
+            own_setup = BatchSetup::from_scene(
+                &self.scene,
+                settings::for_batch(method, rtol).map_err(to_py)?,
+            );
+            &own_setup
+        };
+        let frozen = match self.mu {
+            Mu::Speed(s) if s.initial_slip => Some(s.friction),
+            _ => None,
+        };
+        let (vdims, sdims): (&[usize], &[usize]) =
+            if single { (&[3], &[]) } else { (&[n, 3], &[n]) };
+        let out_va = new_array::<f64>(py, vdims);
+        let out_wa = new_array::<f64>(py, vdims);
+        let out_vb = new_array::<f64>(py, vdims);
+        let out_wb = new_array::<f64>(py, vdims);
+        let out_p = new_array::<f64>(py, sdims);
+        let out_j = new_array::<f64>(py, sdims);
+        let out_sticks = new_array::<bool>(py, sdims);
+        let out_throw = new_array::<f64>(py, sdims);
+        let result = {
+            // SAFETY: fresh C-contiguous arrays, only written here (see `new_array`).
+            let slices = unsafe {
+                OutSlices {
+                    va: out_va.as_slice_mut().expect("contiguous"),
+                    wa: out_wa.as_slice_mut().expect("contiguous"),
+                    vb: out_vb.as_slice_mut().expect("contiguous"),
+                    wb: out_wb.as_slice_mut().expect("contiguous"),
+                    impulse: out_p.as_slice_mut().expect("contiguous"),
+                    tangential_impulse: out_j.as_slice_mut().expect("contiguous"),
+                    sticks: out_sticks.as_slice_mut().expect("contiguous"),
+                    throw: out_throw.as_slice_mut().expect("contiguous"),
+                }
+            };
+            let closed_form = method.is_none() || method == Some("closed-form");
+            let frozen = frozen.as_ref();
+            if n >= PARALLEL_ROWS || (!closed_form && n > 0) {
+                let parallel = n >= PARALLEL_ROWS;
+                py.detach(|| self.fill(setup, frozen, &inputs, slices, parallel))
+            } else {
+                self.fill(setup, frozen, &inputs, slices, false)
+            }
+        };
+        drop(arrays);
+        if let Err((i, e)) = result {
+            let msg = if single {
+                e.to_string()
+            } else {
+                format!("row {i}: {e}")
+            };
+            return Err(match e.is_bad_input() {
+                true => PyValueError::new_err(msg),
+                false => pyo3::exceptions::PyRuntimeError::new_err(msg),
+            });
+        }
+        let d = PyDict::new(py);
+        d.set_item("va", out_va)?;
+        d.set_item("wa", out_wa)?;
+        d.set_item("vb", out_vb)?;
+        d.set_item("wb", out_wb)?;
+        d.set_item("impulse", out_p)?;
+        d.set_item("tangential_impulse", out_j)?;
+        d.set_item("sticks", out_sticks)?;
+        d.set_item("throw_angle_deg", out_throw)?;
+        Ok(d)
+    }
+
+    /// Mass m (kg).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// Radius r (m).
+    #[getter]
+    fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// I = alpha m r^2.
+    #[getter]
+    fn alpha(&self) -> f64 {
+        self.alpha
+    }
+
+    /// Ball-ball friction: a number or SpeedDependentFriction.
+    #[getter]
+    fn mu(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        Ok(match self.mu {
+            Mu::Constant(x) => x.into_pyobject(py)?.into_any().unbind(),
+            Mu::Speed(s) => Bound::new(py, s)?.into_any().unbind(),
+        })
+    }
+
+    /// Restitution e: P = (1 + e) m U(0).
+    #[getter]
+    fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    fn __repr__(&self) -> String {
+        let mu = match self.mu {
+            Mu::Constant(x) => format!("{x:?}"),
+            Mu::Speed(s) => s.__repr__(),
+        };
+        format!(
+            "BallBall(mass={:?}, radius={:?}, alpha={:?}, mu={mu}, restitution={:?}, \
+             profile=\"{}\", duration={:?}, friction={}, stick={})",
+            self.mass,
+            self.radius,
+            self.alpha,
+            self.restitution,
+            self.profile,
+            self.duration,
+            if self.friction { "True" } else { "False" },
+            if self.stick { "True" } else { "False" },
+        )
+    }
+}
