@@ -38,6 +38,7 @@ pub struct Frame {
 
 impl Frame {
     /// The frame of a row whose balls touch (|p_B - p_A| = 2r within [`TOUCH_TOLERANCE`]).
+    #[inline(always)]
     pub fn new(row: &LabRow, radius: f64) -> Result<Self, Error> {
         let d = row.pb - row.pa;
         let dist = d.norm();
@@ -47,24 +48,22 @@ impl Frame {
         }
         let up_norm = row.up.norm();
         if !(up_norm > 0.0 && up_norm.is_finite()) {
-            return Err(Error::invalid(
-                "up",
-                format!("[{}, {}, {}]", row.up.x, row.up.y, row.up.z),
-                "a non-zero direction",
-            ));
+            return Err(zero_up(row));
         }
         let up = row.up / up_norm;
         let ex = d / dist;
         let mut ez = up - ex * up.dot(&ex);
-        if ez.norm() < 1e-12 {
+        let mut ez_norm = ez.norm();
+        if ez_norm < 1e-12 {
             // `up` along the line of centres: any perpendicular gives the same result; the
             // lab axis least aligned with e_x, as the library takes.
             let i = ex.iamin();
             let mut axis = Vector3::zeros();
             axis[i] = 1.0;
             ez = axis - ex * axis.dot(&ex);
+            ez_norm = ez.norm();
         }
-        let ez = ez.normalize();
+        let ez = ez / ez_norm;
         let ey = ez.cross(&ex);
         Ok(Frame {
             basis: Matrix3::from_columns(&[ex, ey, ez]),
@@ -74,14 +73,14 @@ impl Frame {
     }
 
     /// The centre-of-mass state of the row.
-    #[inline]
+    #[inline(always)]
     pub fn to_cm(&self, row: &LabRow) -> CmState {
         let rt = self.basis.transpose();
         CmState::new(rt * (0.5 * (row.va - row.vb)), rt * row.wa, rt * row.wb)
     }
 
     /// Lab motions of A and B for a centre-of-mass state.
-    #[inline]
+    #[inline(always)]
     pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
         let u = self.basis * cm.u_cm;
         (
@@ -97,19 +96,32 @@ impl Frame {
     }
 
     /// Throw angle (degrees), counter-clockwise about `up`, from the horizontal line of
-    /// centres to the horizontal part of B's velocity change; `None` when either vanishes.
-    #[inline]
+    /// centres to the horizontal part of B's velocity change; `None` when the line of
+    /// centres is vertical or the horizontal change vanishes (below 1e-12 of the change).
+    /// The library's tests on lengths, compared squared (no square roots).
+    #[inline(always)]
     pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
         let ex = self.basis.column(0).into_owned();
         let line = ex - self.up * ex.dot(&self.up);
         let dv = delta_v_b - self.up * delta_v_b.dot(&self.up);
-        if line.norm() < 1e-12 || dv.norm() <= 1e-12 * delta_v_b.norm() || dv.norm() == 0.0 {
+        let dv2 = dv.norm_squared();
+        if line.norm_squared() < 1e-24 || dv2 <= 1e-24 * delta_v_b.norm_squared() || dv2 == 0.0 {
             return None;
         }
         let sin = line.cross(&dv).dot(&self.up);
         let cos = line.dot(&dv);
         Some(sin.atan2(cos).to_degrees())
     }
+}
+
+#[cold]
+#[inline(never)]
+fn zero_up(row: &LabRow) -> Error {
+    Error::invalid(
+        "up",
+        format!("[{}, {}, {}]", row.up.x, row.up.y, row.up.z),
+        "a non-zero direction",
+    )
 }
 
 #[cold]

@@ -7,12 +7,18 @@ use crate::settings;
 use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{Error, Friction, Incoming, Scene};
-use numpy::ndarray::IxDyn;
-use numpy::{AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::npyffi::{npy_intp, NPY_ARRAY_CARRAY, NPY_TYPES, PY_ARRAY_API};
+use numpy::{
+    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyValueError;
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyString};
 use rayon::prelude::*;
+use std::os::raw::c_int;
 use std::path::Path;
 
 /// Rows from which `resolve_lab` releases the GIL and works on all cores (below, the
@@ -217,31 +223,40 @@ impl<'a> OutSlices<'a> {
         )
     }
 
+    /// Row i (i < the number of rows: `fill_range` loops over `impulse.len()`, and every
+    /// slice was split at the same rows).
     #[inline(always)]
     fn put(&mut self, i: usize, o: &RowOut) {
-        self.va[3 * i..3 * i + 3].copy_from_slice(o.va.as_slice());
-        self.wa[3 * i..3 * i + 3].copy_from_slice(o.wa.as_slice());
-        self.vb[3 * i..3 * i + 3].copy_from_slice(o.vb.as_slice());
-        self.wb[3 * i..3 * i + 3].copy_from_slice(o.wb.as_slice());
-        self.impulse[i] = o.impulse;
-        self.tangential_impulse[i] = o.tangential_impulse;
-        self.sticks[i] = o.sticks;
-        self.throw[i] = o.throw;
+        debug_assert!(i < self.impulse.len() && 3 * i + 3 <= self.va.len());
+        // SAFETY: as above; the vector slices hold 3 elements per row.
+        unsafe {
+            for k in 0..3 {
+                *self.va.get_unchecked_mut(3 * i + k) = o.va[k];
+                *self.wa.get_unchecked_mut(3 * i + k) = o.wa[k];
+                *self.vb.get_unchecked_mut(3 * i + k) = o.vb[k];
+                *self.wb.get_unchecked_mut(3 * i + k) = o.wb[k];
+            }
+            *self.impulse.get_unchecked_mut(i) = o.impulse;
+            *self.tangential_impulse.get_unchecked_mut(i) = o.tangential_impulse;
+            *self.sticks.get_unchecked_mut(i) = o.sticks;
+            *self.throw.get_unchecked_mut(i) = o.throw;
+        }
     }
 }
 
-/// One input, read through its own strides (any memory order; a (3,) input has row
-/// stride 0, so it is broadcast over the rows).
+/// One input, read through its own byte strides (any memory order and alignment; a (3,)
+/// input has row stride 0, so it is broadcast over the rows).
 #[derive(Clone, Copy)]
 struct Strided {
-    ptr: *const f64,
-    /// Strides in elements.
+    ptr: *const u8,
+    /// Strides in bytes.
     row: isize,
     col: isize,
 }
 
-// SAFETY: the pointer reads the numpy buffers that `resolve_lab` holds read-only borrows of
-// (or a static) for the whole computation; nothing writes through it.
+// SAFETY: the pointer reads a numpy buffer that `resolve_lab` keeps alive (and, when it
+// releases the GIL, holds a read-only borrow of) for the whole computation, or a static;
+// nothing writes through it.
 unsafe impl Send for Strided {}
 unsafe impl Sync for Strided {}
 
@@ -258,14 +273,11 @@ impl Inputs {
     fn vec(&self, k: usize, i: usize) -> Vector3<f64> {
         let v = self.views[k];
         let base = i as isize * v.row;
-        // SAFETY: i < n, and each view addresses an (n, 3) (or broadcast (3,)) array that
-        // outlives the call (checked and borrowed in `resolve_lab`).
+        // SAFETY: i < n, and each view addresses an (n, 3) (or broadcast (3,)) float64 array
+        // that outlives the call (checked in `shaped`).
         unsafe {
-            Vector3::new(
-                *v.ptr.offset(base),
-                *v.ptr.offset(base + v.col),
-                *v.ptr.offset(base + 2 * v.col),
-            )
+            let at = |off: isize| v.ptr.offset(off).cast::<f64>().read_unaligned();
+            Vector3::new(at(base), at(base + v.col), at(base + 2 * v.col))
         }
     }
 
@@ -400,49 +412,82 @@ impl BallBall {
     }
 }
 
-/// The inputs and the number of rows n; `single` when every input has shape (3,).
-fn shaped(
-    arrays: &[Option<PyArrayLikeDyn<'_, f64, AllowTypeChange>>; 7],
-) -> PyResult<(Inputs, usize, bool)> {
-    let mut n: Option<(usize, &str)> = None;
-    for (k, a) in arrays.iter().enumerate() {
-        let Some(a) = a else { continue };
-        let shape = a.shape();
-        if !matches!(shape, [3] | [_, 3]) {
-            return Err(PyValueError::new_err(format!(
-                "{} has shape {}: expected (3,) or (N, 3)",
-                NAMES[k],
-                shape_str(shape)
-            )));
-        }
-        if let [rows, 3] = shape {
-            match n {
-                None => n = Some((*rows, NAMES[k])),
-                Some((m, first)) if m != *rows => {
-                    return Err(PyValueError::new_err(format!(
-                        "{} has {rows} rows but {first} has {m}: arrays of shape (N, 3) must \
-                         have the same N",
-                        NAMES[k]
-                    )))
-                }
-                _ => {}
-            }
+/// An input as a float64 numpy array: itself when it is one (no copy, any strides), else
+/// numpy's conversion (lists, tuples, other dtypes).
+fn float_array<'py>(ob: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    if let Ok(a) = ob.cast::<PyUntypedArray>() {
+        let dtype = a.dtype();
+        if dtype.num() == NPY_TYPES::NPY_DOUBLE as c_int
+            && dtype.is_native_byteorder() != Some(false)
+        {
+            // SAFETY: a numpy array of native float64.
+            return Ok(unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() }.clone());
         }
     }
+    let py = ob.py();
+    // SAFETY: PyArray_FromAny with a new reference to the float64 descriptor (stolen), the
+    // standard conversion of any array-like; the result is a new reference or NULL.
+    let array = unsafe {
+        let ptr = numpy::PY_ARRAY_API.PyArray_FromAny(
+            py,
+            ob.as_ptr(),
+            numpy::dtype::<f64>(py).into_ptr().cast(),
+            0,
+            0,
+            numpy::npyffi::NPY_ARRAY_FORCECAST,
+            std::ptr::null_mut(),
+        );
+        Bound::from_owned_ptr_or_err(py, ptr)?
+    };
+    Ok(array.cast_into::<PyArrayDyn<f64>>()?)
+}
+
+/// The inputs and the number of rows n; `single` when every input has shape (3,).
+fn shaped(arrays: &[Option<Bound<'_, PyArrayDyn<f64>>>; 7]) -> PyResult<(Inputs, usize, bool)> {
+    let mut n: Option<(usize, &str)> = None;
     let mut views = [Strided {
-        ptr: UP_DEFAULT.as_ptr(),
+        ptr: UP_DEFAULT.as_ptr().cast(),
         row: 0,
-        col: 1,
+        col: 8,
     }; 7];
     for (k, a) in arrays.iter().enumerate() {
         let Some(a) = a else { continue };
-        let v = a.as_array();
-        let s = v.strides();
-        views[k] = Strided {
-            ptr: v.as_ptr(),
-            row: if v.ndim() == 1 { 0 } else { s[0] },
-            col: s[v.ndim() - 1],
-        };
+        let shape = a.shape();
+        let strides = a.strides();
+        match *shape {
+            [3] => {
+                views[k] = Strided {
+                    ptr: a.data() as *const u8,
+                    row: 0,
+                    col: strides[0],
+                }
+            }
+            [rows, 3] => {
+                match n {
+                    None => n = Some((rows, NAMES[k])),
+                    Some((m, first)) if m != rows => {
+                        return Err(PyValueError::new_err(format!(
+                            "{} has {rows} rows but {first} has {m}: arrays of shape (N, 3) \
+                             must have the same N",
+                            NAMES[k]
+                        )))
+                    }
+                    _ => {}
+                }
+                views[k] = Strided {
+                    ptr: a.data() as *const u8,
+                    row: strides[0],
+                    col: strides[1],
+                }
+            }
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "{} has shape {}: expected (3,) or (N, 3)",
+                    NAMES[k],
+                    shape_str(shape)
+                )))
+            }
+        }
     }
     Ok((Inputs { views }, n.map_or(1, |(m, _)| m), n.is_none()))
 }
@@ -461,14 +506,199 @@ fn shape_str(shape: &[usize]) -> String {
     }
 }
 
-/// A new numpy array of `dims`, and its elements as a slice to fill.
-///
-/// SAFETY of the slice: the array was just created, is C-contiguous and nothing else
-/// refers to it until it is returned to Python (after the slice is dropped).
-fn new_array<'py, T: numpy::Element>(py: Python<'py>, dims: &[usize]) -> Bound<'py, PyArrayDyn<T>> {
-    // SAFETY: every element is written before the array reaches Python (or the array is
-    // dropped on error).
-    unsafe { PyArrayDyn::<T>::new(py, IxDyn(dims), false) }
+/// The output arrays of `resolve_lab`. For N rows: arrays of shape (N, 3) and (N,). For
+/// one collision, one numpy buffer holds everything and the outputs are views of it,
+/// shapes (3,) and (): one allocation instead of eight (the single call is dominated by
+/// numpy object creation).
+enum Outputs<'py> {
+    Rows {
+        vectors: [Bound<'py, PyAny>; 4],
+        scalars: [Bound<'py, PyAny>; 3],
+        sticks: Bound<'py, PyAny>,
+    },
+    One {
+        /// va, wa, vb, wb, impulse, tangential impulse, throw, sticks (a byte of the 16th).
+        block: Bound<'py, PyArray1<f64>>,
+    },
+}
+
+/// Elements of `block` for one collision.
+const ONE_LEN: usize = 16;
+
+impl<'py> Outputs<'py> {
+    fn new(py: Python<'py>, n: usize, single: bool) -> Self {
+        // SAFETY (uninitialised arrays): every element is written by `fill` before the
+        // arrays reach Python; on error they are dropped unseen.
+        unsafe {
+            if single {
+                let block = PyArray1::<f64>::new(py, [ONE_LEN], false);
+                *block.data().add(ONE_LEN - 1) = 0.0;
+                return Outputs::One { block };
+            }
+            let vector = || PyArray2::<f64>::new(py, [n, 3], false).into_any();
+            let scalar = || PyArray1::<f64>::new(py, [n], false).into_any();
+            Outputs::Rows {
+                vectors: [vector(), vector(), vector(), vector()],
+                scalars: [scalar(), scalar(), scalar()],
+                sticks: PyArray1::<bool>::new(py, [n], false).into_any(),
+            }
+        }
+    }
+
+    /// The arrays' elements, to fill.
+    ///
+    /// # Safety
+    /// The arrays are fresh, C-contiguous and not yet visible to Python: nothing else
+    /// reads or writes them while the slices live.
+    unsafe fn slices<'s>(&self) -> OutSlices<'s> {
+        unsafe fn part<'s, T>(base: *mut T, len: usize) -> &'s mut [T] {
+            unsafe { std::slice::from_raw_parts_mut(base, len) }
+        }
+        unsafe fn f64s<'s>(a: &Bound<'_, PyAny>) -> &'s mut [f64] {
+            let a = unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() };
+            unsafe { part(a.data(), a.len()) }
+        }
+        unsafe {
+            match self {
+                Outputs::Rows {
+                    vectors,
+                    scalars,
+                    sticks,
+                } => {
+                    let st = sticks.cast_unchecked::<PyArrayDyn<bool>>();
+                    OutSlices {
+                        va: f64s(&vectors[0]),
+                        wa: f64s(&vectors[1]),
+                        vb: f64s(&vectors[2]),
+                        wb: f64s(&vectors[3]),
+                        impulse: f64s(&scalars[0]),
+                        tangential_impulse: f64s(&scalars[1]),
+                        sticks: part(st.data(), st.len()),
+                        throw: f64s(&scalars[2]),
+                    }
+                }
+                Outputs::One { block } => {
+                    let d = block.data();
+                    OutSlices {
+                        va: part(d, 3),
+                        wa: part(d.add(3), 3),
+                        vb: part(d.add(6), 3),
+                        wb: part(d.add(9), 3),
+                        impulse: part(d.add(12), 1),
+                        tangential_impulse: part(d.add(13), 1),
+                        throw: part(d.add(14), 1),
+                        sticks: part(d.add(15).cast::<bool>(), 1),
+                    }
+                }
+            }
+        }
+    }
+
+    fn into_dict(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = result_dict(py)?;
+        let (vectors, scalars, sticks) = match self {
+            Outputs::Rows {
+                vectors,
+                scalars,
+                sticks,
+            } => (vectors, scalars, sticks),
+            Outputs::One { block } => {
+                let v = |k: usize| vector_view(&block, 3 * k);
+                let s = |k: usize| scalar(&block, k, NPY_TYPES::NPY_DOUBLE);
+                (
+                    [v(0)?, v(1)?, v(2)?, v(3)?],
+                    [s(12)?, s(13)?, s(14)?],
+                    scalar(&block, 15, NPY_TYPES::NPY_BOOL)?,
+                )
+            }
+        };
+        let [va, wa, vb, wb] = vectors;
+        let [p, j, throw] = scalars;
+        d.set_item(intern!(py, "va"), va)?;
+        d.set_item(intern!(py, "wa"), wa)?;
+        d.set_item(intern!(py, "vb"), vb)?;
+        d.set_item(intern!(py, "wb"), wb)?;
+        d.set_item(intern!(py, "impulse"), p)?;
+        d.set_item(intern!(py, "tangential_impulse"), j)?;
+        d.set_item(intern!(py, "sticks"), sticks)?;
+        d.set_item(intern!(py, "throw_angle_deg"), throw)?;
+        Ok(d)
+    }
+}
+
+/// A view of shape (3,) of `block` at element `at`.
+fn vector_view<'py>(block: &Bound<'py, PyArray1<f64>>, at: usize) -> PyResult<Bound<'py, PyAny>> {
+    let py = block.py();
+    let mut dims: [npy_intp; 1] = [3];
+    // SAFETY: elements at .. at + 3 lie inside the block (`ONE_LEN` elements); the view
+    // keeps the block alive through its base object (PyArray_SetBaseObject steals the new
+    // reference); the descriptor from PyArray_DescrFromType is a new reference, stolen by
+    // PyArray_NewFromDescr.
+    unsafe {
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, NPY_TYPES::NPY_DOUBLE as c_int);
+        let ptr = PY_ARRAY_API.PyArray_NewFromDescr(
+            py,
+            numpy::npyffi::get_type_object(py, numpy::npyffi::NpyTypes::PyArray_Type),
+            descr,
+            1,
+            dims.as_mut_ptr(),
+            std::ptr::null_mut(),
+            block.data().add(at).cast(),
+            NPY_ARRAY_CARRAY,
+            std::ptr::null_mut(),
+        );
+        let view = Bound::from_owned_ptr_or_err(py, ptr)?;
+        if PY_ARRAY_API.PyArray_SetBaseObject(py, ptr.cast(), block.clone().into_ptr()) < 0 {
+            return Err(PyErr::fetch(py));
+        }
+        Ok(view)
+    }
+}
+
+/// The numpy scalar (np.float64 or np.bool_, shape ()) of element `at` of `block` (a bool
+/// is the element's first byte).
+fn scalar<'py>(
+    block: &Bound<'py, PyArray1<f64>>,
+    at: usize,
+    dtype: NPY_TYPES,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = block.py();
+    // SAFETY: `at` lies inside the block; PyArray_Scalar copies the value and does not
+    // take the descriptor's reference, which is released here.
+    unsafe {
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, dtype as c_int);
+        let ptr = PY_ARRAY_API.PyArray_Scalar(
+            py,
+            block.data().add(at).cast(),
+            descr,
+            std::ptr::null_mut(),
+        );
+        pyo3::ffi::Py_DECREF(descr.cast());
+        Bound::from_owned_ptr_or_err(py, ptr)
+    }
+}
+
+/// A fresh result dict: a copy of a template with the eight keys (copying a dict of the
+/// right size is cheaper than growing a new one key by key).
+fn result_dict(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    static TEMPLATE: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
+    let t = TEMPLATE.get_or_try_init(py, || -> PyResult<Py<PyDict>> {
+        let d = PyDict::new(py);
+        for k in [
+            "va",
+            "wa",
+            "vb",
+            "wb",
+            "impulse",
+            "tangential_impulse",
+            "sticks",
+            "throw_angle_deg",
+        ] {
+            d.set_item(PyString::intern(py, k), py.None())?;
+        }
+        Ok(d.unbind())
+    })?;
+    t.bind(py).copy()
 }
 
 #[pymethods]
@@ -558,24 +788,24 @@ impl BallBall {
     fn resolve_lab<'py>(
         &self,
         py: Python<'py>,
-        pa: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        va: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        wa: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        pb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        vb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        wb: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        up: Option<PyArrayLikeDyn<'py, f64, AllowTypeChange>>,
+        pa: &Bound<'py, PyAny>,
+        va: &Bound<'py, PyAny>,
+        wa: &Bound<'py, PyAny>,
+        pb: &Bound<'py, PyAny>,
+        vb: &Bound<'py, PyAny>,
+        wb: &Bound<'py, PyAny>,
+        up: Option<&Bound<'py, PyAny>>,
         method: Option<&str>,
         rtol: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let arrays = [
-            Some(pa),
-            Some(va),
-            Some(wa),
-            Some(pb),
-            Some(vb),
-            Some(wb),
-            up,
+            Some(float_array(pa)?),
+            Some(float_array(va)?),
+            Some(float_array(wa)?),
+            Some(float_array(pb)?),
+            Some(float_array(vb)?),
+            Some(float_array(wb)?),
+            up.map(float_array).transpose()?,
         ];
         let (inputs, n, single) = shaped(&arrays)?;
         let own_setup;
@@ -592,38 +822,25 @@ impl BallBall {
             Mu::Speed(s) if s.initial_slip => Some(s.friction),
             _ => None,
         };
-        let (vdims, sdims): (&[usize], &[usize]) =
-            if single { (&[3], &[]) } else { (&[n, 3], &[n]) };
-        let out_va = new_array::<f64>(py, vdims);
-        let out_wa = new_array::<f64>(py, vdims);
-        let out_vb = new_array::<f64>(py, vdims);
-        let out_wb = new_array::<f64>(py, vdims);
-        let out_p = new_array::<f64>(py, sdims);
-        let out_j = new_array::<f64>(py, sdims);
-        let out_sticks = new_array::<bool>(py, sdims);
-        let out_throw = new_array::<f64>(py, sdims);
-        let result = {
-            // SAFETY: fresh C-contiguous arrays, only written here (see `new_array`).
-            let slices = unsafe {
-                OutSlices {
-                    va: out_va.as_slice_mut().expect("contiguous"),
-                    wa: out_wa.as_slice_mut().expect("contiguous"),
-                    vb: out_vb.as_slice_mut().expect("contiguous"),
-                    wb: out_wb.as_slice_mut().expect("contiguous"),
-                    impulse: out_p.as_slice_mut().expect("contiguous"),
-                    tangential_impulse: out_j.as_slice_mut().expect("contiguous"),
-                    sticks: out_sticks.as_slice_mut().expect("contiguous"),
-                    throw: out_throw.as_slice_mut().expect("contiguous"),
-                }
-            };
-            let closed_form = method.is_none() || method == Some("closed-form");
-            let frozen = frozen.as_ref();
-            if n >= PARALLEL_ROWS || (!closed_form && n > 0) {
-                let parallel = n >= PARALLEL_ROWS;
-                py.detach(|| self.fill(setup, frozen, &inputs, slices, parallel))
-            } else {
-                self.fill(setup, frozen, &inputs, slices, false)
-            }
+        let out = Outputs::new(py, n, single);
+        // SAFETY: fresh C-contiguous arrays, written only here (see `Outputs`).
+        let slices = unsafe { out.slices() };
+        let closed_form = matches!(method, None | Some("closed-form"));
+        let result = if n >= PARALLEL_ROWS || !closed_form {
+            // Without the GIL: hold read-only borrows, so no Rust code writes the inputs
+            // meanwhile (numpy's borrow tracking).
+            let borrows = arrays
+                .iter()
+                .flatten()
+                .map(|a| a.try_readonly())
+                .collect::<Result<Vec<_>, _>>()?;
+            let parallel = n >= PARALLEL_ROWS;
+            let r = py.detach(|| self.fill(setup, frozen.as_ref(), &inputs, slices, parallel));
+            drop(borrows);
+            r
+        } else {
+            // A few rows with the GIL held: read straight from the buffers.
+            self.fill(setup, frozen.as_ref(), &inputs, slices, false)
         };
         drop(arrays);
         if let Err((i, e)) = result {
@@ -632,21 +849,13 @@ impl BallBall {
             } else {
                 format!("row {i}: {e}")
             };
-            return Err(match e.is_bad_input() {
-                true => PyValueError::new_err(msg),
-                false => pyo3::exceptions::PyRuntimeError::new_err(msg),
+            return Err(if e.is_bad_input() {
+                PyValueError::new_err(msg)
+            } else {
+                pyo3::exceptions::PyRuntimeError::new_err(msg)
             });
         }
-        let d = PyDict::new(py);
-        d.set_item("va", out_va)?;
-        d.set_item("wa", out_wa)?;
-        d.set_item("vb", out_vb)?;
-        d.set_item("wb", out_wb)?;
-        d.set_item("impulse", out_p)?;
-        d.set_item("tangential_impulse", out_j)?;
-        d.set_item("sticks", out_sticks)?;
-        d.set_item("throw_angle_deg", out_throw)?;
-        Ok(d)
+        out.into_dict(py)
     }
 
     /// Mass m (kg).
