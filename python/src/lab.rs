@@ -779,7 +779,8 @@ impl BallBall {
     /// "tangential_impulse" (J, N s), "sticks" (bool: sliding stopped during contact),
     /// "throw_angle_deg" (degrees, counter-clockwise about up, from the line of centres
     /// to B's horizontal velocity change; NaN where undefined: no collision, a vertical
-    /// line of centres), each of shape () or (N,).
+    /// line of centres), each of shape (N,), or for one collision a numpy scalar
+    /// (np.float64, np.bool_: shape (), as numpy's own reductions return).
     ///
     /// Bad input raises ValueError naming the row and the field, with the command
     /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.

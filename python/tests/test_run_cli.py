@@ -101,6 +101,6 @@ def test_trace_true_gives_the_steps_trace(cli, tmp_path):
     assert [float(r[0]) for r in rows] == list(trace["t"])
 
 
-def test_issue_example_throw_angle():
+def test_readme_example_throw_angle():
     report = bc.run(str(SCENES[0].parent / "default.toml"))
     assert abs(report["throw_angle_deg"] - 1.718) < 5e-4
