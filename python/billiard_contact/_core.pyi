@@ -103,8 +103,8 @@ class LabResult(TypedDict):
     """Whether sliding stopped during the contact (True also where S(0) = 0)."""
     throw_angle_deg: Union[npt.NDArray[np.float64], np.float64]
     """Angle (degrees, counter-clockwise about up) from the horizontal line of centres to
-    B's horizontal velocity change; NaN where undefined (no collision, vertical line of
-    centres, no horizontal change)."""
+    B's horizontal velocity change; NaN where the library gives none (B's horizontal
+    velocity change vanishes, or the line of centres is vertical)."""
 
 class BallBall:
     """Two identical balls and their contact.

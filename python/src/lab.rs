@@ -778,8 +778,9 @@ impl BallBall {
     /// and spins, rad/s; the input's shape), "impulse" (normal impulse P, N s),
     /// "tangential_impulse" (J, N s), "sticks" (bool: sliding stopped during contact),
     /// "throw_angle_deg" (degrees, counter-clockwise about up, from the line of centres
-    /// to B's horizontal velocity change; NaN where undefined: no collision, a vertical
-    /// line of centres), each of shape (N,), or for one collision a numpy scalar
+    /// to B's horizontal velocity change; NaN where the library has none: B's horizontal
+    /// velocity change vanishes, or the line of centres is vertical), each of shape (N,),
+    /// or for one collision a numpy scalar
     /// (np.float64, np.bool_: shape (), as numpy's own reductions return).
     ///
     /// Bad input raises ValueError naming the row and the field, with the command
