@@ -7,7 +7,7 @@
 //! here, with the same formulas, tolerances and error messages as the library's lab rows;
 //! the tests compare every output and message with the command line's lab-frame batch.
 
-use billiard_contact::nalgebra::{Matrix3, Vector3};
+use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{CmState, Error, LabMotion};
 
 /// Relative tolerance on |p_B - p_A| = 2r (the library's, for lab scenes and rows).
@@ -28,8 +28,11 @@ pub struct LabRow {
 /// The centre-of-mass frame of one row.
 #[derive(Debug, Clone)]
 pub struct Frame {
-    /// Columns e_x, e_y, e_z in lab coordinates.
-    basis: Matrix3<f64>,
+    /// The basis e_x, e_y, e_z in lab coordinates (kept as three vectors: dot products
+    /// and sums of scaled vectors, not 3x3 matrix products, cost fewer instructions here).
+    ex: Vector3<f64>,
+    ey: Vector3<f64>,
+    ez: Vector3<f64>,
     /// Velocity of the centre of mass (m/s).
     v_cm: Vector3<f64>,
     /// Unit `up`.
@@ -66,7 +69,9 @@ impl Frame {
         let ez = ez / ez_norm;
         let ey = ez.cross(&ex);
         Ok(Frame {
-            basis: Matrix3::from_columns(&[ex, ey, ez]),
+            ex,
+            ey,
+            ez,
             v_cm: 0.5 * (row.va + row.vb),
             up,
         })
@@ -75,22 +80,24 @@ impl Frame {
     /// The centre-of-mass state of the row.
     #[inline(always)]
     pub fn to_cm(&self, row: &LabRow) -> CmState {
-        let rt = self.basis.transpose();
-        CmState::new(rt * (0.5 * (row.va - row.vb)), rt * row.wa, rt * row.wb)
+        let into =
+            |v: Vector3<f64>| Vector3::new(self.ex.dot(&v), self.ey.dot(&v), self.ez.dot(&v));
+        CmState::new(into(0.5 * (row.va - row.vb)), into(row.wa), into(row.wb))
     }
 
     /// Lab motions of A and B for a centre-of-mass state.
     #[inline(always)]
     pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
-        let u = self.basis * cm.u_cm;
+        let out = |v: &Vector3<f64>| self.ex * v.x + self.ey * v.y + self.ez * v.z;
+        let u = out(&cm.u_cm);
         (
             LabMotion {
                 velocity: self.v_cm + u,
-                spin: self.basis * cm.omega_a,
+                spin: out(&cm.omega_a),
             },
             LabMotion {
                 velocity: self.v_cm - u,
-                spin: self.basis * cm.omega_b,
+                spin: out(&cm.omega_b),
             },
         )
     }
@@ -101,8 +108,7 @@ impl Frame {
     /// The library's tests on lengths, compared squared (no square roots).
     #[inline(always)]
     pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
-        let ex = self.basis.column(0).into_owned();
-        let line = ex - self.up * ex.dot(&self.up);
+        let line = self.ex - self.up * self.ex.dot(&self.up);
         let dv = delta_v_b - self.up * delta_v_b.dot(&self.up);
         let dv2 = dv.norm_squared();
         if line.norm_squared() < 1e-24 || dv2 <= 1e-24 * delta_v_b.norm_squared() || dv2 == 0.0 {

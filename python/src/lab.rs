@@ -293,11 +293,11 @@ impl Inputs {
             wb: self.vec(5, i),
             up: self.vec(6, i),
         };
-        let all = [r.pa, r.va, r.wa, r.pb, r.vb, r.wb, r.up];
         // x * 0 is 0 for finite x, NaN otherwise: one comparison for the 21 numbers.
-        let zero: f64 = all.iter().map(|v| v.x * 0.0 + v.y * 0.0 + v.z * 0.0).sum();
+        let z = |v: &Vector3<f64>| v.x * 0.0 + v.y * 0.0 + v.z * 0.0;
+        let zero = z(&r.pa) + z(&r.va) + z(&r.wa) + z(&r.pb) + z(&r.vb) + z(&r.wb) + z(&r.up);
         if zero != 0.0 {
-            return Err(non_finite(&all));
+            return Err(non_finite(&[r.pa, r.va, r.wa, r.pb, r.vb, r.wb, r.up]));
         }
         Ok(r)
     }
