@@ -34,8 +34,8 @@
 //! let outcome = solve(&collision, &HalfSine::new(2.5e-4)?, &SolverSettings::default(), None)?;
 //! // S(0) = 2V = 1 m/s never reaches 0 (p_stick = m S(0) / (2 mu (1 + 1/alpha)) > P = 2 m U(0)),
 //! // so friction acts throughout: V' = V - mu P / m = 0.5 - 2 (0.06) (1) = 0.38 m/s (eqs 24-25).
-//! assert!((outcome.out.u_cm.y - 0.38).abs() < 1e-10);
-//! assert!((outcome.out.u_cm.x + 1.0).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.y - 0.38).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.x + 1.0).abs() < 1e-10);
 //! # Ok::<(), billiard_contact::Error>(())
 //! ```
 //!
@@ -91,6 +91,7 @@ pub use apps::work_precision;
 pub use apps::runner::{run_scene, SceneOutcome};
 pub use contact::closed_form::ClosedForm;
 pub use contact::outcome::{solve, Outcome};
+pub use contact::result::ContactResult;
 pub use error::Error;
 pub use formats::report::Report;
 pub use formats::scene::{Incoming, Scene};
@@ -110,7 +111,7 @@ pub use profile::{ForceProfile, Profile};
 /// batch kernel, the checks), for callers who drive them directly.
 pub mod details {
     pub use crate::contact::check::{checks, state_error, Checks};
-    pub use crate::contact::closed_form::{ClosedFormBatch, Resolved};
+    pub use crate::contact::closed_form::ClosedFormBatch;
     pub use crate::integrator::{integrate, Integrated, DEFAULT_RTOL, DEFAULT_STEPS};
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
 }

@@ -101,7 +101,11 @@ fn closed_form_rows_match_the_closed_form() {
         assert_eq!(&r[col(&h, "id")], format!("r{i}").as_str());
         let c = Collision::new(s.ball, s.contact, s.effects, *state).unwrap();
         let cf = ClosedForm::new(&c);
-        let out = [cf.out.u_cm, cf.out.omega_a, cf.out.omega_b];
+        let out = [
+            cf.result.out.u_cm,
+            cf.result.out.omega_a,
+            cf.result.out.omega_b,
+        ];
         let scale = [c.scales.speed, c.scales.spin, c.scales.spin];
         for (k, name) in ["u_", "omega_a_", "omega_b_"].iter().enumerate() {
             for (j, axis) in ["x", "y", "z"].iter().enumerate() {
@@ -115,9 +119,9 @@ fn closed_form_rows_match_the_closed_form() {
         }
         assert_eq!(num(r, col(&h, "impulse")), c.impulse);
         let heat = num(r, col(&h, "heat"));
-        assert!((heat - cf.heat).abs() <= ULPS * f64::EPSILON * c.scales.energy);
-        assert_eq!(&r[col(&h, "sticks")], cf.sticks.to_string().as_str());
-        sticks += usize::from(cf.sticks);
+        assert!((heat - cf.result.heat).abs() <= ULPS * f64::EPSILON * c.scales.energy);
+        assert_eq!(&r[col(&h, "sticks")], cf.result.sticks.to_string().as_str());
+        sticks += usize::from(cf.result.sticks);
         separate += usize::from(!c.collides());
         if !c.collides() {
             assert_eq!(&r[col(&h, "stick_time")], "");
@@ -214,7 +218,7 @@ fn dop853_slice_agrees_with_closed_form() {
     for (a, b) in cf.iter().zip(&d) {
         let (a, b) = (a.as_ref().unwrap(), b.as_ref().unwrap());
         assert!(b.closed_form_error < 3e-10, "{b:?}");
-        assert_eq!(a.sticks, b.sticks);
+        assert_eq!(a.result.sticks, b.result.sticks);
         if let (Some(x), Some(y)) = (a.stick_time, b.stick_time) {
             assert!((x - y).abs() < 1e-9 * 2.5e-4);
         }

@@ -125,8 +125,8 @@ fn time_stepping_converges_to_the_quadrature_answer() {
     assert!(s_out > 0.0, "slides throughout");
     let exact = exact_out(u, (s0 - s_out) / k(), p);
     let err = |o: &billiard_contact::Outcome| {
-        let d = (o.out.u_cm - exact.u_cm).amax() / c.scales.speed;
-        let w = (o.out.omega_a - exact.omega_a).amax() / c.scales.spin;
+        let d = (o.result.out.u_cm - exact.u_cm).amax() / c.scales.speed;
+        let w = (o.result.out.omega_a - exact.omega_a).amax() / c.scales.spin;
         d.max(w)
     };
     let profile = HalfSine::new(2.5e-4).unwrap();
@@ -153,7 +153,7 @@ fn time_stepping_converges_to_the_quadrature_answer() {
             "theta drift {}",
             o.check.theta_drift
         );
-        assert!((o.s_out - s_out).abs() <= 100.0 * rtol * s0);
+        assert!((o.result.s_out - s_out).abs() <= 100.0 * rtol * s0);
         last = e;
     }
     // rk4: halving the step divides the error by ~16.
@@ -209,14 +209,14 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
     for method in [Method::ClosedForm, Method::Dop853] {
         let st = SolverSettings::default().with_method(method);
         let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &st, None).unwrap();
-        assert!(o.sticks);
-        let found = o.stick_impulse.unwrap();
+        assert!(o.result.sticks);
+        let found = o.result.stick_impulse.unwrap();
         assert!(
             (found - p_stick).abs() <= 1e-10 * c.impulse,
             "{method}: {found} vs {p_stick}"
         );
         // J = S(0) / k once stuck, whatever mu(S).
-        assert!((o.tangential_impulse - c.s0 / k()).abs() <= 1e-10 * c.impulse);
+        assert!((o.result.tangential_impulse - c.s0 / k()).abs() <= 1e-10 * c.impulse);
     }
 }
 
@@ -233,18 +233,18 @@ fn b_zero_reduces_exactly_to_constant_mu() {
             solve(&sd, &profile, &st, None).unwrap(),
             solve(&cm, &profile, &st, None).unwrap(),
         );
-        assert_eq!(a.out, b.out);
+        assert_eq!(a.result.out, b.result.out);
         assert_eq!(a.stick_time, b.stick_time);
-        assert_eq!(a.s_out, b.s_out);
+        assert_eq!(a.result.s_out, b.result.s_out);
         assert_eq!(a.stats, b.stats);
         let cf = SolverSettings::default().with_method(Method::ClosedForm);
         let (a, b) = (
             solve(&sd, &profile, &cf, None).unwrap(),
             solve(&cm, &profile, &cf, None).unwrap(),
         );
-        assert!((a.out.u_cm - b.out.u_cm).amax() <= 1e-15);
-        assert!((a.out.omega_a - b.out.omega_a).amax() <= 1e-15 / R);
-        assert_eq!(a.sticks, b.sticks);
-        assert!((a.stick_impulse.unwrap() - b.stick_impulse.unwrap()).abs() <= 1e-16);
+        assert!((a.result.out.u_cm - b.result.out.u_cm).amax() <= 1e-15);
+        assert!((a.result.out.omega_a - b.result.out.omega_a).amax() <= 1e-15 / R);
+        assert_eq!(a.result.sticks, b.result.sticks);
+        assert!((a.result.stick_impulse.unwrap() - b.result.stick_impulse.unwrap()).abs() <= 1e-16);
     }
 }

@@ -136,7 +136,7 @@ fn a_million_samples_in_constant_memory() {
         );
         // The answer does not depend on the sampling beyond the method's accuracy.
         let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
-        let err = exact.scaled_error(&results[1].1.out, &exact.out().state);
+        let err = exact.scaled_error(&results[1].1.result.out, &exact.out().state);
         assert!(err <= state_tolerance(method), "{method}: error {err:e}");
     }
 
@@ -170,7 +170,7 @@ fn a_million_samples_in_constant_memory() {
     eprintln!("rk4, 1e6 steps in one segment: peak heap growth {peak} bytes");
     assert!(o.stats.accepted_steps >= 1_000_000);
     let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
-    let err = exact.scaled_error(&o.out, &exact.out().state);
+    let err = exact.scaled_error(&o.result.out, &exact.out().state);
     // Truncation is negligible at h = 1e-6; round-off of a million additions (about
     // 1e6 eps) remains.
     assert!(err <= 1e-9, "rk4 1e6 steps: error {err:e}");

@@ -332,32 +332,32 @@ proptest! {
         let u0 = inc.u_cm.x;
         // Impulse: eq 52 family / eq 56, and none for separating balls.
         let p = case.impulse().unwrap_or(if u0 > 0.0 { (1.0 + case.rule.unwrap_or(0.0)) * m * u0 } else { 0.0 });
-        prop_assert!((o.impulse - p).abs() <= 1e-15 * p.max(1e-300) * 4.0);
-        prop_assert!(o.out.is_finite());
+        prop_assert!((o.result.impulse - p).abs() <= 1e-15 * p.max(1e-300) * 4.0);
+        prop_assert!(o.result.out.is_finite());
         // Normal momentum of A (eq 24): m (U_out - U(0)) = -P.
-        let dp = (m * (o.out.u_cm.x - u0) + p).abs() / (m * v_ref);
+        let dp = (m * (o.result.out.u_cm.x - u0) + p).abs() / (m * v_ref);
         prop_assert!(dp <= tol, "normal momentum error {dp:e}");
         // Angular momentum of eq 36.
-        let dl = (angular_momentum(&o.out, m, r, case.alpha) - angular_momentum(&inc, m, r, case.alpha)).amax() / (m * v_ref * r);
+        let dl = (angular_momentum(&o.result.out, m, r, case.alpha) - angular_momentum(&inc, m, r, case.alpha)).amax() / (m * v_ref * r);
         prop_assert!(dl <= tol, "angular momentum error {dl:e}");
         // Heats and the outgoing slip.
         let e_ref = m * v_ref * v_ref;
-        prop_assert!(o.heat >= -tol * e_ref, "H = {:e}", o.heat);
-        prop_assert!(o.heat_sliding >= -tol * e_ref, "H_sfr = {:e}", o.heat_sliding);
-        prop_assert!(o.s_out >= 0.0, "S_out = {:e}", o.s_out);
+        prop_assert!(o.result.heat >= -tol * e_ref, "H = {:e}", o.result.heat);
+        prop_assert!(o.result.heat_sliding >= -tol * e_ref, "H_sfr = {:e}", o.result.heat_sliding);
+        prop_assert!(o.result.s_out >= 0.0, "S_out = {:e}", o.result.s_out);
         // Eq 50: H = H_sfr + 2 U(0) P - P^2 / m, H from the kinetic energies (eq 37).
         let ke = |s: &CmState| m * s.u_cm.norm_squared() + 0.5 * case.alpha * m * r * r * (s.omega_a.norm_squared() + s.omega_b.norm_squared());
-        let h = ke(&inc) - ke(&o.out);
-        let balance = (h - o.heat_sliding - (2.0 * u0 * p - p * p / m)).abs() / e_ref;
+        let h = ke(&inc) - ke(&o.result.out);
+        let balance = (h - o.result.heat_sliding - (2.0 * u0 * p - p * p / m)).abs() / e_ref;
         prop_assert!(balance <= tol, "eq 50 off by {balance:e}");
         prop_assert!(o.check.theta_drift <= tol, "theta drift {:e}", o.check.theta_drift);
         // The closed form.
         match case.exact() {
             Some(ex) => {
-                let err = ex.scaled_error(&o.out, &ex.out().state);
+                let err = ex.scaled_error(&o.result.out, &ex.out().state);
                 prop_assert!(err <= tol, "closed form error {err:e}");
                 if p > 0.0 && ex.mu > 0.0 && (ex.p_stick - p).abs() > 10.0 * tol * p {
-                    prop_assert_eq!(o.sticks, ex.sticks());
+                    prop_assert_eq!(o.result.sticks, ex.sticks());
                 }
             }
             None => prop_assert!(o.check.closed_form_error <= tol, "closed form error {:e}", o.check.closed_form_error),
@@ -367,12 +367,12 @@ proptest! {
         // the integration error of the nonlinear S(p) (observed 3e-8 P with rk4 at
         // alpha = 3e-3): there the reported time and impulse agree to 1e-10 P, and the
         // impulse is p_stick to the method's accuracy.
-        if let (true, Some(t), Some(ps)) = (o.sticks, o.stick_time, o.exact.stick_impulse) {
+        if let (true, Some(t), Some(ps)) = (o.result.sticks, o.stick_time, o.exact.result.stick_impulse) {
             let at = p * profile.cumulative(t / case.tau);
             match case.mu {
                 Ok(_) => prop_assert!((at - ps).abs() <= 1e-10 * p, "p(t_stick) {at:e} vs p_stick {ps:e}"),
                 Err(_) => {
-                    let reported = o.stick_impulse.unwrap();
+                    let reported = o.result.stick_impulse.unwrap();
                     prop_assert!((at - reported).abs() <= 1e-10 * p, "p(t_stick) {at:e} vs stick_impulse {reported:e}");
                     let loose = if case.method == Method::Rk4 { 1e-5 } else { 1e-7 };
                     prop_assert!((reported - ps).abs() <= loose * p, "stick_impulse {reported:e} vs p_stick {ps:e}");
@@ -380,9 +380,9 @@ proptest! {
             }
         }
         if matches!(case.slip, SlipKind::Zero) && p > 0.0 {
-            prop_assert_eq!(o.theta, None);
-            prop_assert_eq!(o.out.u_cm.y, inc.u_cm.y);
-            prop_assert_eq!(o.out.omega_a, inc.omega_a);
+            prop_assert_eq!(o.result.theta, None);
+            prop_assert_eq!(o.result.out.u_cm.y, inc.u_cm.y);
+            prop_assert_eq!(o.result.out.omega_a, inc.omega_a);
         }
     }
 
@@ -414,7 +414,7 @@ proptest! {
             // above 1e-6 |slip(0)|: the slip's own error across e0 (round-off and the
             // integration error of a few eps |slip(0)|) divided by |slip| (observed up to
             // 1.7e-7 rad in 500,000 cases). The physical check is the one above.
-            let (th, th0) = (row.theta.unwrap(), o.theta.unwrap());
+            let (th, th0) = (row.theta.unwrap(), o.result.theta.unwrap());
             let d = (th - th0).sin().abs().max((th.cos() - th0.cos()).abs());
             prop_assert!(d <= 1e-6, "trace theta {th} vs {th0}");
         }
@@ -456,22 +456,22 @@ proptest! {
         let (w0, w1) = (case.v / case.r, scaled.v / scaled.r);
         let tol = case.tolerance();
         let pairs = [
-            (base.out.u_cm / v0, o.out.u_cm / v1),
-            (base.out.omega_a / w0, o.out.omega_a / w1),
-            (base.out.omega_b / w0, o.out.omega_b / w1),
+            (base.result.out.u_cm / v0, o.result.out.u_cm / v1),
+            (base.result.out.omega_a / w0, o.result.out.omega_a / w1),
+            (base.result.out.omega_b / w0, o.result.out.omega_b / w1),
         ];
         // Scaled outputs are O(1) multiples of v_ref / v.
-        let unit = base.exact.out.u_cm.amax().max(1.0);
+        let unit = base.exact.result.out.u_cm.amax().max(1.0);
         for (x, y) in pairs {
             prop_assert!((x - y).amax() <= 2.0 * tol * unit * 10.0, "{x:?} vs {y:?}");
         }
-        prop_assert_eq!(o.sticks, base.sticks);
+        prop_assert_eq!(o.result.sticks, base.result.sticks);
         if let (Some(t0), Some(t1)) = (base.stick_time, o.stick_time) {
             prop_assert!((t0 / case.tau - t1 / scaled.tau).abs() <= 1e-6 + 1e-9, "stick times {t0:e} {t1:e}");
         }
         let e0 = case.m * v0 * v0;
         let e1 = scaled.m * v1 * v1;
-        prop_assert!((base.heat / e0 - o.heat / e1).abs() <= 20.0 * tol * unit * unit);
+        prop_assert!((base.result.heat / e0 - o.result.heat / e1).abs() <= 20.0 * tol * unit * unit);
     }
 
     /// A lab scene and the same scene rotated as a whole: the outgoing lab motions rotate
@@ -523,7 +523,7 @@ proptest! {
         let o1 = run_scene(&s1, &s1.solver, None).unwrap();
         let (a0, b0) = o0.lab_out.unwrap();
         let (a1, b1) = o1.lab_out.unwrap();
-        let v_ref = o0.outcome.exact.out.u_cm.amax().max(case.v).max(v_cm.amax());
+        let v_ref = o0.outcome.exact.result.out.u_cm.amax().max(case.v).max(v_cm.amax());
         let w_ref = v_ref / r;
         // The two runs differ by round-off in their centre-of-mass inputs; where the slip
         // is itself round-off that moves the stop, and the results differ by the method's

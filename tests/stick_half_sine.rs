@@ -164,7 +164,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
     assert!(p_stick < p, "{}: must stick", shot.what);
     let q = p_stick / p;
     let o = solve(&c, &HalfSine::new(TAU).unwrap(), settings, None).unwrap();
-    assert!(o.sticks, "{}", shot.what);
+    assert!(o.result.sticks, "{}", shot.what);
     let t = o.stick_time.unwrap() / TAU;
     let dp = (p_fraction(t) - q).abs();
     assert!(
@@ -175,7 +175,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
         p_fraction(t)
     );
     // The reported stick impulse is the impulse at the reported time.
-    assert!((o.stick_impulse.unwrap() / p - q).abs() <= STICK_IMPULSE_TOL);
+    assert!((o.result.stick_impulse.unwrap() / p - q).abs() <= STICK_IMPULSE_TOL);
     let exact = t_exact(q);
     let dt = (t - exact).abs();
     if force(exact) >= FORCE_FLOOR {

@@ -116,7 +116,12 @@ fn check(shot: &Shot, sign: f64) -> (f64, f64) {
         (Method::Rk4, STEPPING_TOL),
     ] {
         let so = shot.run(method);
-        assert_eq!(so.outcome.sticks, shot.sticks(), "cut {}", shot.cut_deg);
+        assert_eq!(
+            so.outcome.result.sticks,
+            shot.sticks(),
+            "cut {}",
+            shot.cut_deg
+        );
         let got = throw_rad(&so);
         let err = (got - want).abs();
         assert!(

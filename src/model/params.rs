@@ -1,7 +1,7 @@
 //! Ball and contact parameters, validated on construction.
 
 use crate::error::{finite, Error};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// Largest `alpha` of a sphere: a thin spherical shell has I = (2/3) m r^2, and no
 /// radial mass distribution puts more of the mass farther out.
@@ -97,7 +97,7 @@ impl Ball {
 }
 
 /// Coefficient of sliding friction between the balls.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Friction {
     /// Coulomb friction with a constant coefficient mu >= 0.
@@ -198,6 +198,37 @@ impl ImpulseRule {
     pub fn explicit(p: f64) -> Result<Self, Error> {
         positive("contact.impulse", p, "N s")?;
         Ok(ImpulseRule::Explicit(p))
+    }
+
+    /// The rule of a restitution `e` or an explicit impulse `p` (N s), validated; `None`
+    /// when neither is given. Both is an error naming `{prefix}restitution` and
+    /// `{prefix}impulse` (the keys as the input spells them: `contact.` in a scene, none
+    /// in a batch row).
+    ///
+    /// ```
+    /// use billiard_contact::ImpulseRule;
+    /// assert_eq!(ImpulseRule::from_either("", Some(0.9), None).unwrap(),
+    ///            Some(ImpulseRule::restitution(0.9).unwrap()));
+    /// assert_eq!(ImpulseRule::from_either("", None, None).unwrap(), None);
+    /// let e = ImpulseRule::from_either("contact.", Some(1.0), Some(0.1)).unwrap_err();
+    /// assert_eq!(e.to_string(), "contact.restitution = 1 together with contact.impulse = 0.1: \
+    ///                            one of restitution or impulse, not both");
+    /// ```
+    pub fn from_either(
+        prefix: &str,
+        restitution: Option<f64>,
+        impulse: Option<f64>,
+    ) -> Result<Option<Self>, Error> {
+        match (restitution, impulse) {
+            (Some(e), None) => ImpulseRule::restitution(e).map(Some),
+            (None, Some(p)) => ImpulseRule::explicit(p).map(Some),
+            (None, None) => Ok(None),
+            (Some(e), Some(p)) => Err(Error::invalid(
+                format!("{prefix}restitution"),
+                format!("{e} together with {prefix}impulse = {p}"),
+                "one of restitution or impulse, not both",
+            )),
+        }
     }
 
     /// The impulse P (N s) for normal approach speed `u0` (m/s) and mass `m` (kg).

@@ -300,47 +300,54 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     let method = o.method;
     let label = format!("{} ({})", x.label, method.name());
     let want = ex.out();
-    let err = ex.scaled_error(&o.out, &want.state);
+    let err = ex.scaled_error(&o.result.out, &want.state);
     assert!(err <= tol, "{label}: scaled state error {err:e} > {tol:e}");
-    assert!(o.out.is_finite(), "{label}: non-finite state");
+    assert!(o.result.out.is_finite(), "{label}: non-finite state");
     let v = ex.v_ref();
     let e_ref = ex.m * v * v;
     // Heats: H from eq 50 and H_sfr (eq 49 with the stick rule).
     assert!(
-        (o.heat - want.heat).abs() <= 10.0 * tol * e_ref,
+        (o.result.heat - want.heat).abs() <= 10.0 * tol * e_ref,
         "{label}: H = {:e}, exact {:e}",
-        o.heat,
+        o.result.heat,
         want.heat
     );
     assert!(
-        (o.heat_sliding - want.heat_sliding).abs() <= 10.0 * tol * e_ref,
+        (o.result.heat_sliding - want.heat_sliding).abs() <= 10.0 * tol * e_ref,
         "{label}: H_sfr = {:e}, exact {:e}",
-        o.heat_sliding,
+        o.result.heat_sliding,
         want.heat_sliding
     );
     assert!(
-        o.heat >= -10.0 * tol * e_ref,
+        o.result.heat >= -10.0 * tol * e_ref,
         "{label}: H = {:e} < 0",
-        o.heat
+        o.result.heat
     );
-    assert!(o.heat_sliding >= -10.0 * tol * e_ref, "{label}: H_sfr < 0");
-    assert!(o.s_out >= 0.0, "{label}: S_out = {:e} < 0", o.s_out);
     assert!(
-        (o.s_out - want.slip).abs() <= 10.0 * tol * v,
+        o.result.heat_sliding >= -10.0 * tol * e_ref,
+        "{label}: H_sfr < 0"
+    );
+    assert!(
+        o.result.s_out >= 0.0,
+        "{label}: S_out = {:e} < 0",
+        o.result.s_out
+    );
+    assert!(
+        (o.result.s_out - want.slip).abs() <= 10.0 * tol * v,
         "{label}: S_out = {:e}, exact {:e}",
-        o.s_out,
+        o.result.s_out,
         want.slip
     );
     // Tangential impulse J (scalar, >= 0) to the same scaled accuracy (impulse m v_ref).
-    assert!(o.tangential_impulse >= 0.0);
+    assert!(o.result.tangential_impulse >= 0.0);
     assert!(
-        (o.tangential_impulse - want.j).abs() <= 10.0 * tol * ex.m * v,
+        (o.result.tangential_impulse - want.j).abs() <= 10.0 * tol * ex.m * v,
         "{label}: J = {:e}, exact {:e}",
-        o.tangential_impulse,
+        o.result.tangential_impulse,
         want.j
     );
     // theta: null exactly when S(0) = 0, never NaN, in (-pi, pi].
-    match o.theta {
+    match o.result.theta {
         None => assert_eq!(ex.s0, 0.0, "{label}: theta null with S(0) > 0"),
         Some(t) => {
             assert!(ex.s0 > 0.0, "{label}: theta {t} with S(0) = 0");
@@ -353,8 +360,8 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     // No friction in a random direction: the tangential velocity change is along -e0,
     // and no larger than the stick rule allows (J <= m S(0) / (2 (1 + 1/alpha))).
     let dv = (
-        o.out.u_cm.y - ex.incoming.u_cm.y,
-        o.out.u_cm.z - ex.incoming.u_cm.z,
+        o.result.out.u_cm.y - ex.incoming.u_cm.y,
+        o.result.out.u_cm.z - ex.incoming.u_cm.z,
     );
     let across = (dv.0 * ex.e[1] - dv.1 * ex.e[0]).abs();
     let along = -(dv.0 * ex.e[0] + dv.1 * ex.e[1]);
@@ -379,15 +386,15 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
     // Sticking and the event (docs/formats.md).
     if ex.p > 0.0 && ex.s0 == 0.0 && ex.mu > 0.0 {
-        assert!(o.sticks, "{label}: S(0) = 0 must stick");
+        assert!(o.result.sticks, "{label}: S(0) = 0 must stick");
         assert_eq!(o.stick_time, Some(0.0), "{label}");
-        assert_eq!(o.stick_impulse, Some(0.0), "{label}");
+        assert_eq!(o.result.stick_impulse, Some(0.0), "{label}");
         return;
     }
     if x.sticks_decided {
-        assert_eq!(o.sticks, ex.sticks(), "{label}: sticks");
+        assert_eq!(o.result.sticks, ex.sticks(), "{label}: sticks");
     }
-    if o.sticks {
+    if o.result.sticks {
         let t = o.stick_time.expect("stick time when sticking");
         assert!((0.0..=tau).contains(&t), "{label}: stick time {t:e}");
         let p_at = ex.p * (x.phi)(t / tau);
@@ -396,7 +403,7 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
             "{label}: p(t_stick) = {p_at:e}, p_stick = {:e}",
             ex.p_stick
         );
-        let p_rep = o.stick_impulse.expect("stick impulse when sticking");
+        let p_rep = o.result.stick_impulse.expect("stick impulse when sticking");
         assert!(
             (p_rep - ex.p_stick).abs() <= EVENT_IMPULSE_TOL * ex.p,
             "{label}: stick_impulse {p_rep:e} vs {:e}",
