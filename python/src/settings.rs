@@ -6,7 +6,7 @@ use billiard_contact::{Error, Method, Scene, SolverSettings};
 /// Method, rtol, atol and rk4 steps of `s`. The only read of `SolverSettings`'s fields in the
 /// bindings (they become accessors in the library).
 pub fn fields(s: &SolverSettings) -> (Method, f64, f64, u32) {
-    (s.method, s.rtol, s.atol, s.steps)
+    (s.method(), s.rtol(), s.atol(), s.steps())
 }
 
 /// A method name as the command line takes it (`closed-form`, `rk4`, `dopri5`, `dop853`).
