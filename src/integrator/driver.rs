@@ -391,10 +391,11 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     // The event function at or below which the slip counts as stopped: its round-off level,
     // a relative 1e-14 of S(0) (an impulse error of at most 1e-14 p_stick).
     let stop_floor = 1e-14 * slip0.norm();
+    let friction = c.active_friction().unwrap_or(c.contact.friction);
     let sliding_rhs = |direction| SlidingRhs {
         profile,
         impulse: pi,
-        friction: c.contact.friction,
+        friction,
         speed_scale: sc.speed,
         inv_alpha: 1.0 / c.ball.alpha,
         e0,
