@@ -86,6 +86,7 @@ pub mod table_phase;
 pub use apps::batch;
 #[cfg(feature = "plots")]
 pub use apps::plot;
+pub use apps::sweep;
 pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
