@@ -22,10 +22,20 @@ pub struct SweepArgs {
     scene: Option<PathBuf>,
     /// Cut angles (degrees, in (-90, 90)): numbers or ranges start:stop:step,
     /// comma-separated.
-    #[arg(long, value_name = "DEG", default_value = "0:60:1")]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value = "0:60:1",
+        allow_hyphen_values = true
+    )]
     cut: String,
     /// Cue-ball speeds (m/s), comma-separated.
-    #[arg(long, value_name = "V,...", default_value = "0.447,1.341,3.129")]
+    #[arg(
+        long,
+        value_name = "V,...",
+        default_value = "0.447,1.341,3.129",
+        allow_hyphen_values = true
+    )]
     speed: String,
     /// Cue-ball spins, comma-separated: stun (none), roll (natural roll, topspin v/r),
     /// draw (backspin v/r), or a number k (topspin k v/r).
