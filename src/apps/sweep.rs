@@ -149,7 +149,7 @@ impl Grid {
         if let Some(s) = sides.iter().find(|s| !s.is_finite()) {
             return Err(Error::invalid("--side", s, "finite fractions of v/r"));
         }
-        if let Some(c) = cuts_deg.iter().find(|c| !(c.abs() < 90.0)) {
+        if let Some(c) = cuts_deg.iter().find(|c| c.is_nan() || c.abs() >= 90.0) {
             return Err(Error::invalid(
                 "--cut",
                 c,
@@ -219,7 +219,7 @@ pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
             [a, b, s] => {
                 let (start, stop, step) = (number(a)?, number(b)?, number(s)?);
                 let n = (stop - start) / step;
-                if !(step > 0.0 && n >= -1e-9 && n < 1e6) {
+                if !(step > 0.0 && (-1e-9..1e6).contains(&n)) {
                     return Err(Error::invalid(
                         option,
                         format!("\"{}\"", item.trim()),
