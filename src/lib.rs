@@ -86,6 +86,7 @@ pub mod table_phase;
 pub use apps::batch;
 #[cfg(feature = "plots")]
 pub use apps::plot;
+pub use apps::sweep;
 pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
@@ -101,7 +102,7 @@ pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::params::{
-    Ball, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

@@ -341,15 +341,15 @@ impl BallBall {
             },
         };
         let o = resolve(setup, &input)?;
-        let (a, b) = frame.to_lab(&o.out);
+        let (a, b) = frame.to_lab(&o.result.out);
         Ok(RowOut {
             va: a.velocity,
             wa: a.spin,
             vb: b.velocity,
             wb: b.spin,
-            impulse: o.impulse,
-            tangential_impulse: o.tangential_impulse,
-            sticks: o.sticks,
+            impulse: o.result.impulse,
+            tangential_impulse: o.result.tangential_impulse,
+            sticks: o.result.sticks,
             throw: frame
                 .throw_angle_deg(&(b.velocity - row.vb))
                 .unwrap_or(f64::NAN),

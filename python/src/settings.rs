@@ -1,13 +1,8 @@
-//! Solver settings: how the bindings build them from Python keywords, and the one place
-//! that reads their fields.
+//! Solver settings: how the bindings build them from Python keywords, with the library's own
+//! override rule (the one `billiard-contact run` applies).
 
+use billiard_contact::formats::scene::SolverOverrides;
 use billiard_contact::{Error, Method, Scene, SolverSettings};
-
-/// Method, rtol, atol and rk4 steps of `s`. The only read of `SolverSettings`'s fields in the
-/// bindings (they become accessors in the library).
-pub fn fields(s: &SolverSettings) -> (Method, f64, f64, u32) {
-    (s.method(), s.rtol(), s.atol(), s.steps())
-}
 
 /// A method name as the command line takes it (`closed-form`, `rk4`, `dopri5`, `dop853`).
 pub fn method(name: &str) -> Result<Method, Error> {
@@ -23,24 +18,28 @@ pub fn for_run(
     atol: Option<f64>,
     steps: Option<u32>,
 ) -> Result<SolverSettings, Error> {
-    let (base_method, base_rtol, base_atol, base_steps) = fields(&scene.solver);
-    let m = match method_name {
-        Some(name) => method(name)?,
-        None => base_method,
-    };
-    let r = rtol.unwrap_or(base_rtol);
-    let a = atol.unwrap_or(if rtol.is_some() { r } else { base_atol });
-    SolverSettings::new(m, r, a, steps.unwrap_or(base_steps))
+    SolverOverrides {
+        method: method_name.map(method).transpose()?,
+        rtol,
+        atol,
+        steps,
+    }
+    .apply(&scene.solver)
 }
 
 /// Settings for a batch: the closed form unless a method is named; `rtol` (default the
 /// library's, 1e-10) sets atol too, as `billiard-contact batch --rtol` does.
 pub fn for_batch(method_name: Option<&str>, rtol: Option<f64>) -> Result<SolverSettings, Error> {
-    let (_, default_rtol, _, default_steps) = fields(&SolverSettings::default());
-    let m = match method_name {
-        Some(name) => method(name)?,
-        None => Method::ClosedForm,
-    };
-    let r = rtol.unwrap_or(default_rtol);
-    SolverSettings::new(m, r, r, default_steps)
+    SolverOverrides {
+        method: Some(
+            method_name
+                .map(method)
+                .transpose()?
+                .unwrap_or(Method::ClosedForm),
+        ),
+        rtol,
+        atol: None,
+        steps: None,
+    }
+    .apply(&SolverSettings::default())
 }

@@ -132,7 +132,7 @@ impl Friction {
     pub fn slide_potential(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => s / mu,
-            Friction::SpeedDependent { a, b, c } => {
+            Friction::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     return s / (a + b);
                 }
@@ -166,7 +166,7 @@ impl Friction {
     pub fn slide_speed(&self, g: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => mu * g,
-            Friction::SpeedDependent { a, b, c } => {
+            Friction::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {
@@ -205,6 +205,7 @@ fn ln_1p_product(x: f64, y: f64, z: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::Evaluate;
 
     #[test]
     fn constant_mu_is_eq_48_and_49() {
@@ -229,7 +230,7 @@ mod tests {
     #[test]
     fn speed_dependent_matches_direct_integration() {
         for (a, b, c) in [(9.951e-3, 0.108, 1.088), (0.0, 0.2, 2.0), (0.05, 0.0, 1.0)] {
-            let f = Friction::SpeedDependent { a, b, c };
+            let f = Friction::speed_dependent(a, b, c).unwrap();
             let (s0, k) = (2.0, 40.0);
             let law = SlidingLaw::new(f, s0, k, true);
             let rhs = |s: f64| -k * f.mu(s);
@@ -267,12 +268,14 @@ mod tests {
             a: 0.0,
             b: 0.108,
             c: 1.088,
+            evaluate: Evaluate::AlongContact,
         };
         for a in [5e-324, 1e-300, 1e-20, 1e-12] {
             let f = Friction::SpeedDependent {
                 a,
                 b: 0.108,
                 c: 1.088,
+                evaluate: Evaluate::AlongContact,
             };
             for s in [1e-12, 0.3, 2.0, 50.0] {
                 let (g, g0) = (f.slide_potential(s), zero.slide_potential(s));
@@ -295,6 +298,7 @@ mod tests {
             a: 9.951e-3,
             b: 0.108,
             c: f64::MAX,
+            evaluate: Evaluate::AlongContact,
         };
         let g = huge_c.slide_potential(2.0);
         assert!(
@@ -306,6 +310,7 @@ mod tests {
             a: 0.0,
             b: 0.108,
             c: 1.088,
+            evaluate: Evaluate::AlongContact,
         };
         assert_eq!(pure.slide_potential(1e15), f64::INFINITY);
         let law = SlidingLaw::new(pure, 3.7e14, 40.0, true);
@@ -318,6 +323,7 @@ mod tests {
             a: 0.01,
             b: 0.1,
             c: 100.0,
+            evaluate: Evaluate::AlongContact,
         };
         for s in [5.0, 8.0, 20.0] {
             let g = f.slide_potential(s);
@@ -340,6 +346,7 @@ mod tests {
                 a: 0.07,
                 b: 0.0,
                 c: 3.0,
+                evaluate: Evaluate::AlongContact,
             },
             1.0,
             30.0,

@@ -8,6 +8,7 @@
 //! alpha = 0.4        # I = alpha m r^2; default 0.4
 //! [contact]
 //! mu = 0.06          # or { model = "speed-dependent", a = 9.951e-3, b = 0.108, c = 1.088 }
+//!                    # (+ evaluate = "initial": mu(S(0)) held; default "along-contact")
 //! restitution = 1.0  # or: impulse = 0.17  (N s); not both; neither: restitution 1
 //! [contact.profile]
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
@@ -44,7 +45,7 @@ use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings};
@@ -219,8 +220,8 @@ struct RawContact {
 }
 
 /// What `contact.mu` accepts.
-const MU_ACCEPTED: &str =
-    "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., c = .. }";
+const MU_ACCEPTED: &str = "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., \
+     c = .., evaluate = \"along-contact\" (default) or \"initial\" }";
 
 /// `contact.mu` as written: a number (constant friction) or a table naming the model. Its
 /// values are checked by [`FrictionSpec::build`], through [`Friction`]'s constructors.
@@ -228,7 +229,7 @@ const MU_ACCEPTED: &str =
 enum FrictionSpec {
     /// `mu = 0.06`.
     Constant(f64),
-    /// `mu = { model = "speed-dependent", a = .., b = .., c = .. }`.
+    /// `mu = { model = "speed-dependent", a = .., b = .., c = .., evaluate = .. }`.
     Model(FrictionModelSpec),
 }
 
@@ -241,6 +242,8 @@ struct FrictionModelSpec {
     a: f64,
     b: f64,
     c: f64,
+    #[serde(default, deserialize_with = "optional_name")]
+    evaluate: Option<Evaluate>,
 }
 
 /// The friction models by name.
@@ -305,7 +308,8 @@ impl FrictionSpec {
                 a,
                 b,
                 c,
-            }) => Friction::speed_dependent(a, b, c),
+                evaluate,
+            }) => Ok(Friction::speed_dependent(a, b, c)?.evaluated(evaluate.unwrap_or_default())),
         }
     }
 }
@@ -653,8 +657,30 @@ mod tests {
             Friction::SpeedDependent {
                 a: 0.01,
                 b: 0.1,
-                c: 1.0
+                c: 1.0,
+                evaluate: Evaluate::AlongContact,
             }
+        );
+        let s = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"initial\" }",
+        )
+        .unwrap();
+        assert_eq!(
+            s.contact.friction,
+            Friction::speed_dependent(0.01, 0.1, 1.0)
+                .unwrap()
+                .evaluated(Evaluate::Initial)
+        );
+        let e = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"start\" }",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("contact.mu.evaluate")
+                && e.contains("along-contact")
+                && e.contains("initial"),
+            "{e}"
         );
     }
 

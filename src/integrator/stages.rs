@@ -84,7 +84,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         SlidingRhs {
             profile: self.profile,
             impulse: self.pi,
-            friction: self.c.contact.friction,
+            friction: self.c.active_friction().unwrap_or(self.c.contact.friction),
             speed_scale: self.c.scales.speed,
             inv_alpha: 1.0 / self.c.ball.alpha,
             e0: self.e0,
