@@ -2,6 +2,10 @@
 //! closed form, theta constant while sliding) run here, so that `cargo test` fails when an
 //! example's check would: each example's `run` is the one `cargo run --example` calls.
 
+// Each example is a program of its own and declares `mod common;` itself, so the shared
+// examples/common/mod.rs is loaded once per example here.
+#![allow(clippy::duplicate_mod)]
+
 macro_rules! example {
     ($module:ident, $file:literal) => {
         #[path = $file]

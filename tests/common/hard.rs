@@ -511,9 +511,9 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
 }
 
-#[path = "quadrature.rs"]
-mod quadrature;
-pub use quadrature::gauss_legendre;
+// The one copy of the nodes: through tests/common/mod.rs (loading quadrature.rs twice is
+// a duplicate module).
+pub use first_principles::gauss_legendre;
 
 /// Composite Gauss-Legendre quadrature of `f` over [a, b].
 pub fn quad(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
