@@ -9,7 +9,7 @@ use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
 use criterion::{black_box, criterion_group, Criterion};
 
 /// The loosest rtol = 10^-k (k = 3..13) at which `method` reaches `target`.
-fn loosest(
+pub fn loosest(
     c: &billiard_contact::Collision,
     p: &Profile,
     method: Method,
@@ -42,12 +42,12 @@ fn bench(cr: &mut Criterion) {
             eprintln!(
                 "{method} {}: rtol {:e}, error {:.2e}, {} evaluations, {} steps",
                 p.name(),
-                s.rtol,
+                s.rtol(),
                 o.check.closed_form_error,
                 o.stats.rhs_evaluations,
                 o.stats.accepted_steps
             );
-            let name = format!("{method}/{}/error<=1e-10 (rtol {:e})", p.name(), s.rtol);
+            let name = format!("{method}/{}/error<=1e-10 (rtol {:e})", p.name(), s.rtol());
             g.bench_function(name, |b| {
                 b.iter(|| solve(black_box(&c), black_box(&p), &s, None).unwrap())
             });
@@ -58,7 +58,7 @@ fn bench(cr: &mut Criterion) {
 
 #[path = "closed_form.rs"]
 #[allow(dead_code)]
-mod closed_form;
+pub mod closed_form;
 
 /// Criterion's wall-clock numbers, then the target case's CPU time per contact (the
 /// machine is shared: CPU time separates compute from waiting).
@@ -73,7 +73,7 @@ fn cpu_time() {
     });
     println!(
         "dop853 half-sine error <= 1e-10 (rtol {:e}): {:.2} us wall, {} CPU per contact ({n} solves)",
-        s.rtol,
+        s.rtol(),
         wall * 1e6,
         cpu.map(|c| format!("{:.2} us", c * 1e6))
             .unwrap_or_else(|| "n/a".into()),

@@ -23,7 +23,7 @@ use std::process::ExitCode;
 /// at 3.2e-12 (with graded breakpoints instead, ten times rtol: 1.3e-9).
 const TOLERANCE: f64 = 1e-9;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
         Profile::Hertz(Hertz::new(duration)?),

@@ -23,7 +23,7 @@ use std::process::ExitCode;
 /// at 1.1e-11 (with graded breakpoints instead, ten times rtol: 1.3e-9).
 const TOLERANCE: f64 = 1e-9;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
         Profile::SinePower(SinePower::new(duration, 1.5)?),

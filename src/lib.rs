@@ -34,8 +34,8 @@
 //! let outcome = solve(&collision, &HalfSine::new(2.5e-4)?, &SolverSettings::default(), None)?;
 //! // S(0) = 2V = 1 m/s never reaches 0 (p_stick = m S(0) / (2 mu (1 + 1/alpha)) > P = 2 m U(0)),
 //! // so friction acts throughout: V' = V - mu P / m = 0.5 - 2 (0.06) (1) = 0.38 m/s (eqs 24-25).
-//! assert!((outcome.out.u_cm.y - 0.38).abs() < 1e-10);
-//! assert!((outcome.out.u_cm.x + 1.0).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.y - 0.38).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.x + 1.0).abs() < 1e-10);
 //! # Ok::<(), billiard_contact::Error>(())
 //! ```
 //!
@@ -86,11 +86,13 @@ pub mod table_phase;
 pub use apps::batch;
 #[cfg(feature = "plots")]
 pub use apps::plot;
+pub use apps::sweep;
 pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
 pub use contact::closed_form::ClosedForm;
 pub use contact::outcome::{solve, Outcome};
+pub use contact::result::ContactResult;
 pub use error::Error;
 pub use formats::report::Report;
 pub use formats::scene::{Incoming, Scene};
@@ -101,7 +103,7 @@ pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::material::{HertzContact, Material};
 pub use model::params::{
-    Ball, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;
@@ -111,7 +113,7 @@ pub use profile::{ForceProfile, Profile};
 /// batch kernel, the checks), for callers who drive them directly.
 pub mod details {
     pub use crate::contact::check::{checks, state_error, Checks};
-    pub use crate::contact::closed_form::{ClosedFormBatch, Resolved};
+    pub use crate::contact::closed_form::ClosedFormBatch;
     pub use crate::integrator::{
         integrate, sidi_order, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
     };

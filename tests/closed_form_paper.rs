@@ -142,13 +142,13 @@ fn compare(case: &Case, c: &Collision, cf: &ClosedForm, want: &Expected) -> f64 
     );
     assert_eq!(c.collides(), want.collision, "{}", ctx());
     let errors = [
-        state_error(b, v, &cf.out, &want.out),
-        (cf.impulse - want.impulse).abs() / imp,
-        (cf.tangential_impulse - want.tangential).abs() / imp,
-        (cf.s_out - want.s_out).abs() / v,
+        state_error(b, v, &cf.result.out, &want.out),
+        (cf.result.impulse - want.impulse).abs() / imp,
+        (cf.result.tangential_impulse - want.tangential).abs() / imp,
+        (cf.result.s_out - want.s_out).abs() / v,
         (c.s0 - want.s0).abs() / v,
-        (cf.heat - want.heat).abs() / energy,
-        (cf.heat_sliding - want.heat_sliding).abs() / energy,
+        (cf.result.heat - want.heat).abs() / energy,
+        (cf.result.heat_sliding - want.heat_sliding).abs() / energy,
     ];
     let worst = errors.iter().cloned().fold(0.0, f64::max);
     assert!(
@@ -167,9 +167,9 @@ fn compare(case: &Case, c: &Collision, cf: &ClosedForm, want: &Expected) -> f64 
     let j_stick = want.s0 * b.m / (2.0 * (1.0 + 1.0 / b.alpha));
     let near_boundary = (case.law.mu * want.impulse - j_stick).abs() <= 1e-12 * imp;
     if !near_boundary {
-        assert_eq!(cf.sticks, want.sticks, "sticks: {}", ctx());
+        assert_eq!(cf.result.sticks, want.sticks, "sticks: {}", ctx());
     }
-    match (cf.stick_impulse, want.p_stick) {
+    match (cf.result.stick_impulse, want.p_stick) {
         (Some(got), Some(p)) => assert!(
             (got - p).abs() <= P_STICK_REL_TOL * p,
             "p_stick {got} vs {p}: {}",
@@ -215,9 +215,9 @@ fn closed_form_matches_first_principles_over_random_states() {
         if !want.collision {
             n_none += 1;
             // No collision: the outgoing state is the incoming one, exactly.
-            assert_eq!(cf.out, c.incoming);
-            assert_eq!(cf.stick_impulse, None);
-            assert!(!cf.sticks);
+            assert_eq!(cf.result.out, c.incoming);
+            assert_eq!(cf.result.stick_impulse, None);
+            assert!(!cf.result.sticks);
         } else if want.sticks {
             n_stick += 1;
         } else if want.tangential > 0.0 {
@@ -252,10 +252,7 @@ fn closed_form_matches_first_principles_over_random_states() {
 #[test]
 fn solve_closed_form_method_matches_first_principles() {
     let mut rng = Rng::new(0x5eed_0002);
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     let profile = HalfSine::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for _ in 0..STATES / 4 {
@@ -266,11 +263,11 @@ fn solve_closed_form_method_matches_first_principles() {
         worst = worst.max(compare(&case, &c, &o.exact, &want));
         let b = &case.balls;
         let v = case.pair.v_ref(b.r);
-        worst = worst.max(state_error(b, v, &o.out, &want.out));
-        assert!(state_error(b, v, &o.out, &want.out) <= CLOSED_FORM_TOL);
-        assert!((o.tangential_impulse - want.tangential).abs() <= CLOSED_FORM_TOL * b.m * v);
-        assert_eq!(o.collision, want.collision);
-        assert_eq!(o.theta.is_none(), want.s0 == 0.0);
+        worst = worst.max(state_error(b, v, &o.result.out, &want.out));
+        assert!(state_error(b, v, &o.result.out, &want.out) <= CLOSED_FORM_TOL);
+        assert!((o.result.tangential_impulse - want.tangential).abs() <= CLOSED_FORM_TOL * b.m * v);
+        assert_eq!(o.result.collided(), want.collision);
+        assert_eq!(o.result.theta.is_none(), want.s0 == 0.0);
         for x in [
             o.check.closed_form_error,
             o.check.momentum_error,
@@ -281,11 +278,11 @@ fn solve_closed_form_method_matches_first_principles() {
             assert!((0.0..=CLOSED_FORM_TOL).contains(&x), "check {x:e}");
         }
         if !want.collision {
-            assert_eq!(o.stick_impulse, None);
+            assert_eq!(o.result.stick_impulse, None);
             assert_eq!(o.stick_time, None);
             continue;
         }
-        if o.sticks {
+        if o.result.sticks {
             let p_stick = want.p_stick.unwrap();
             let t_exact = TAU * common::half_sine_time(p_stick / want.impulse);
             let t = o.stick_time.expect("a stick time");
@@ -348,10 +345,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
             b,
         ),
     ];
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for case in &cases {
         assert_eq!(case.pair.slip(b.r), Vector3::zeros());
         let c = collision(&case.balls, &case.law, &case.pair).unwrap();
@@ -360,17 +354,17 @@ fn zero_slip_gets_no_friction_and_no_theta() {
         compare(case, &c, &cf, &want);
         assert_eq!(c.s0, 0.0);
         assert_eq!(c.theta(), None);
-        assert_eq!(cf.tangential_impulse, 0.0);
-        assert_eq!(cf.heat_sliding, 0.0);
+        assert_eq!(cf.result.tangential_impulse, 0.0);
+        assert_eq!(cf.result.heat_sliding, 0.0);
         // Only U changes, by exactly -P/m; every spin and V, W are untouched.
         let mut expected = c.incoming;
         expected.u_cm.x -= want.impulse / b.m;
-        assert_eq!(cf.out, expected);
+        assert_eq!(cf.result.out, expected);
         let o = solve(&c, &HalfSine::new(TAU).unwrap(), &settings, None).unwrap();
-        assert!(o.sticks);
+        assert!(o.result.sticks);
         assert_eq!(o.stick_time, Some(0.0));
-        assert_eq!(o.stick_impulse, Some(0.0));
-        assert_eq!(o.theta, None);
+        assert_eq!(o.result.stick_impulse, Some(0.0));
+        assert_eq!(o.result.theta, None);
     }
 }
 
@@ -396,14 +390,14 @@ fn tiny_slip_gives_tiny_correctly_directed_friction() {
         let cf = ClosedForm::new(&c);
         let want = resolve(&case.balls, &case.law, &case.pair);
         compare(&case, &c, &cf, &want);
-        assert!(cf.sticks);
+        assert!(cf.result.sticks);
         // S(0) = 2 |(V, W)|, J = m S(0) / 7.
         let s0 = 2.0 * v.hypot(w);
         let j = b.m * s0 / 7.0;
-        assert!((cf.tangential_impulse - j).abs() <= 1e-14 * j);
+        assert!((cf.result.tangential_impulse - j).abs() <= 1e-14 * j);
         // Velocity change along -(V, W) with magnitude J/m = S(0)/7 = (2/7)|(V, W)|:
         // (V, W) -> (5/7)(V, W).
-        let (dv, dw) = (cf.out.u_cm.y - v, cf.out.u_cm.z - w);
+        let (dv, dw) = (cf.result.out.u_cm.y - v, cf.result.out.u_cm.z - w);
         assert!((dv + 2.0 * v / 7.0).abs() <= 1e-14 * v.abs().max(w.abs()));
         assert!((dw + 2.0 * w / 7.0).abs() <= 1e-14 * v.abs().max(w.abs()));
     }
@@ -549,18 +543,18 @@ fn paper_special_case_eqs_66_to_72() {
         .unwrap();
         let cf = ClosedForm::new(&c);
         assert!(
-            (cf.impulse - M * u).abs() <= CLOSED_FORM_TOL * M * vel,
+            (cf.result.impulse - M * u).abs() <= CLOSED_FORM_TOL * M * vel,
             "eq 60"
         );
         assert!((c.s0 - s).abs() <= CLOSED_FORM_TOL * vel, "eq 63");
         let th = c.theta().unwrap();
         assert!((th.cos() - v / s).abs() <= CLOSED_FORM_TOL, "eq 64");
         assert!((th.sin() + u / s).abs() <= CLOSED_FORM_TOL, "eq 65");
-        assert!(!cf.sticks);
+        assert!(!cf.result.sticks);
         let errs = [
-            amax(&(cf.out.u_cm - cm_u)) / vel,
-            amax(&(cf.out.omega_a - spin_a)) / spin,
-            amax(&(cf.out.omega_b - spin_b)) / spin,
+            amax(&(cf.result.out.u_cm - cm_u)) / vel,
+            amax(&(cf.result.out.omega_a - spin_a)) / spin,
+            amax(&(cf.result.out.omega_b - spin_b)) / spin,
         ];
         // And through the runner, in the lab frame (eqs 69, 70, 72, 71).
         let scene = special_scene(sp, "closed-form");
@@ -607,7 +601,7 @@ fn paper_special_case_past_eq_57_sticks() {
         let spin_a = Vector3::new(-v / R, u / R, 0.0) + spin_b;
         let scene = special_scene(&sp, "closed-form");
         let so = run_scene(&scene, &scene.solver, None).unwrap();
-        assert!(so.outcome.sticks);
+        assert!(so.outcome.result.sticks);
         let (a, b) = so.lab_out.unwrap();
         let (vel, spin) = (s, s / R);
         let errs = [
@@ -621,9 +615,9 @@ fn paper_special_case_past_eq_57_sticks() {
         }
         // p_stick = m s / (2 mu (1 + 1/alpha)) = m s / (7 mu), J = m s / 7.
         let o = &so.outcome;
-        assert!((o.stick_impulse.unwrap() - M * s / (7.0 * sp.mu)).abs() <= 1e-13 * M * s);
-        assert!((o.tangential_impulse - M * s / 7.0).abs() <= CLOSED_FORM_TOL * M * s);
-        assert_eq!(o.s_out, 0.0);
+        assert!((o.result.stick_impulse.unwrap() - M * s / (7.0 * sp.mu)).abs() <= 1e-13 * M * s);
+        assert!((o.result.tangential_impulse - M * s / 7.0).abs() <= CLOSED_FORM_TOL * M * s);
+        assert_eq!(o.result.s_out, 0.0);
     }
 }
 
@@ -651,19 +645,16 @@ fn without_stick_effect_the_paper_formulas_apply_and_eq_57_is_flagged() {
     compare(&case, &c, &cf, &want);
     // S(0) = 2 V = 0.2, P = 2 m U0, J = mu P: S_out = S(0) - 2 (1 + 1/alpha) mu P / m = 0.2 - 0.84.
     let s_out = 0.2 - 2.0 * 3.5 * 0.06 * 2.0 * 1.0;
-    assert!((cf.s_out - s_out).abs() <= 1e-14);
+    assert!((cf.result.s_out - s_out).abs() <= 1e-14);
     assert!(cf.violates_eq57());
     let o = solve(
         &c,
         &HalfSine::new(TAU).unwrap(),
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();
-    assert!(!o.sticks);
+    assert!(!o.result.sticks);
     assert!(
         o.warnings.iter().any(|w| w.contains("eq 57")),
         "{:?}",

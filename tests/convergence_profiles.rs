@@ -183,9 +183,9 @@ fn collision(case: &Case) -> Collision {
 fn error(case: &Case, o: &Outcome, want: &Expected) -> f64 {
     let v = case.pair.v_ref(BALLS.r);
     let spin = v / BALLS.r;
-    (amax(&(o.out.u_cm - want.out.va)) / v)
-        .max(amax(&(o.out.omega_a - want.out.wa)) / spin)
-        .max(amax(&(o.out.omega_b - want.out.wb)) / spin)
+    (amax(&(o.result.out.u_cm - want.out.va)) / v)
+        .max(amax(&(o.result.out.omega_a - want.out.wa)) / spin)
+        .max(amax(&(o.result.out.omega_b - want.out.wb)) / spin)
 }
 
 fn settings(method: Method, rtol: f64, steps: u32) -> SolverSettings {
@@ -201,7 +201,10 @@ fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, 
     let err = error(case, &o, &want);
     let what = format!(
         "{} / {} / {} rtol {:e}",
-        sub.name, case.name, s.method, s.rtol
+        sub.name,
+        case.name,
+        s.method(),
+        s.rtol()
     );
     assert!(err <= tol, "{what}: scaled error {err:e} > {tol:e}");
     // The run's own check agrees with the independent error (same scales).
@@ -210,7 +213,7 @@ fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, 
         "{what}: check.closed_form_error {:e} vs {err:e}",
         o.check.closed_form_error
     );
-    assert_eq!(o.sticks, want.sticks, "{what}: sticks");
+    assert_eq!(o.result.sticks, want.sticks, "{what}: sticks");
     let mut t_err = 0.0;
     if want.sticks {
         let p_stick = want.p_stick.unwrap();
@@ -227,7 +230,9 @@ fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, 
             t_err <= STICK_TIME_TOL,
             "{what}: stick time error {t_err:e} tau"
         );
-        assert!((o.stick_impulse.unwrap() - p_stick).abs() <= STICK_IMPULSE_TOL * want.impulse);
+        assert!(
+            (o.result.stick_impulse.unwrap() - p_stick).abs() <= STICK_IMPULSE_TOL * want.impulse
+        );
     } else {
         assert_eq!(o.stick_time, None);
     }
@@ -292,7 +297,7 @@ fn rk4_with_1000_steps_converges_to_the_closed_form() {
                 let err = error(&case, &o, &want);
                 let tol = if sub.exact {
                     EXACT_TOL
-                } else if s.time_transform {
+                } else if s.time_transform() {
                     RK4_SMOOTH_TOL
                 } else {
                     RK4_TOL
@@ -302,14 +307,15 @@ fn rk4_with_1000_steps_converges_to_the_closed_form() {
                     "{} / {} (time transform {}): {err:e} > {tol:e}",
                     sub.name,
                     case.name,
-                    s.time_transform
+                    s.time_transform()
                 );
-                assert_eq!(o.sticks, want.sticks);
+                assert_eq!(o.result.sticks, want.sticks);
                 worst = worst.max(err);
             }
             eprintln!(
                 "rk4 {RK4_STEPS} steps, {} (time transform {}): largest scaled error {worst:.2e}",
-                sub.name, s.time_transform
+                sub.name,
+                s.time_transform()
             );
         }
     }

@@ -4,14 +4,14 @@
 //! U(0) = (1, 0.1, 0) (a stun cut): P = 2 m U(0) = 0.34 N s, S(0) = 2 V = 0.2 m/s,
 //! theta = 0, p_stick = m S(0) / (2 mu (1 + 1/alpha)) = 0.0809... N s < P: eq 57 fails.
 
-mod common;
+mod scenes;
 
 use billiard_contact::formats::report::{summary, Report};
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::run_scene;
 use billiard_contact::Sampling;
 use billiard_contact::Scene;
-use common::{cue, lab_scene, M, R};
+use scenes::{cue, lab_scene, M, R};
 use std::path::Path;
 
 const MU: f64 = 0.06;
@@ -56,22 +56,22 @@ fn friction_off_is_eq_14_alone() {
         let mut trace: Vec<TraceRow> = Vec::new();
         let so = run_scene(&s, &s.solver, Some((&mut trace, Sampling::Uniform(10)))).unwrap();
         let o = &so.outcome;
-        assert!((o.out.u_cm.x - (1.0 - 2.0)).abs() <= tol, "{method}");
-        assert_eq!(o.out.u_cm.y, 0.1, "{method}: V untouched");
-        assert_eq!(o.out.u_cm.z, 0.0);
-        assert_eq!(o.out.omega_a, nalgebra::Vector3::zeros());
-        assert_eq!(o.out.omega_b, nalgebra::Vector3::zeros());
-        assert_eq!(o.tangential_impulse, 0.0);
-        assert_eq!(o.heat_sliding, 0.0);
-        assert!(!o.sticks);
+        assert!((o.result.out.u_cm.x - (1.0 - 2.0)).abs() <= tol, "{method}");
+        assert_eq!(o.result.out.u_cm.y, 0.1, "{method}: V untouched");
+        assert_eq!(o.result.out.u_cm.z, 0.0);
+        assert_eq!(o.result.out.omega_a, nalgebra::Vector3::zeros());
+        assert_eq!(o.result.out.omega_b, nalgebra::Vector3::zeros());
+        assert_eq!(o.result.tangential_impulse, 0.0);
+        assert_eq!(o.result.heat_sliding, 0.0);
+        assert!(!o.result.sticks);
         assert_eq!(o.stick_time, None);
-        assert_eq!(o.stick_impulse, None);
+        assert_eq!(o.result.stick_impulse, None);
         assert!(o.warnings.is_empty());
         assert!(trace
             .iter()
             .all(|r| r.slip_speed == 0.2 && r.heat_sliding == 0.0));
         // Heat: only the normal impulse, 2 U(0) P - P^2/m = 0 for e = 1.
-        assert!(o.heat.abs() <= tol * M);
+        assert!(o.result.heat.abs() <= tol * M);
         assert_eq!(s.effects.names(), vec!["normal-impulse"]);
     }
 }
@@ -86,25 +86,31 @@ fn stick_off_is_the_papers_formulas_with_the_eq57_warning() {
     for (method, tol) in [("closed-form", EXACT), ("dop853", STEPPED)] {
         let s = cm_scene(method, "stick = false");
         let o = run_scene(&s, &s.solver, None).unwrap().outcome;
-        assert!((o.out.u_cm.y - (0.1 - MU * p / M)).abs() <= tol, "{method}");
-        let dz = -MU * p / (0.4 * M * R);
-        assert!((o.out.omega_a.z - dz).abs() <= tol * dz.abs(), "{method}");
-        assert!((o.out.omega_b.z - dz).abs() <= tol * dz.abs());
         assert!(
-            (o.s_out - (0.2 - 2.0 * MU * 3.5 * p / M)).abs() <= tol,
+            (o.result.out.u_cm.y - (0.1 - MU * p / M)).abs() <= tol,
             "{method}"
         );
-        assert!((o.tangential_impulse - MU * p).abs() <= tol * p);
-        assert!(!o.sticks);
+        let dz = -MU * p / (0.4 * M * R);
+        assert!(
+            (o.result.out.omega_a.z - dz).abs() <= tol * dz.abs(),
+            "{method}"
+        );
+        assert!((o.result.out.omega_b.z - dz).abs() <= tol * dz.abs());
+        assert!(
+            (o.result.s_out - (0.2 - 2.0 * MU * 3.5 * p / M)).abs() <= tol,
+            "{method}"
+        );
+        assert!((o.result.tangential_impulse - MU * p).abs() <= tol * p);
+        assert!(!o.result.sticks);
         assert_eq!(o.warnings.len(), 1, "{:?}", o.warnings);
         assert!(o.warnings[0].contains("eq 57"), "{}", o.warnings[0]);
         assert_eq!(s.effects.names(), vec!["normal-impulse", "friction"]);
 
         let s = cm_scene(method, "stick = true");
         let o = run_scene(&s, &s.solver, None).unwrap().outcome;
-        assert!(o.sticks);
-        assert_eq!(o.s_out, 0.0);
-        assert!((o.tangential_impulse - M * 0.2 / 7.0).abs() <= tol * M);
+        assert!(o.result.sticks);
+        assert_eq!(o.result.s_out, 0.0);
+        assert!((o.result.tangential_impulse - M * 0.2 / 7.0).abs() <= tol * M);
         assert!(o.warnings.is_empty());
         assert_eq!(
             s.effects.names(),

@@ -12,6 +12,9 @@
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
+#[path = "common/hard.rs"]
+mod common;
+
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::Effects;
@@ -90,6 +93,24 @@ fn k() -> f64 {
 }
 
 /// The closed form of G against the independent quadrature.
+/// The slide potential the other tests use as a reference (tests/common/hard.rs, written
+/// from its derivation) against the quadrature here, with its inverse and its limits.
+#[test]
+fn reference_slide_potential_matches_quadrature() {
+    for s in [1e-9, 1e-3, 0.1, 1.0, 5.0] {
+        let g = common::slide_potential(A, B, C, s);
+        let q = g_quad(s);
+        assert!((g - q).abs() <= 1e-14 * q, "S = {s}: {g:e} vs {q:e}");
+        let back = common::slip_of_potential(A, B, C, g);
+        assert!((back - s).abs() <= 1e-14 * s, "S = {s}: inverse {back:e}");
+    }
+    // c = 0: constant mu = a + b; a = 0: (e^(cS) - 1) / (b c).
+    assert!((common::slide_potential(A, B, 0.0, 2.0) - 2.0 / (A + B)).abs() <= 1e-15 * 20.0);
+    let g = common::slide_potential(0.0, B, C, 2.0);
+    assert!((g - (C * 2.0).exp_m1() / (B * C)).abs() <= 1e-14 * g);
+    assert!((common::slip_of_potential(0.0, B, C, g) - 2.0).abs() <= 1e-14);
+}
+
 #[test]
 fn closed_form_of_the_slide_potential_matches_quadrature() {
     let f = Friction::speed_dependent(A, B, C).unwrap();
@@ -125,18 +146,15 @@ fn time_stepping_converges_to_the_quadrature_answer() {
     assert!(s_out > 0.0, "slides throughout");
     let exact = exact_out(u, (s0 - s_out) / k(), p);
     let err = |o: &billiard_contact::Outcome| {
-        let d = (o.out.u_cm - exact.u_cm).amax() / c.scales.speed;
-        let w = (o.out.omega_a - exact.omega_a).amax() / c.scales.spin;
+        let d = (o.result.out.u_cm - exact.u_cm).amax() / c.scales.speed;
+        let w = (o.result.out.omega_a - exact.omega_a).amax() / c.scales.spin;
         d.max(w)
     };
     let profile = HalfSine::new(2.5e-4).unwrap();
     let cf = solve(
         &c,
         &profile,
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();
@@ -156,7 +174,7 @@ fn time_stepping_converges_to_the_quadrature_answer() {
             "theta drift {}",
             o.check.theta_drift
         );
-        assert!((o.s_out - s_out).abs() <= 100.0 * rtol * s0);
+        assert!((o.result.s_out - s_out).abs() <= 100.0 * rtol * s0);
         last = e;
     }
     // rk4: halving the step divides the error by ~16.
@@ -210,19 +228,16 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
     let p_stick = g_quad(c.s0) / k();
     assert!(p_stick < c.impulse);
     for method in [Method::ClosedForm, Method::Dop853] {
-        let st = SolverSettings {
-            method,
-            ..Default::default()
-        };
+        let st = SolverSettings::default().with_method(method);
         let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &st, None).unwrap();
-        assert!(o.sticks);
-        let found = o.stick_impulse.unwrap();
+        assert!(o.result.sticks);
+        let found = o.result.stick_impulse.unwrap();
         assert!(
             (found - p_stick).abs() <= 1e-10 * c.impulse,
             "{method}: {found} vs {p_stick}"
         );
         // J = S(0) / k once stuck, whatever mu(S).
-        assert!((o.tangential_impulse - c.s0 / k()).abs() <= 1e-10 * c.impulse);
+        assert!((o.result.tangential_impulse - c.s0 / k()).abs() <= 1e-10 * c.impulse);
     }
 }
 
@@ -239,21 +254,18 @@ fn b_zero_reduces_exactly_to_constant_mu() {
             solve(&sd, &profile, &st, None).unwrap(),
             solve(&cm, &profile, &st, None).unwrap(),
         );
-        assert_eq!(a.out, b.out);
+        assert_eq!(a.result.out, b.result.out);
         assert_eq!(a.stick_time, b.stick_time);
-        assert_eq!(a.s_out, b.s_out);
+        assert_eq!(a.result.s_out, b.result.s_out);
         assert_eq!(a.stats, b.stats);
-        let cf = SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        };
+        let cf = SolverSettings::default().with_method(Method::ClosedForm);
         let (a, b) = (
             solve(&sd, &profile, &cf, None).unwrap(),
             solve(&cm, &profile, &cf, None).unwrap(),
         );
-        assert!((a.out.u_cm - b.out.u_cm).amax() <= 1e-15);
-        assert!((a.out.omega_a - b.out.omega_a).amax() <= 1e-15 / R);
-        assert_eq!(a.sticks, b.sticks);
-        assert!((a.stick_impulse.unwrap() - b.stick_impulse.unwrap()).abs() <= 1e-16);
+        assert!((a.result.out.u_cm - b.result.out.u_cm).amax() <= 1e-15);
+        assert!((a.result.out.omega_a - b.result.out.omega_a).amax() <= 1e-15 / R);
+        assert_eq!(a.result.sticks, b.result.sticks);
+        assert!((a.result.stick_impulse.unwrap() - b.result.stick_impulse.unwrap()).abs() <= 1e-16);
     }
 }

@@ -106,12 +106,11 @@ fn a_million_samples_in_constant_memory() {
     );
     let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::ClosedForm, Method::Rk4, Method::Dop853] {
-        let s = SolverSettings {
-            method,
-            // One rk4 step per sample at 1e6 samples.
-            steps: 1,
-            ..SolverSettings::default()
-        };
+        // One rk4 step per sample at 1e6 samples.
+        let s = SolverSettings::default()
+            .with_method(method)
+            .with_steps(1)
+            .unwrap();
         let mut results = Vec::new();
         for n in [1_000u64, 1_000_000] {
             let mut sink = Counter {
@@ -137,15 +136,12 @@ fn a_million_samples_in_constant_memory() {
         );
         // The answer does not depend on the sampling beyond the method's accuracy.
         let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
-        let err = exact.scaled_error(&results[1].1.out, &exact.out().state);
+        let err = exact.scaled_error(&results[1].1.result.out, &exact.out().state);
         assert!(err <= state_tolerance(method), "{method}: error {err:e}");
     }
 
     // The CSV writer streams too: 1e6 rows written to io::sink.
-    let s = SolverSettings {
-        method: Method::ClosedForm,
-        ..SolverSettings::default()
-    };
+    let s = SolverSettings::default().with_method(Method::ClosedForm);
     let (rows, peak) = peak_growth(|| {
         let mut csv = CsvTrace::new(std::io::sink()).unwrap();
         solve(
@@ -166,16 +162,15 @@ fn a_million_samples_in_constant_memory() {
 
     // A million rk4 steps in a single segment (no samples): the solver's output must not
     // grow with the step count.
-    let s = SolverSettings {
-        method: Method::Rk4,
-        steps: 1_000_000,
-        ..SolverSettings::default()
-    };
+    let s = SolverSettings::default()
+        .with_method(Method::Rk4)
+        .with_steps(1_000_000)
+        .unwrap();
     let (o, peak) = peak_growth(|| solve(&c, &profile, &s, None).unwrap());
     eprintln!("rk4, 1e6 steps in one segment: peak heap growth {peak} bytes");
     assert!(o.stats.accepted_steps >= 1_000_000);
     let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
-    let err = exact.scaled_error(&o.out, &exact.out().state);
+    let err = exact.scaled_error(&o.result.out, &exact.out().state);
     // Truncation is negligible at h = 1e-6; round-off of a million additions (about
     // 1e6 eps) remains.
     assert!(err <= 1e-9, "rk4 1e6 steps: error {err:e}");

@@ -37,7 +37,7 @@ fn scaled_incoming(base: [f64; 9], v: f64, r: f64) -> CmState {
 
 /// Scaled outgoing state: velocities over v, spins times r / v.
 fn scaled_out(o: &Outcome, v: f64, r: f64) -> [f64; 9] {
-    let s = o.out;
+    let s = o.result.out;
     let w = r / v;
     [
         s.u_cm.x / v,
@@ -157,10 +157,10 @@ fn durations_with_the_same_impulse() {
                 "tau {tau:e} ({method}): {t_rel} vs {want}"
             );
             match first {
-                None => first = Some((o.out, t_rel, o.stats.rhs_evaluations)),
+                None => first = Some((o.result.out, t_rel, o.stats.rhs_evaluations)),
                 Some((out, t0, n)) => {
                     assert_eq!(o.stats.rhs_evaluations, n, "tau {tau:e} ({method})");
-                    assert_eq!(o.out, out, "tau {tau:e} ({method})");
+                    assert_eq!(o.result.out, out, "tau {tau:e} ({method})");
                     assert!((t_rel - t0).abs() <= 1e-15);
                 }
             }
@@ -252,7 +252,7 @@ fn hard_profiles() -> Vec<Hard<'static>> {
         Hard {
             name: "hertz",
             profile: Box::new(Hertz::new(TAU).unwrap()),
-            phi: Box::new(|s| Hertz::new(1.0).unwrap().cumulative(s)),
+            phi: Box::new(hertz_phi),
             // t^1.5 ends, as sine-power 1.5. Observed rk4 5.6e-14, dopri5 5.6e-11, dop853
             // 2.5e-11 (graded breakpoints instead: rk4 2.8e-9, dopri5 6.2e-10, dop853
             // 2.8e-10; neither, dop853 reached 1.6e-6 in a property test).
@@ -299,7 +299,7 @@ fn hard_profiles_every_method() {
                 let label = format!("{}, p_stick = {q} P", h.name);
                 let s: SolverSettings = settings(method);
                 let o = run_bounded(&label, &c, h.profile.as_ref(), &s, default_cost(&s));
-                let err = exact.scaled_error(&o.out, &exact.out().state);
+                let err = exact.scaled_error(&o.result.out, &exact.out().state);
                 eprintln!("error {label} ({method}): {err:.2e}");
                 assert!(
                     err <= h.tol[i],

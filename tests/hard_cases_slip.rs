@@ -118,11 +118,11 @@ fn zero_slip_side_spin_gears_the_cut() {
         // Only U changes, exactly as eq 24 says.
         let mut want = incoming;
         want.u_cm.x -= 1.9 * incoming.u_cm.x;
-        assert!((o.out.u_cm.x - want.u_cm.x).abs() <= state_tolerance(method));
-        assert_eq!(o.out.u_cm.yz(), incoming.u_cm.yz());
-        assert_eq!(o.out.omega_a, incoming.omega_a);
-        assert_eq!(o.out.omega_b, incoming.omega_b);
-        assert_eq!(o.theta, None);
+        assert!((o.result.out.u_cm.x - want.u_cm.x).abs() <= state_tolerance(method));
+        assert_eq!(o.result.out.u_cm.yz(), incoming.u_cm.yz());
+        assert_eq!(o.result.out.omega_a, incoming.omega_a);
+        assert_eq!(o.result.out.omega_b, incoming.omega_b);
+        assert_eq!(o.result.theta, None);
     }
 }
 

@@ -228,11 +228,11 @@ fn time_stepping_with_the_material_pulse_matches_the_closed_form() {
                 let out = run_scene(&scene, &s, None).unwrap().outcome;
                 let what = format!("{shape} u = {u:?} e = {e} transform {transform}");
                 let v = pair.v_ref(R);
-                let err = (amax(&(out.out.u_cm - want.out.va)) / v)
-                    .max(amax(&(out.out.omega_a - want.out.wa)) / (v / R))
-                    .max(amax(&(out.out.omega_b - want.out.wb)) / (v / R));
+                let err = (amax(&(out.result.out.u_cm - want.out.va)) / v)
+                    .max(amax(&(out.result.out.omega_a - want.out.wa)) / (v / R))
+                    .max(amax(&(out.result.out.omega_b - want.out.wb)) / (v / R));
                 assert!(err <= DOP853_TOL, "{what}: {err:e}");
-                assert_eq!(out.sticks, want.sticks, "{what}");
+                assert_eq!(out.result.sticks, want.sticks, "{what}");
                 if let Some(p_stick) = want.p_stick.filter(|_| want.sticks) {
                     let q = p_stick / want.impulse;
                     let s_exact = match shape {
@@ -261,10 +261,7 @@ fn time_stepping_with_the_material_pulse_matches_the_closed_form() {
 fn batch_rows_take_their_own_contact_time() {
     let scene = parse(&scene_text("hertz", [0.5, 0.1, 0.0], "")).unwrap();
     for method in [Method::ClosedForm, Method::Dop853] {
-        let s = SolverSettings {
-            method,
-            ..SolverSettings::default()
-        };
+        let s = SolverSettings::default().with_method(method);
         let setup = BatchSetup::from_scene(&scene, s);
         let rows: Vec<BatchInput> = [0.005, 50.0]
             .iter()

@@ -164,18 +164,18 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
     assert!(p_stick < p, "{}: must stick", shot.what);
     let q = p_stick / p;
     let o = solve(&c, &HalfSine::new(TAU).unwrap(), settings, None).unwrap();
-    assert!(o.sticks, "{}", shot.what);
+    assert!(o.result.sticks, "{}", shot.what);
     let t = o.stick_time.unwrap() / TAU;
     let dp = (p_fraction(t) - q).abs();
     assert!(
         dp <= STICK_IMPULSE_TOL,
         "{} ({}): p(t_stick)/P = {}, p_stick/P = {q}",
         shot.what,
-        settings.method,
+        settings.method(),
         p_fraction(t)
     );
     // The reported stick impulse is the impulse at the reported time.
-    assert!((o.stick_impulse.unwrap() / p - q).abs() <= STICK_IMPULSE_TOL);
+    assert!((o.result.stick_impulse.unwrap() / p - q).abs() <= STICK_IMPULSE_TOL);
     let exact = t_exact(q);
     let dt = (t - exact).abs();
     if force(exact) >= FORCE_FLOOR {
@@ -183,7 +183,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
             dt <= STICK_TIME_TOL,
             "{} ({}): t/tau = {t}, exact {exact}, error {dt:e}",
             shot.what,
-            settings.method
+            settings.method()
         );
         (dt, dp)
     } else {
@@ -228,7 +228,7 @@ fn stops_early_middle_and_late_in_the_pulse() {
         eprintln!(
             "spinning states, {} rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, \
              |p - p_stick| {wp:.2e} P",
-            settings.method
+            settings.method()
         );
     }
 }
@@ -236,10 +236,7 @@ fn stops_early_middle_and_late_in_the_pulse() {
 /// The closed-form method reports the exact time from the profile's inverse.
 #[test]
 fn closed_form_method_reports_the_exact_stick_time() {
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for shot in stun_cuts()
         .into_iter()
         .chain(spinning(&[1e-10, 0.2, 0.5, 0.999]))

@@ -3,7 +3,7 @@
 //! Notation: lab frame, up n = +z, cloth at z = 0, m = 0.17 kg, r = 0.028575 m, solid ball
 //! alpha = 2/5, slip of the contact point u = v_h - r (w x n).
 
-mod common;
+mod scenes;
 
 use billiard_contact::run_scene;
 use billiard_contact::table_phase::{
@@ -11,8 +11,8 @@ use billiard_contact::table_phase::{
 };
 use billiard_contact::Ball;
 use billiard_contact::LabBall;
-use common::{cue, lab_scene, M, R};
 use nalgebra::Vector3;
+use scenes::{cue, lab_scene, M, R};
 
 /// Relative tolerance of closed-form arithmetic (a few dozen operations).
 const EXACT: f64 = 1e-13;
@@ -412,7 +412,7 @@ fn energy_never_increases_and_momentum_changes_only_by_the_cloth() {
                 "{cut} {cloth}: {:?}",
                 t.check
             );
-            let rows = billiard_contact::formats::ball_paths::path_rows(&t, 400);
+            let rows = billiard_contact::formats::ball_paths::ball_path_rows(&t, 400);
             let e = |s: &LabBall| {
                 0.5 * M * s.velocity.norm_squared()
                     + 0.5 * b.inertia() * s.spin.norm_squared()

@@ -113,8 +113,8 @@ fn theta_is_constant_while_sliding() {
         let what = format!(
             "state {i}, {}, {} rtol {:e}",
             profile.name(),
-            settings.method,
-            settings.rtol
+            settings.method(),
+            settings.rtol()
         );
         assert!(
             o.check.theta_drift <= THETA_TOL,
@@ -129,11 +129,11 @@ fn theta_is_constant_while_sliding() {
         );
         assert!(b <= THETA_TOL, "{what}: (S, theta) columns drift by {b:e}");
         // theta is reported unchanged.
-        assert_eq!(o.theta, c.theta());
+        assert_eq!(o.result.theta, c.theta());
         own = own.max(o.check.theta_drift);
         state = state.max(a);
         columns = columns.max(b);
-        n_stick += usize::from(o.sticks);
+        n_stick += usize::from(o.result.sticks);
         n_rows += rows.len();
     }
     eprintln!(
@@ -184,7 +184,7 @@ fn theta_is_constant_for_small_oblique_slip() {
                 Some((&mut rows, Sampling::Uniform(50))),
             )
             .unwrap();
-            assert!(out.sticks);
+            assert!(out.result.sticks);
             let (a, b) = row_drift(&c, &rows, out.stick_time);
             assert!(out.check.theta_drift <= THETA_TOL && a <= THETA_TOL && b <= THETA_TOL);
         }

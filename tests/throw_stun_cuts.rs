@@ -116,7 +116,12 @@ fn check(shot: &Shot, sign: f64) -> (f64, f64) {
         (Method::Rk4, STEPPING_TOL),
     ] {
         let so = shot.run(method);
-        assert_eq!(so.outcome.sticks, shot.sticks(), "cut {}", shot.cut_deg);
+        assert_eq!(
+            so.outcome.result.sticks,
+            shot.sticks(),
+            "cut {}",
+            shot.cut_deg
+        );
         let got = throw_rad(&so);
         let err = (got - want).abs();
         assert!(
@@ -262,10 +267,7 @@ fn throw_is_undefined_without_a_horizontal_line_or_change() {
     for text in [vertical, apart] {
         let scene = Scene::parse(&text, Path::new("."), None).unwrap();
         for method in [Method::ClosedForm, Method::Dop853] {
-            let settings = SolverSettings {
-                method,
-                ..Default::default()
-            };
+            let settings = SolverSettings::default().with_method(method);
             let so = run_scene(&scene, &settings, None).unwrap();
             assert_eq!(so.throw_angle_deg, None, "{text}");
         }

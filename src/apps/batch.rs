@@ -36,14 +36,16 @@
 //! (outgoing lab velocities and spins) and `throw_angle_deg` (empty when undefined); with
 //! a time-stepping method also `closed_form_error` and `rhs_evaluations`.
 
-use crate::contact::closed_form::{ClosedFormBatch, Resolved};
+use crate::contact::closed_form::ClosedFormBatch;
 use crate::contact::outcome::solve;
+use crate::contact::result::ContactResult;
 use crate::error::Error;
-use crate::formats::scene::{Incoming, Scene};
+use crate::formats::number::{finite_output, Shortest};
+use crate::formats::scene::{Incoming, LabFrame, Scene};
 use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
-use crate::model::frame::{Frame, LabScene};
+use crate::model::frame::LabScene;
 use crate::model::material::{HertzContact, Material, YOUNGS_MODULUS_FIELD};
 use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
 use crate::model::state::{CmState, LabBall, LabMotion};
@@ -135,30 +137,10 @@ impl BatchInput {
 /// The result of one collision.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BatchOutput {
-    /// Whether the balls approached and collided.
-    pub collision: bool,
-    /// Impulse P (N s).
-    pub impulse: f64,
-    /// S(0) (m/s).
-    pub s0: f64,
-    /// theta (rad); `None` when S(0) = 0.
-    pub theta: Option<f64>,
-    /// Whether sliding stopped during contact.
-    pub sticks: bool,
-    /// When sliding stopped (s).
+    /// Impulses, sliding, heat and the outgoing centre-of-mass state.
+    pub result: ContactResult,
+    /// When sliding stopped (s); `None` when it did not.
     pub stick_time: Option<f64>,
-    /// p_stick (N s) (CONTRACTS.md: also when sliding would stop after the contact).
-    pub stick_impulse: Option<f64>,
-    /// Tangential impulse J >= 0 (N s).
-    pub tangential_impulse: f64,
-    /// Outgoing sliding speed, signed along e0 (m/s).
-    pub s_out: f64,
-    /// Total heat H (J).
-    pub heat: f64,
-    /// Sliding heat H_sfr (J).
-    pub heat_sliding: f64,
-    /// Outgoing centre-of-mass state.
-    pub out: CmState,
     /// Outgoing lab motions of A and B, and the throw angle (degrees), for lab input.
     pub lab: Option<(LabMotion, LabMotion, Option<f64>)>,
     /// Distance to the closed form (time stepping; 0 for the closed form).
@@ -182,18 +164,8 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
         Some(mu) => Friction::constant(mu)?,
         None => setup.contact.friction,
     };
-    let impulse = match (o.restitution, o.impulse) {
-        (Some(e), None) => ImpulseRule::restitution(e)?,
-        (None, Some(p)) => ImpulseRule::explicit(p)?,
-        (None, None) => setup.contact.impulse,
-        (Some(e), Some(p)) => {
-            return Err(Error::invalid(
-                "restitution",
-                format!("{e} together with impulse = {p}"),
-                "one of restitution or impulse, not both",
-            ))
-        }
-    };
+    let impulse =
+        ImpulseRule::from_either("", o.restitution, o.impulse)?.unwrap_or(setup.contact.impulse);
     if let Some(d) = o.duration {
         crate::model::params::positive("duration", d, "s")?;
     }
@@ -227,17 +199,6 @@ fn row_duration(
     }
 }
 
-/// The centre-of-mass state of a row, with the lab frame for lab rows.
-fn cm_of(radius: f64, input: &BatchInput) -> Result<(CmState, Option<Frame>), Error> {
-    Ok(match &input.incoming {
-        Incoming::Cm(s) => (*s, None),
-        Incoming::Lab(lab) => {
-            let f = Frame::new(lab, radius)?;
-            (f.to_cm(lab), Some(f))
-        }
-    })
-}
-
 /// Resolves one collision with the setup's method. The closed form
 /// ([`ClosedFormBatch`]: the same numbers as [`crate::ClosedForm`]) skips the checks (they hold to
 /// round-off by construction) and computes the stick time only when sliding stops.
@@ -247,7 +208,7 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 
 /// The closed-form kernel of the setup's own parameters, when the method is the closed form.
 fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
-    (setup.settings.method == Method::ClosedForm)
+    (setup.settings.method() == Method::ClosedForm)
         .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
 }
 
@@ -257,10 +218,10 @@ fn resolve_with(
     input: &BatchInput,
 ) -> Result<BatchOutput, Error> {
     let (ball, contact) = params_of(setup, &input.overrides)?;
-    let (cm, frame) = cm_of(ball.radius, input)?;
+    let (cm, lab) = input.incoming.to_cm(ball.radius)?;
     let profile = &setup.profile;
     let time_scale = row_duration(setup, &input.overrides, &ball, &cm)?;
-    let mut out = if setup.settings.method == Method::ClosedForm {
+    let mut out = if setup.settings.method() == Method::ClosedForm {
         let own;
         let kernel = match shared {
             Some(k) if input.overrides.is_empty() => k,
@@ -269,24 +230,14 @@ fn resolve_with(
                 &own
             }
         };
-        let r = kernel.resolve(&cm)?;
-        let collision = r.impulse > 0.0;
-        let stick_time = (r.sticks && collision).then(|| {
-            time_scale * profile.time_at_cumulative(r.stick_impulse.unwrap_or(0.0) / r.impulse)
-        });
+        let mut result = kernel.resolve(&cm)?;
+        let stick_time = result.stick_fraction(profile).map(|s| time_scale * s);
+        if !result.collided() {
+            result.stick_impulse = None;
+        }
         BatchOutput {
-            collision,
-            impulse: r.impulse,
-            s0: r.s0,
-            theta: r.theta,
-            sticks: r.sticks,
+            result,
             stick_time,
-            stick_impulse: if collision { r.stick_impulse } else { None },
-            tangential_impulse: r.tangential_impulse,
-            s_out: r.s_out,
-            heat: r.heat,
-            heat_sliding: r.heat_sliding,
-            out: r.out,
             lab: None,
             closed_form_error: 0.0,
             rhs_evaluations: 0,
@@ -295,26 +246,16 @@ fn resolve_with(
         let c = Collision::new(ball, contact, setup.effects, cm)?;
         let o = solve(&c, profile, &setup.settings, None)?;
         BatchOutput {
-            collision: o.collision,
-            impulse: o.impulse,
-            s0: o.s0,
-            theta: o.theta,
-            sticks: o.sticks,
+            result: o.result,
             stick_time: o.stick_time.map(|t| t / profile.duration() * time_scale),
-            stick_impulse: o.stick_impulse,
-            tangential_impulse: o.tangential_impulse,
-            s_out: o.s_out,
-            heat: o.heat,
-            heat_sliding: o.heat_sliding,
-            out: o.out,
             lab: None,
             closed_form_error: o.check.closed_form_error,
             rhs_evaluations: o.stats.rhs_evaluations,
         }
     };
-    if let (Some(f), Incoming::Lab(lab)) = (frame, &input.incoming) {
-        let (a, b) = f.to_lab(&out.out);
-        let throw = f.throw_angle_deg(&(b.velocity - lab.b.velocity));
+    if let Some(LabFrame { frame, lab }) = lab {
+        let (a, b) = frame.to_lab(&out.result.out);
+        let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
         out.lab = Some((a, b, throw));
     }
     Ok(out)
@@ -329,14 +270,15 @@ fn resolve_with(
 /// use nalgebra::Vector3;
 /// let setup = BatchSetup::from_scene(
 ///     &Scene::default_scene(),
-///     SolverSettings { method: Method::ClosedForm, ..Default::default() },
+///     SolverSettings::default().with_method(Method::ClosedForm),
 /// );
 /// let head_on = CmState::new(Vector3::new(1.0, 0.0, 0.0), Vector3::zeros(), Vector3::zeros());
 /// let out = resolve_slice(&setup, &[BatchInput::cm(head_on)]);
 /// let o = out[0].as_ref().unwrap();
-/// assert_eq!(o.out.u_cm.x, -1.0); // eq 24, P = 2 m U(0)
-/// // S(0) = 0: the surfaces never slide (CONTRACTS.md: sticks at t = 0, theta undefined).
-/// assert!(o.sticks && o.theta.is_none() && o.stick_time == Some(0.0));
+/// assert_eq!(o.result.out.u_cm.x, -1.0); // eq 24, P = 2 m U(0)
+/// // S(0) = 0: the surfaces never slide (docs/model.md#no-initial-sliding: sticks at
+/// // t = 0, theta undefined).
+/// assert!(o.result.sticks && o.result.theta.is_none() && o.stick_time == Some(0.0));
 /// ```
 pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<BatchOutput, Error>> {
     let kernel = shared_kernel(setup);
@@ -347,14 +289,20 @@ pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<Ba
 }
 
 /// Closed form of centre-of-mass states sharing the setup's ball and contact, one core, into
-/// `out` (same length as `states`): the fast path the 50 ns target is measured on
-/// (outgoing state, impulse, S(0), theta, stick flag and p_stick; CONTRACTS.md).
+/// `out` (same length as `states`): the fast path the 50 ns target is measured on (the
+/// outgoing state, impulse, S(0), theta, stick flag and p_stick; `benches/closed_form.rs`).
 pub fn closed_form_into(
     setup: &BatchSetup,
     states: &[CmState],
-    out: &mut [Resolved],
+    out: &mut [ContactResult],
 ) -> Result<(), Error> {
-    assert_eq!(states.len(), out.len(), "one output per state");
+    if states.len() != out.len() {
+        return Err(Error::invalid(
+            "out",
+            format!("{} results for {} states", out.len(), states.len()),
+            "one result per state",
+        ));
+    }
     let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
     for (s, o) in states.iter().zip(out.iter_mut()) {
         *o = kernel.resolve(s)?;
@@ -363,12 +311,18 @@ pub fn closed_form_into(
 }
 
 /// Positions of the input columns.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 struct Columns {
     id: Option<usize>,
-    cm: Option<CmColumns>,
-    lab: Option<LabColumns>,
+    state: StateColumns,
     overrides: [Option<usize>; 7],
+}
+
+/// The incoming state's columns: one frame or the other.
+#[derive(Debug, Clone)]
+enum StateColumns {
+    Cm(CmColumns),
+    Lab(Box<LabColumns>),
 }
 
 #[derive(Debug, Clone)]
@@ -421,18 +375,11 @@ impl Columns {
                 find(&format!("{prefix}z")),
             ]
         };
-        let mut cols = Columns {
-            id: find("id"),
-            ..Default::default()
-        };
-        for (slot, n) in cols.overrides.iter_mut().zip(OVERRIDES) {
-            *slot = find(n);
-        }
         let u = xyz("u_");
         let any_cm = u.iter().any(Option::is_some);
         let lab_names = ["a_p", "a_v", "b_p", "b_v"];
         let any_lab = lab_names.iter().any(|p| xyz(p).iter().any(Option::is_some));
-        match (any_cm, any_lab) {
+        let state = match (any_cm, any_lab) {
             (true, true) => {
                 return Err("both centre-of-mass (u_x, ...) and lab (a_px, ...) columns: give one frame".into())
             }
@@ -444,11 +391,11 @@ impl Columns {
                 for (k, c) in u.iter().enumerate() {
                     req[k] = c.ok_or_else(|| format!("missing column `u_{}`", ["x", "y", "z"][k]))?;
                 }
-                cols.cm = Some(CmColumns {
+                StateColumns::Cm(CmColumns {
                     u: req,
                     omega_a: xyz("omega_a_"),
                     omega_b: xyz("omega_b_"),
-                });
+                })
             }
             (false, true) => {
                 for p in lab_names {
@@ -458,14 +405,22 @@ impl Columns {
                         }
                     }
                 }
-                cols.lab = Some(LabColumns {
+                StateColumns::Lab(Box::new(LabColumns {
                     a: [xyz("a_p"), xyz("a_v"), xyz("a_w")],
                     b: [xyz("b_p"), xyz("b_v"), xyz("b_w")],
                     up: xyz("up_"),
-                });
+                }))
             }
+        };
+        let mut overrides = [None; 7];
+        for (slot, n) in overrides.iter_mut().zip(OVERRIDES) {
+            *slot = find(n);
         }
-        Ok(cols)
+        Ok(Columns {
+            id: find("id"),
+            state,
+            overrides,
+        })
     }
 
     fn parse(&self, rec: &csv::StringRecord) -> Result<BatchInput, String> {
@@ -498,26 +453,26 @@ impl Columns {
             }
             Ok(Vector3::from(v))
         };
-        let incoming = if let Some(cm) = &self.cm {
-            Incoming::Cm(CmState::new(
+        let incoming = match &self.state {
+            StateColumns::Cm(cm) => Incoming::Cm(CmState::new(
                 vec3(cm.u.map(Some), "u_", None)?,
                 vec3(cm.omega_a, "omega_a_", Some([0.0; 3]))?,
                 vec3(cm.omega_b, "omega_b_", Some([0.0; 3]))?,
-            ))
-        } else {
-            let lab = self.lab.as_ref().expect("one frame");
-            let ball = |c: &[[Option<usize>; 3]; 3], n: &str| -> Result<LabBall, String> {
-                Ok(LabBall {
-                    position: vec3(c[0], &format!("{n}_p"), None)?,
-                    velocity: vec3(c[1], &format!("{n}_v"), None)?,
-                    spin: vec3(c[2], &format!("{n}_w"), Some([0.0; 3]))?,
+            )),
+            StateColumns::Lab(lab) => {
+                let ball = |c: &[[Option<usize>; 3]; 3], n: &str| -> Result<LabBall, String> {
+                    Ok(LabBall {
+                        position: vec3(c[0], &format!("{n}_p"), None)?,
+                        velocity: vec3(c[1], &format!("{n}_v"), None)?,
+                        spin: vec3(c[2], &format!("{n}_w"), Some([0.0; 3]))?,
+                    })
+                };
+                Incoming::Lab(LabScene {
+                    a: ball(&lab.a, "a")?,
+                    b: ball(&lab.b, "b")?,
+                    up: vec3(lab.up, "up_", Some([0.0, 0.0, 1.0]))?,
                 })
-            };
-            Incoming::Lab(LabScene {
-                a: ball(&lab.a, "a")?,
-                b: ball(&lab.b, "b")?,
-                up: vec3(lab.up, "up_", Some([0.0, 0.0, 1.0]))?,
-            })
+            }
         };
         let mut o = [None; 7];
         for (k, slot) in o.iter_mut().enumerate() {
@@ -544,7 +499,7 @@ impl Columns {
             h.push("id");
         }
         h.extend(OUTPUT_COLUMNS);
-        if self.lab.is_some() {
+        if matches!(self.state, StateColumns::Lab(_)) {
             h.extend(LAB_OUTPUT_COLUMNS);
         }
         if method != Method::ClosedForm {
@@ -619,10 +574,8 @@ fn format_row(
 ) -> Result<(), String> {
     use std::fmt::Write as _;
     fn num(s: &mut String, name: &str, v: f64) -> Result<(), String> {
-        if !v.is_finite() {
-            return Err(format!("non-finite result: {name} = {v}"));
-        }
-        let _ = write!(s, ",{v:?}");
+        let v = finite_output(v, || name.to_string()).map_err(|e| e.to_string())?;
+        let _ = write!(s, ",{}", Shortest(v));
         Ok(())
     }
     fn opt(s: &mut String, name: &str, v: Option<f64>) -> Result<(), String> {
@@ -647,19 +600,20 @@ fn format_row(
             s.push_str(id);
         }
     }
-    let _ = write!(s, ",{}", o.collision);
-    num(s, "impulse", o.impulse)?;
-    num(s, "s0", o.s0)?;
-    opt(s, "theta", o.theta)?;
-    let _ = write!(s, ",{}", o.sticks);
+    let r = &o.result;
+    let _ = write!(s, ",{}", r.collided());
+    num(s, "impulse", r.impulse)?;
+    num(s, "s0", r.s0)?;
+    opt(s, "theta", r.theta)?;
+    let _ = write!(s, ",{}", r.sticks);
     opt(s, "stick_time", o.stick_time)?;
-    opt(s, "stick_impulse", o.stick_impulse)?;
-    let st = &o.out;
+    opt(s, "stick_impulse", r.stick_impulse)?;
+    let st = &r.out;
     let scalars = [
-        o.tangential_impulse,
-        o.s_out,
-        o.heat,
-        o.heat_sliding,
+        r.tangential_impulse,
+        r.s_out,
+        r.heat,
+        r.heat_sliding,
         st.u_cm.x,
         st.u_cm.y,
         st.u_cm.z,
@@ -691,6 +645,35 @@ fn format_row(
     Ok(())
 }
 
+/// Reads up to `chunk_rows` records into the reused buffers `records`, with their input
+/// lines in `lines`; returns how many it read (fewer at the end of the input). `bad` makes
+/// the error of a line.
+fn read_chunk<R: Read>(
+    rd: &mut csv::Reader<R>,
+    records: &mut Vec<csv::StringRecord>,
+    lines: &mut Vec<u64>,
+    chunk_rows: usize,
+    bad: &impl Fn(u64, String) -> Error,
+) -> Result<usize, Error> {
+    let mut n = 0;
+    while n < chunk_rows {
+        if records.len() <= n {
+            records.push(csv::StringRecord::new());
+            lines.push(0);
+        }
+        let more = rd.read_record(&mut records[n]).map_err(|e| {
+            let line = e.position().map(|p| p.line()).unwrap_or(0);
+            bad(line, e.to_string())
+        })?;
+        if !more {
+            break;
+        }
+        lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
+        n += 1;
+    }
+    Ok(n)
+}
+
 /// Streams a batch: reads CSV rows from `input` (`input_name` in errors), resolves them
 /// `chunk_rows` at a time in parallel (rayon's current pool), writes the results to `output`
 /// in input order, and calls `progress(rows_done, bytes_read)` after each chunk. Memory holds
@@ -716,7 +699,7 @@ pub fn run_csv<R: Read, W: Write>(
         .from_reader(input);
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
-    let method = setup.settings.method;
+    let method = setup.settings.method();
     let kernel = shared_kernel(setup);
     let mut w = output;
     let io = |e: std::io::Error| Error::io("batch output", e);
@@ -729,22 +712,7 @@ pub fn run_csv<R: Read, W: Write>(
     let mut lines: Vec<u64> = Vec::with_capacity(chunk_rows);
     let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(chunk_rows);
     loop {
-        let mut n = 0;
-        while n < chunk_rows {
-            if records.len() <= n {
-                records.push(csv::StringRecord::new());
-                lines.push(0);
-            }
-            let more = rd.read_record(&mut records[n]).map_err(|e| {
-                let line = e.position().map(|p| p.line()).unwrap_or(0);
-                bad(line, e.to_string())
-            })?;
-            if !more {
-                break;
-            }
-            lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
-            n += 1;
-        }
+        let n = read_chunk(&mut rd, &mut records, &mut lines, chunk_rows, &bad)?;
         if n == 0 {
             break;
         }
@@ -760,7 +728,7 @@ pub fn run_csv<R: Read, W: Write>(
                 let id = cols.id.and_then(|i| rec.get(i));
                 let mut text = String::with_capacity(400);
                 format_row(line, id, &out, method, &mut text)?;
-                Ok((text, out.collision, out.sticks))
+                Ok((text, out.result.collided(), out.result.sticks))
             })
             .collect_into_vec(&mut results);
         for (k, r) in results.iter().enumerate() {

@@ -3,13 +3,12 @@
 
 use crate::contact::outcome::{solve, Outcome};
 use crate::error::Error;
-use crate::formats::scene::Scene;
+use crate::formats::scene::{table_needs_lab_scene, LabFrame, Scene};
 use crate::formats::trace::TraceSink;
 use crate::integrator::{Sampling, SolverSettings};
-use crate::model::frame::Frame;
-use crate::model::state::LabMotion;
+use crate::model::frame::{Frame, LabScene};
+use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::table_phase::TableOutcome;
-use nalgebra::{Matrix3, Vector3};
 
 /// The outcome of a scene, with the lab-frame motions for lab scenes.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,6 +17,8 @@ pub struct SceneOutcome {
     pub outcome: Outcome,
     /// Settings used.
     pub settings: SolverSettings,
+    /// Incoming centre-of-mass state (for lab scenes, the lab state in the paper's frame).
+    pub cm_in: CmState,
     /// Outgoing lab motions of A and B (lab scenes).
     pub lab_out: Option<(LabMotion, LabMotion)>,
     /// Throw angle (degrees), counter-clockwise about `up` (+z of the paper's frame for
@@ -33,81 +34,72 @@ pub fn run_scene(
     settings: &SolverSettings,
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<SceneOutcome, Error> {
-    let (collision, frame) = scene.collision()?;
+    let (collision, lab) = scene.collision()?;
     let mut outcome = solve(&collision, &scene.profile, settings, trace)?;
-    let du = outcome.out.u_cm - collision.incoming.u_cm;
-    let (lab_out, throw, lab_momentum_error) = match frame {
-        Some(f) => {
-            let (a, b) = f.to_lab(&outcome.out);
-            let (a0, b0) = match &scene.incoming {
-                crate::formats::scene::Incoming::Lab(l) => (l.a.velocity, l.b.velocity),
-                crate::formats::scene::Incoming::Cm(_) => {
-                    unreachable!("a frame comes from a lab scene")
-                }
-            };
+    let out = outcome.result.out;
+    let (lab_out, throw, lab_momentum_error, table) = match lab {
+        Some(LabFrame { frame, lab }) => {
+            let (a, b) = frame.to_lab(&out);
             let m = scene.ball.mass;
-            let dp = (m * (a.velocity + b.velocity) - m * (a0 + b0)).amax();
+            let dp = (m * (a.velocity + b.velocity) - m * (lab.a.velocity + lab.b.velocity)).amax();
             let err = if dp == 0.0 {
                 0.0
             } else {
                 dp / collision.scales.impulse
             };
-            let dvb = b.velocity - b0;
-            (Some((a, b)), f.throw_angle_deg(&dvb), err)
+            let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
+            let table = table_phase(scene, lab, (a, b), collision.scales.speed)?;
+            (Some((a, b)), throw, err, table)
         }
         None => {
-            let paper = Frame {
-                basis: Matrix3::identity(),
-                v_cm: Vector3::zeros(),
-                up: Vector3::z(),
-            };
-            (None, paper.throw_angle_deg(&-du), 0.0)
+            if scene.effects.table {
+                return Err(table_needs_lab_scene());
+            }
+            let du = out.u_cm - collision.incoming.u_cm;
+            (None, Frame::paper().throw_angle_deg(&-du), 0.0, None)
         }
     };
     // The lab momentum of both balls is conserved: fold its error into the check.
     outcome.check.momentum_error = outcome.check.momentum_error.max(lab_momentum_error);
-    let table = run_table(scene, &collision, lab_out, &mut outcome.warnings)?;
+    if !scene.effects.table && scene.table.is_some() {
+        outcome.warnings.push(
+            "[table] is given but the effect table is off ([effects] table = false): the run \
+             ends at separation"
+                .into(),
+        );
+    }
     Ok(SceneOutcome {
         outcome,
         settings: *settings,
+        cm_in: collision.incoming,
         lab_out,
         throw_angle_deg: throw,
         table,
     })
 }
 
-/// The effect `table`: both balls from separation until they roll (`None` when off).
-fn run_table(
+/// The effect `table` of a lab scene: both balls from separation, with the outgoing lab
+/// motions `a` and `b`, until they roll (`None` when the effect is off).
+fn table_phase(
     scene: &Scene,
-    collision: &crate::model::collision::Collision,
-    lab_out: Option<(LabMotion, LabMotion)>,
-    warnings: &mut Vec<String>,
+    lab: &LabScene,
+    (a, b): (LabMotion, LabMotion),
+    speed_scale: f64,
 ) -> Result<Option<TableOutcome>, Error> {
-    let Some(table) = scene.cloth()? else {
-        if scene.table.is_some() {
-            warnings.push(
-                "[table] is given but the effect table is off ([effects] table = false): the run \
-                 ends at separation"
-                    .into(),
-            );
-        }
+    let Some(table) = scene.cloth_under(lab)? else {
         return Ok(None);
     };
-    let (crate::formats::scene::Incoming::Lab(lab), Some((a, b))) = (&scene.incoming, lab_out)
-    else {
-        unreachable!("Scene::cloth accepts lab scenes only");
-    };
-    let start = |p: nalgebra::Vector3<f64>, m: LabMotion| crate::model::state::LabBall {
-        position: p,
+    let start = |p: &LabBall, m: LabMotion| LabBall {
+        position: p.position,
         velocity: m.velocity,
         spin: m.spin,
     };
     Ok(Some(TableOutcome::new(
         &scene.ball,
         table,
-        &start(lab.a.position, a),
-        &start(lab.b.position, b),
+        &start(&lab.a, a),
+        &start(&lab.b, b),
         [lab.a.velocity, lab.b.velocity],
-        collision.scales.speed,
+        speed_scale,
     )?))
 }

@@ -5,14 +5,15 @@
 //! ladder of tolerances with atol = rtol on the scaled variables), one run measures
 //!
 //! - `error`: the largest scaled deviation of the outgoing state from the closed form
-//!   ([`crate::contact::check::Checks::closed_form_error`], CONTRACTS.md scales);
+//!   ([`crate::contact::check::Checks::closed_form_error`], with the scales of
+//!   docs/model.md#scales-and-scaled-errors);
 //! - `stick_time_error`: |t_stick - t_stick exact| / duration where sliding stops (`None`
 //!   otherwise; a stop the integrator missed counts as a stop at the end of the contact);
 //! - the work done ([`Stats`]);
 //! - `seconds_per_contact`: the median, over timed samples after a warm-up, of the wall time
 //!   of one [`solve`] (the whole call: closed form, integration and checks), in this process.
 //!
-//! Profiles with breakpoints (the knots of a table) are run again with
+//! Profiles with breakpoints (the knots of a tabulated profile) are run again with
 //! [`SolverSettings::breakpoints`] off, so the study shows what stepping exactly to them
 //! saves; profiles with algebraic ends (`hertz`, `sine-power` 1.5) are run again with
 //! [`SolverSettings::time_transform`] off (steps graded toward the ends instead), so it
@@ -20,13 +21,14 @@
 //! companion scene in which sliding stops during the contact
 //! (`data/scenes/stun_cut_sticks.toml`), which exercises the stick event.
 //!
-//! [`write_csv`] writes the rows with the columns of [`COLUMNS`] first (the contract of
-//! issue 3) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
+//! [`write_csv`] writes the rows with the columns of [`COLUMNS`] first (the format of
+//! docs/formats.md#work-precision-csv) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
 //! appended by the peers' script (`benches/peers/scipy_contact.py`), for the figure.
 
 use crate::contact::outcome::{solve, Outcome};
 use crate::error::Error;
-use crate::formats::scene::Scene;
+use crate::formats::number::shortest;
+use crate::formats::scene::{Scene, SolverOverrides};
 use crate::integrator::{Method, SolverSettings, Stats};
 use crate::profile::{
     parse_table, ForceProfile, HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated,
@@ -34,10 +36,9 @@ use crate::profile::{
 use std::hint::black_box;
 use std::io::{Read, Write};
 use std::path::Path;
-use std::str::FromStr;
 use std::time::{Duration, Instant};
 
-/// The columns every study CSV starts with, in this order (issue 3).
+/// The columns every study CSV starts with, in this order (docs/formats.md#work-precision-csv).
 pub const COLUMNS: [&str; 9] = [
     "profile",
     "method",
@@ -66,7 +67,7 @@ pub const EXTRA_COLUMNS: [&str; 7] = [
 /// The built-in companion scene in which sliding stops during contact.
 pub const STICKING_SCENE: &str = include_str!("../../data/scenes/stun_cut_sticks.toml");
 
-/// The table the `tabulated` profile uses unless the scene has its own
+/// The (time, force) points the `tabulated` profile uses unless the scene has its own
 /// (`data/profiles/measured_pulse.csv`, stretched to the scene's duration).
 pub const MEASURED_PULSE: &str = include_str!("../../data/profiles/measured_pulse.csv");
 
@@ -81,7 +82,7 @@ pub enum ProfileKind {
     SinePower,
     /// `rectangle`.
     Rectangle,
-    /// `tabulated` (the scene's table, or [`MEASURED_PULSE`]).
+    /// `tabulated` (the scene's points, or [`MEASURED_PULSE`]).
     Tabulated,
 }
 
@@ -107,7 +108,7 @@ impl ProfileKind {
     }
 
     /// The profile of this kind with the duration of `scene`'s profile; the scene's own
-    /// profile when it is of this kind (its table, its exponent).
+    /// profile when it is of this kind (its points, its exponent).
     pub fn build(&self, scene: &Scene) -> Result<Profile, Error> {
         let own = &scene.profile;
         if own.name() == self.name() {
@@ -134,22 +135,6 @@ impl ProfileKind {
                 Profile::Tabulated(Tabulated::new(&points, Some(tau), source)?)
             }
         })
-    }
-}
-
-impl FromStr for ProfileKind {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self, Error> {
-        ProfileKind::ALL
-            .into_iter()
-            .find(|p| p.name() == s)
-            .ok_or_else(|| {
-                Error::invalid(
-                    "--profiles",
-                    format!("\"{s}\""),
-                    "a list of half-sine, hertz, sine-power, rectangle, tabulated",
-                )
-            })
     }
 }
 
@@ -207,20 +192,18 @@ pub struct Setting {
 }
 
 impl Setting {
-    /// The solver settings of this setting.
+    /// The solver settings of this setting: the defaults with its method, rtol (= atol)
+    /// and steps.
     pub fn solver(&self) -> Result<SolverSettings, Error> {
-        let mut s = SolverSettings {
-            method: self.method,
-            ..Default::default()
+        let overrides = SolverOverrides {
+            method: Some(self.method),
+            rtol: self.rtol,
+            atol: None,
+            steps: self.steps,
+            time_transform: Some(self.time_transform),
         };
-        if let Some(r) = self.rtol {
-            s = SolverSettings::new(self.method, r, r, s.steps)?;
-        }
-        if let Some(n) = self.steps {
-            s = SolverSettings::new(self.method, s.rtol, s.atol, n)?;
-        }
-        s.breakpoints = self.breakpoints;
-        Ok(s.with_time_transform(self.time_transform))
+        let s = overrides.apply(&SolverSettings::default())?;
+        Ok(s.with_breakpoints(self.breakpoints))
     }
 }
 
@@ -400,12 +383,7 @@ pub fn run_job(scene: &Scene, job: &Job, options: &StudyOptions) -> Result<Study
 /// |t_stick - exact| / duration, when the exact solution sticks. A stop the run missed
 /// counts as a stop at the end of the contact.
 pub fn stick_time_error<P: ForceProfile + ?Sized>(outcome: &Outcome, profile: &P) -> Option<f64> {
-    let exact = &outcome.exact;
-    if !(outcome.collision && exact.sticks) {
-        return None;
-    }
-    let p_stick = exact.stick_impulse.unwrap_or(0.0);
-    let s_exact = profile.time_at_cumulative(p_stick / outcome.impulse);
+    let s_exact = outcome.exact.result.stick_fraction(profile)?;
     let s_run = outcome
         .stick_time
         .map(|t| t / profile.duration())
@@ -485,11 +463,6 @@ pub fn run_study(
     Ok(rows)
 }
 
-/// A float as the CSV writes it: the shortest form that reads back to the same value.
-fn num(v: f64) -> String {
-    format!("{v:?}")
-}
-
 fn opt<T: ToString>(v: Option<T>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
@@ -516,17 +489,17 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
             }
         }
         let seconds = if r.seconds_per_contact.is_finite() {
-            num(r.seconds_per_contact)
+            shortest(r.seconds_per_contact)
         } else {
             String::new()
         };
         w.write_record([
             r.profile.clone(),
             r.method.clone(),
-            opt(r.rtol.map(num)),
+            opt(r.rtol.map(shortest)),
             opt(r.steps),
-            opt(r.error.map(num)),
-            opt(r.stick_time_error.map(num)),
+            opt(r.error.map(shortest)),
+            opt(r.stick_time_error.map(shortest)),
             r.stats.rhs_evaluations.to_string(),
             r.stats.accepted_steps.to_string(),
             seconds,
@@ -949,7 +922,7 @@ mod tests {
         );
     }
 
-    /// Two scenes, two profiles; the table's knots give rows without breakpoints, with more
+    /// Two scenes, two profiles; the tabulated profile's knots give rows without breakpoints, with more
     /// evaluations at the same rk4 step count (RK4 stepping across a kink is order 2).
     #[test]
     fn plan_and_breakpoint_rows() {

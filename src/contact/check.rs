@@ -1,5 +1,6 @@
 //! Verification of a run: conservation laws, the energy balance of eq 50, and the distance
-//! to the closed form, all scaled by the collision's reference scales (CONTRACTS.md).
+//! to the closed form, all scaled by the collision's reference scales
+//! (docs/model.md#scales-and-scaled-errors).
 
 use crate::contact::closed_form::ClosedForm;
 use crate::model::collision::Collision;
@@ -58,7 +59,7 @@ pub fn checks(
     let balance = (heat - heat_sliding) - p * (2.0 * u0 - p / m);
     Checks {
         theta_drift: 0.0,
-        closed_form_error: state_error(c, out, &exact.out),
+        closed_form_error: state_error(c, out, &exact.result.out),
         momentum_error: ratio(momentum, sc.impulse),
         angular_momentum_error: ratio(angular, sc.angular_momentum),
         energy_balance_error: ratio(balance.abs(), sc.energy),

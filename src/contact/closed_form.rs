@@ -1,5 +1,6 @@
 //! The exact solution: eqs 24-35 with the impulse of eq 52 / 56, extended by the stick rule
-//! and the S(0) = 0 case (ERRATA.md, gaps 1-3).
+//! and the S(0) = 0 case (docs/model.md#when-sliding-stops-during-contact,
+//! docs/model.md#no-initial-sliding).
 //!
 //! With J the tangential impulse ([`crate::contact::friction`]; J = mu min(P, p_stick) for
 //! constant mu) and e = (0, cos theta, sin theta):
@@ -13,10 +14,11 @@
 //! H = H_sfr + 2 U(0) P - P^2 / m                 (50)
 //! ```
 //!
-//! While sliding, the state at time t is this solution at P = p(t) (ERRATA.md, gap 3);
-//! [`ClosedForm::at_impulse`] gives it.
+//! While sliding, the state at time t is this solution at P = p(t)
+//! (docs/model.md#the-exact-state-during-the-contact); [`ClosedForm::at_impulse`] gives it.
 
 use crate::contact::friction::{Sliding, SlidingLaw};
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
@@ -36,23 +38,8 @@ pub struct Partial {
 /// The exact outcome of a collision.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClosedForm {
-    /// Impulse P (N s).
-    pub impulse: f64,
-    /// Tangential impulse J >= 0 (N s): along -e on A, +e on B.
-    pub tangential_impulse: f64,
-    /// Signed outgoing sliding speed along e (m/s): >= 0 with sticking.
-    pub s_out: f64,
-    /// Whether sliding stopped during the contact.
-    pub sticks: bool,
-    /// p_stick (N s): the impulse at which sliding stops (or would stop); `None` when it
-    /// never would (no collision, no friction, or infinite).
-    pub stick_impulse: Option<f64>,
-    /// Heat of sliding friction H_sfr (J), eq 49 with the stick rule.
-    pub heat_sliding: f64,
-    /// Total heat H (J), eq 50.
-    pub heat: f64,
-    /// Outgoing state.
-    pub out: CmState,
+    /// The result: impulses, sliding, heat (eqs 49-50) and the outgoing state.
+    pub result: ContactResult,
     law: Option<SlidingLaw>,
     incoming: CmState,
     direction: Vector2<f64>,
@@ -74,7 +61,7 @@ impl ClosedForm {
     /// let incoming = CmState::new(Vector3::new(u / 2.0, v / 2.0, 0.0),
     ///                             Vector3::new(-v / r, u / r, 0.0), Vector3::zeros());
     /// let c = Collision::new(ball, contact, Effects::default(), incoming).unwrap();
-    /// let out = ClosedForm::new(&c).out;
+    /// let out = ClosedForm::new(&c).result.out;
     /// let s = (u * u + v * v).sqrt();
     /// assert!((out.u_cm.x - (u / 2.0 - u)).abs() < 1e-15);             // eq 66
     /// assert!((out.u_cm.y - (v / 2.0 - mu * u * v / s)).abs() < 1e-15); // eq 67
@@ -94,14 +81,18 @@ impl ClosedForm {
             _ => None,
         };
         let mut cf = ClosedForm {
-            impulse: c.impulse,
-            tangential_impulse: 0.0,
-            s_out: c.s0,
-            sticks: false,
-            stick_impulse: law.and_then(|l| l.stick_impulse()),
-            heat_sliding: 0.0,
-            heat: 0.0,
-            out: c.incoming,
+            result: ContactResult {
+                impulse: c.impulse,
+                s0: c.s0,
+                theta: c.theta(),
+                s_out: c.s0,
+                sticks: false,
+                stick_impulse: law.and_then(|l| l.stick_impulse()),
+                tangential_impulse: 0.0,
+                heat: 0.0,
+                heat_sliding: 0.0,
+                out: c.incoming,
+            },
             law,
             incoming: c.incoming,
             direction: c.direction.unwrap_or_else(Vector2::zeros),
@@ -113,17 +104,18 @@ impl ClosedForm {
             return cf;
         }
         let end = cf.at_impulse(c.impulse);
-        cf.out = end.state;
-        cf.tangential_impulse = end.sliding.tangential_impulse;
-        cf.s_out = if law.is_some() {
+        let r = &mut cf.result;
+        r.out = end.state;
+        r.tangential_impulse = end.sliding.tangential_impulse;
+        r.s_out = if law.is_some() {
             end.sliding.slip
         } else {
             c.s0
         };
-        cf.heat_sliding = end.sliding.heat;
-        cf.heat = cf.heat_sliding + c.impulse * (2.0 * cf.u0 - c.impulse / m);
-        cf.sticks =
-            c.effects.stick && law.is_some() && cf.stick_impulse.is_some_and(|ps| ps <= c.impulse);
+        r.heat_sliding = end.sliding.heat;
+        r.heat = r.heat_sliding + c.impulse * (2.0 * cf.u0 - c.impulse / m);
+        r.sticks =
+            c.effects.stick && law.is_some() && r.stick_impulse.is_some_and(|ps| ps <= c.impulse);
         cf
     }
 
@@ -134,7 +126,7 @@ impl ClosedForm {
             Some(l) => l.at(p),
             None => Sliding {
                 tangential_impulse: 0.0,
-                slip: self.s_out,
+                slip: self.result.s_out,
                 heat: 0.0,
             },
         };
@@ -151,7 +143,7 @@ impl ClosedForm {
 
     /// Whether eq 57 (S(tau) >= 0) fails: only possible with `stick = false`.
     pub fn violates_eq57(&self) -> bool {
-        self.s_out < 0.0
+        self.result.s_out < 0.0
     }
 }
 
@@ -219,31 +211,6 @@ pub struct ClosedFormBatch {
     spin_per_impulse: f64,
 }
 
-/// The closed-form outcome of one state ([`ClosedFormBatch::resolve`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Resolved {
-    /// Outgoing centre-of-mass state.
-    pub out: CmState,
-    /// Impulse P (N s); 0 when the balls do not approach.
-    pub impulse: f64,
-    /// S(0) (m/s).
-    pub s0: f64,
-    /// theta (rad); `None` when S(0) = 0.
-    pub theta: Option<f64>,
-    /// Whether sliding stops during contact.
-    pub sticks: bool,
-    /// p_stick (N s), as [`ClosedForm::stick_impulse`] (`None` without a collision).
-    pub stick_impulse: Option<f64>,
-    /// Tangential impulse J >= 0 (N s).
-    pub tangential_impulse: f64,
-    /// Outgoing sliding speed, signed along e0 (m/s).
-    pub s_out: f64,
-    /// Sliding heat H_sfr (J).
-    pub heat_sliding: f64,
-    /// Total heat H (J), eq 50.
-    pub heat: f64,
-}
-
 impl ClosedFormBatch {
     /// The shared parameters of a batch.
     pub fn new(ball: Ball, contact: Contact, effects: Effects) -> Self {
@@ -268,7 +235,7 @@ impl ClosedFormBatch {
 
     /// The closed form of one incoming state; the errors of [`Collision::new`].
     #[inline(always)]
-    pub fn resolve(&self, s: &CmState) -> Result<Resolved, Error> {
+    pub fn resolve(&self, s: &CmState) -> Result<ContactResult, Error> {
         if !s.is_finite() {
             return Err(self.invalid(s));
         }
@@ -282,12 +249,12 @@ impl ClosedFormBatch {
         let s0 = planar_length(slip);
         let theta = (s0 > 0.0).then(|| slip_angle(slip));
         let law = match self.friction {
-            Some(f) if p > 0.0 => Some(SlidingLaw::new(f, s0, self.k, self.stick)),
+            Some(f) if p > 0.0 => Some(SlidingLaw::new(f.acting_from(s0), s0, self.k, self.stick)),
             _ => None,
         };
         let stick_impulse = law.and_then(|l| l.stick_impulse());
         if p <= 0.0 {
-            return Ok(Resolved {
+            return Ok(ContactResult {
                 out: *s,
                 impulse: p,
                 s0,
@@ -312,7 +279,7 @@ impl ClosedFormBatch {
         } else {
             Vector2::zeros()
         };
-        Ok(Resolved {
+        Ok(ContactResult {
             out: apply_impulses(*s, e, m, self.spin_per_impulse, p, j),
             impulse: p,
             s0,
@@ -330,7 +297,7 @@ impl ClosedFormBatch {
     /// The common case, constant mu and a collision: the same formulas with the
     /// reciprocals of m, k and k mu precomputed (multiplications instead of divisions).
     #[inline(always)]
-    fn resolve_constant_mu(&self, s: &CmState, mu: f64, p: f64) -> Resolved {
+    fn resolve_constant_mu(&self, s: &CmState, mu: f64, p: f64) -> ContactResult {
         let slip = s.slip(self.ball.radius);
         let s0 = planar_length(slip);
         let (theta, e, p_stick) = if s0 > 0.0 {
@@ -360,7 +327,7 @@ impl ClosedFormBatch {
         out.omega_b.y += dy;
         out.omega_a.z += dz;
         out.omega_b.z += dz;
-        Resolved {
+        ContactResult {
             out,
             impulse: p,
             s0,
@@ -388,6 +355,54 @@ impl ClosedFormBatch {
 mod tests {
     use super::*;
     use nalgebra::Vector3;
+
+    /// State number `i` of a varied sweep: approaching and separating, cut angles, spins;
+    /// every 50th without slip at all.
+    fn sweep_state(i: usize) -> CmState {
+        let a = i as f64 * 0.37;
+        let mut st = CmState::new(
+            Vector3::new(1.5 * a.sin(), 0.5 * (0.7 * a).cos(), 0.1 * a.cos()),
+            Vector3::new(5.0 * a.cos(), 30.0 * (1.1 * a).sin(), -7.0 * a.sin()),
+            Vector3::new(0.0, 2.0 * a.sin(), 0.0),
+        );
+        if i % 50 == 0 {
+            st.u_cm.y = 0.0;
+            st.u_cm.z = 0.0;
+            st.omega_a = Vector3::zeros();
+            st.omega_b = Vector3::zeros();
+        }
+        st
+    }
+
+    /// The batch kernel's result `r` of collision `c` against ClosedForm::new: a few ulps
+    /// of the scales (the kernel multiplies by precomputed reciprocals where ClosedForm
+    /// divides); impulse, S(0), theta and the stick flag exactly.
+    fn assert_agrees(r: &ContactResult, c: &Collision, i: usize) {
+        let cf = ClosedForm::new(c).result;
+        let sc = c.scales;
+        let near = |a: f64, b: f64, scale: f64| (a - b).abs() <= 8.0 * f64::EPSILON * scale;
+        let near3 =
+            |a: Vector3<f64>, b: Vector3<f64>, scale: f64| (0..3).all(|k| near(a[k], b[k], scale));
+        assert!(near3(r.out.u_cm, cf.out.u_cm, sc.speed), "{i}");
+        assert!(near3(r.out.omega_a, cf.out.omega_a, sc.spin), "{i}");
+        assert!(near3(r.out.omega_b, cf.out.omega_b, sc.spin), "{i}");
+        assert_eq!(r.impulse, c.impulse);
+        assert_eq!(r.s0, c.s0);
+        assert_eq!(r.theta, c.theta());
+        assert_eq!(r.sticks, cf.sticks);
+        match (r.stick_impulse, cf.stick_impulse) {
+            (Some(a), Some(b)) => assert!(near(a, b, b), "{i}"),
+            (a, b) => assert_eq!(a, b, "{i}"),
+        }
+        assert!(near(
+            r.tangential_impulse,
+            cf.tangential_impulse,
+            sc.impulse
+        ));
+        assert!(near(r.s_out, cf.s_out, sc.speed));
+        assert!(near(r.heat_sliding, cf.heat_sliding, sc.energy));
+        assert!(near(r.heat, cf.heat, sc.energy));
+    }
 
     /// The batch kernel gives ClosedForm::new's numbers to a few ulps, over states that
     /// slide through, stick, start without slip and separate, for constant and
@@ -425,50 +440,10 @@ mod tests {
                     };
                     let batch = ClosedFormBatch::new(ball, contact, fx);
                     for i in 0..400 {
-                        let a = i as f64 * 0.37;
-                        let mut st = CmState::new(
-                            Vector3::new(1.5 * a.sin(), 0.5 * (0.7 * a).cos(), 0.1 * a.cos()),
-                            Vector3::new(5.0 * a.cos(), 30.0 * (1.1 * a).sin(), -7.0 * a.sin()),
-                            Vector3::new(0.0, 2.0 * a.sin(), 0.0),
-                        );
-                        if i % 50 == 0 {
-                            // no slip at all
-                            st.u_cm.y = 0.0;
-                            st.u_cm.z = 0.0;
-                            st.omega_a = Vector3::zeros();
-                            st.omega_b = Vector3::zeros();
-                        }
+                        let st = sweep_state(i);
                         let c = Collision::new(ball, contact, fx, st).unwrap();
-                        let cf = ClosedForm::new(&c);
                         let r = batch.resolve(&st).unwrap();
-                        // A few ulps of the scales: the batch kernel multiplies by
-                        // precomputed reciprocals where ClosedForm divides.
-                        let sc = c.scales;
-                        let near = |a: f64, b: f64, scale: f64| {
-                            (a - b).abs() <= 8.0 * f64::EPSILON * scale
-                        };
-                        let near3 = |a: Vector3<f64>, b: Vector3<f64>, scale: f64| {
-                            (0..3).all(|k| near(a[k], b[k], scale))
-                        };
-                        assert!(near3(r.out.u_cm, cf.out.u_cm, sc.speed), "{i}");
-                        assert!(near3(r.out.omega_a, cf.out.omega_a, sc.spin), "{i}");
-                        assert!(near3(r.out.omega_b, cf.out.omega_b, sc.spin), "{i}");
-                        assert_eq!(r.impulse, c.impulse);
-                        assert_eq!(r.s0, c.s0);
-                        assert_eq!(r.theta, c.theta());
-                        assert_eq!(r.sticks, cf.sticks);
-                        match (r.stick_impulse, cf.stick_impulse) {
-                            (Some(a), Some(b)) => assert!(near(a, b, b), "{i}"),
-                            (a, b) => assert_eq!(a, b, "{i}"),
-                        }
-                        assert!(near(
-                            r.tangential_impulse,
-                            cf.tangential_impulse,
-                            sc.impulse
-                        ));
-                        assert!(near(r.s_out, cf.s_out, sc.speed));
-                        assert!(near(r.heat_sliding, cf.heat_sliding, sc.energy));
-                        assert!(near(r.heat, cf.heat, sc.energy));
+                        assert_agrees(&r, &c, i);
                         seen_stick += usize::from(r.sticks);
                     }
                 }

@@ -2,11 +2,11 @@
 
 use crate::contact::check::{checks, Checks};
 use crate::contact::closed_form::ClosedForm;
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::trace::{TraceRow, TraceSink};
 use crate::integrator::{integrate, Method, Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
-use crate::model::state::CmState;
 use crate::profile::ForceProfile;
 use nalgebra::Vector2;
 
@@ -15,30 +15,10 @@ use nalgebra::Vector2;
 pub struct Outcome {
     /// Method that produced it.
     pub method: Method,
-    /// Whether the balls approached (U(0) > 0) and collided.
-    pub collision: bool,
-    /// Impulse P (N s).
-    pub impulse: f64,
-    /// Incoming sliding speed S(0) (m/s).
-    pub s0: f64,
-    /// Sliding direction theta (rad); `None` when S(0) = 0.
-    pub theta: Option<f64>,
-    /// Outgoing sliding speed, signed along e0 (m/s).
-    pub s_out: f64,
-    /// Whether sliding stopped during contact.
-    pub sticks: bool,
-    /// Time (s) at which sliding stopped.
+    /// The result: impulses, sliding, heat and the outgoing state.
+    pub result: ContactResult,
+    /// Time (s) at which sliding stopped; `None` when it did not.
     pub stick_time: Option<f64>,
-    /// Impulse (N s) at which sliding stopped, or would stop (CONTRACTS.md).
-    pub stick_impulse: Option<f64>,
-    /// Tangential impulse J >= 0 (N s): along -e on A, +e on B.
-    pub tangential_impulse: f64,
-    /// Total heat H (J).
-    pub heat: f64,
-    /// Sliding heat H_sfr (J).
-    pub heat_sliding: f64,
-    /// Outgoing centre-of-mass state.
-    pub out: CmState,
     /// Verification.
     pub check: Checks,
     /// Work done.
@@ -52,7 +32,7 @@ pub struct Outcome {
 /// Default number of trace rows of the closed-form method without `--samples`.
 pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 
-/// Resolves a collision with `settings.method`, optionally streaming a trace.
+/// Resolves a collision with `settings.method()`, optionally streaming a trace.
 ///
 /// ```
 /// # use billiard_contact::*;
@@ -62,10 +42,10 @@ pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 ///                         impulse: ImpulseRule::restitution(1.0).unwrap() };
 /// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
 /// let c = Collision::new(ball, contact, Effects::default(), s).unwrap();
-/// let settings = SolverSettings { rtol: 1e-12, atol: 1e-12, ..Default::default() };
+/// let settings = SolverSettings::default().with_rtol(1e-12).unwrap().with_atol(1e-12).unwrap();
 /// let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &settings, None).unwrap();
 /// assert!(o.check.closed_form_error < 1e-10);
-/// assert!((o.out.u_cm.x + 0.5).abs() < 1e-10); // eq 24 with P = 2 m U(0)
+/// assert!((o.result.out.u_cm.x + 0.5).abs() < 1e-10); // eq 24 with P = 2 m U(0)
 /// ```
 pub fn solve<P: ForceProfile + ?Sized>(
     c: &Collision,
@@ -74,32 +54,21 @@ pub fn solve<P: ForceProfile + ?Sized>(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<Outcome, Error> {
     let exact = ClosedForm::new(c);
-    let mut warnings = Vec::new();
     let mut outcome = Outcome {
-        method: settings.method,
-        collision: c.collides(),
-        impulse: c.impulse,
-        s0: c.s0,
-        theta: c.theta(),
-        s_out: exact.s_out,
-        sticks: exact.sticks,
+        method: settings.method(),
+        result: exact.result,
         stick_time: None,
-        stick_impulse: exact.stick_impulse,
-        tangential_impulse: exact.tangential_impulse,
-        heat: exact.heat,
-        heat_sliding: exact.heat_sliding,
-        out: exact.out,
         check: Checks::default(),
         stats: Stats::default(),
         warnings: Vec::new(),
         exact,
     };
     if !c.collides() {
-        outcome.stick_impulse = None;
+        outcome.result.stick_impulse = None;
         if let Some((sink, sampling)) = trace {
             // Nothing happens: the samples asked for (the closed form's default number of
             // them), or, without steps to show, the start and the end.
-            let n = match (sampling, settings.method) {
+            let n = match (sampling, settings.method()) {
                 (Sampling::Uniform(n), _) => n,
                 (Sampling::Steps, Method::ClosedForm) => CLOSED_FORM_TRACE_SAMPLES,
                 (Sampling::Steps, _) => 1,
@@ -108,28 +77,26 @@ pub fn solve<P: ForceProfile + ?Sized>(
         }
         return Ok(outcome);
     }
-    if exact.sticks {
-        outcome.stick_time = Some(
-            profile.duration()
-                * profile.time_at_cumulative(exact.stick_impulse.unwrap_or(0.0) / c.impulse),
-        );
-    }
+    let exact_result = &exact.result;
+    outcome.stick_time = exact_result
+        .stick_fraction(profile)
+        .map(|s| profile.duration() * s);
     if exact.violates_eq57() {
-        let p_stick = exact.stick_impulse.unwrap_or(f64::INFINITY);
-        warnings.push(format!(
+        let p_stick = exact_result.stick_impulse.unwrap_or(f64::INFINITY);
+        outcome.warnings.push(format!(
             "eq 57 fails: sliding would stop at p = {p_stick:e} N s < P = {:e} N s; with stick = \
              false friction kept acting and the slip reversed (S_out = {:e} m/s)",
-            c.impulse, exact.s_out
+            c.impulse, exact_result.s_out
         ));
     }
-    match settings.method {
+    match settings.method() {
         Method::ClosedForm => {
             outcome.check = checks(
                 c,
                 &exact,
-                &exact.out,
-                exact.tangential_impulse,
-                exact.heat_sliding,
+                &exact_result.out,
+                exact_result.tangential_impulse,
+                exact_result.heat_sliding,
             );
             if let Some((sink, sampling)) = trace {
                 let n = match sampling {
@@ -139,36 +106,47 @@ pub fn solve<P: ForceProfile + ?Sized>(
                 closed_form_trace(c, &exact, profile, sink, n)?;
             }
         }
-        _ => {
-            let run = integrate(c, profile, settings, trace)?;
-            let m = c.ball.mass;
-            let e = c.direction.unwrap_or_else(Vector2::zeros);
-            let du = run.out.u_cm - c.incoming.u_cm;
-            let j = -m * (du.y * e.x + du.z * e.y);
-            outcome.s_out = run.s_out;
-            outcome.sticks = run.sticks;
-            if c.effects.stick {
-                outcome.stick_time = run.stick_time;
-                if run.sticks {
-                    outcome.stick_impulse = run.stick_impulse;
-                }
-            }
-            outcome.tangential_impulse = j.max(0.0);
-            outcome.heat_sliding = run.heat_sliding;
-            outcome.heat = c.incoming.kinetic_energy(&c.ball) - run.out.kinetic_energy(&c.ball);
-            outcome.out = run.out;
-            outcome.stats = run.stats;
-            outcome.check = checks(c, &exact, &run.out, j, run.heat_sliding);
-            outcome.check.theta_drift = run.theta_drift;
-            outcome.check.slip_consistency = run.slip_consistency;
-        }
+        _ => time_step(&mut outcome, c, profile, settings, trace)?,
     }
-    outcome.warnings = warnings;
     Ok(outcome)
 }
 
+/// The time-stepping part of [`solve`]: integrates the collision and puts the run's result,
+/// work and checks into `outcome` (which holds the closed form's).
+fn time_step<P: ForceProfile + ?Sized>(
+    outcome: &mut Outcome,
+    c: &Collision,
+    profile: &P,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<(), Error> {
+    let run = integrate(c, profile, settings, trace)?;
+    let m = c.ball.mass;
+    let e = c.direction.unwrap_or_else(Vector2::zeros);
+    let du = run.out.u_cm - c.incoming.u_cm;
+    let j = -m * (du.y * e.x + du.z * e.y);
+    let r = &mut outcome.result;
+    r.s_out = run.s_out;
+    r.sticks = run.sticks;
+    if c.effects.stick {
+        outcome.stick_time = run.stick_time;
+        if run.sticks {
+            r.stick_impulse = run.stick_impulse;
+        }
+    }
+    r.tangential_impulse = j.max(0.0);
+    r.heat_sliding = run.heat_sliding;
+    r.heat = c.incoming.kinetic_energy(&c.ball) - run.out.kinetic_energy(&c.ball);
+    r.out = run.out;
+    outcome.stats = run.stats;
+    outcome.check = checks(c, &outcome.exact, &run.out, j, run.heat_sliding);
+    outcome.check.theta_drift = run.theta_drift;
+    outcome.check.slip_consistency = run.slip_consistency;
+    Ok(())
+}
+
 /// The exact trace: the closed form at p(t) for t = i tau / n, i = 0..=n, plus the stop of
-/// sliding (ERRATA.md, gap 3).
+/// sliding (docs/model.md#the-exact-state-during-the-contact).
 fn closed_form_trace<P: ForceProfile + ?Sized>(
     c: &Collision,
     exact: &ClosedForm,
@@ -177,8 +155,7 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
     n: u64,
 ) -> Result<(), Error> {
     let tau = profile.duration();
-    let stick_s = (exact.sticks && c.collides())
-        .then(|| profile.time_at_cumulative(exact.stick_impulse.unwrap_or(0.0) / c.impulse));
+    let stick_s = exact.result.stick_fraction(profile);
     let theta = c.theta();
     // The stop row carries p_stick itself (p(t) at the inverted time can fall an ulp short
     // of it, which would leave a round-off slip at the stop).
@@ -201,7 +178,7 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
         let s = i as f64 / n as f64;
         if let Some(ss) = stick_s {
             if ss > last && ss < s {
-                sink.row(&row(ss, ss * tau, exact.stick_impulse))?;
+                sink.row(&row(ss, ss * tau, exact.result.stick_impulse))?;
             }
         }
         sink.row(&row(s, i as f64 * tau / n as f64, None))?;

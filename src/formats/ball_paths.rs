@@ -10,16 +10,17 @@
 //! are exact (piecewise constant accelerations), not integrated.
 
 use crate::error::Error;
+use crate::formats::number::{finite_output, shortest};
 use crate::model::state::LabBall;
 use crate::table_phase::{BallMotion, RollOut, TableOutcome};
 use std::io::Write;
 
-/// Default number of intervals of the path.
-pub const DEFAULT_PATH_SAMPLES: u64 = 200;
+/// Default number of intervals of the ball paths.
+pub const DEFAULT_BALL_PATH_SAMPLES: u64 = 200;
 
-/// One row of the path: the time and both balls.
+/// One row of the ball paths: the time and both balls.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PathRow {
+pub struct BallPathRow {
     /// Time since separation (s).
     pub t: f64,
     /// Ball A: phase and state.
@@ -50,8 +51,9 @@ pub fn header() -> Vec<String> {
     h
 }
 
-/// The rows of the path with `samples` (>= 1) uniform intervals plus the phase changes.
-pub fn path_rows(t: &TableOutcome, samples: u64) -> Vec<PathRow> {
+/// The rows of the ball paths with `samples` (>= 1) uniform intervals plus the phase
+/// changes.
+pub fn ball_path_rows(t: &TableOutcome, samples: u64) -> Vec<BallPathRow> {
     let end = t.end_time();
     let n = samples.max(1);
     let mut times: Vec<f64> = (0..=n).map(|i| end * i as f64 / n as f64).collect();
@@ -68,13 +70,13 @@ pub fn path_rows(t: &TableOutcome, samples: u64) -> Vec<PathRow> {
     let mut rows = Vec::with_capacity(times.len() + t.a.impacts.len() + t.b.impacts.len());
     for time in times {
         if jumps(&t.a, time) || jumps(&t.b, time) {
-            rows.push(PathRow {
+            rows.push(BallPathRow {
                 t: time,
                 a: before(&t.a, &up, time),
                 b: before(&t.b, &up, time),
             });
         }
-        rows.push(PathRow {
+        rows.push(BallPathRow {
             t: time,
             a: t.a.at(&up, time, true),
             b: t.b.at(&up, time, true),
@@ -92,14 +94,17 @@ fn before(r: &RollOut, up: &nalgebra::Vector3<f64>, time: f64) -> (BallMotion, L
     r.at(up, time, false)
 }
 
-/// Writes the path as CSV to `out` and returns it (flushed).
-pub fn write_path<W: Write>(out: W, rows: &[PathRow]) -> Result<W, Error> {
+/// Writes the ball paths as CSV to `out` and returns it (flushed).
+pub fn write_ball_paths<W: Write>(out: W, rows: &[BallPathRow]) -> Result<W, Error> {
     let mut w = csv::Writer::from_writer(out);
     let head = header();
     w.write_record(&head)?;
     for row in rows {
         let mut cells = Vec::with_capacity(head.len());
-        cells.push(num(row.t, "t", row.t)?);
+        let cell = |v: f64, column: &str| {
+            finite_output(v, || format!("path column {column} at t = {}", row.t)).map(shortest)
+        };
+        cells.push(cell(row.t, "t")?);
         for (name, (phase, s)) in [("a", row.a), ("b", row.b)] {
             for (q, v) in [
                 ("x", s.position.x),
@@ -112,7 +117,7 @@ pub fn write_path<W: Write>(out: W, rows: &[PathRow]) -> Result<W, Error> {
                 ("wy", s.spin.y),
                 ("wz", s.spin.z),
             ] {
-                cells.push(num(v, &format!("{name}_{q}"), row.t)?);
+                cells.push(cell(v, &format!("{name}_{q}"))?);
             }
             cells.push(phase.name().to_string());
         }
@@ -120,15 +125,4 @@ pub fn write_path<W: Write>(out: W, rows: &[PathRow]) -> Result<W, Error> {
     }
     w.into_inner()
         .map_err(|e| Error::io("path", e.into_error()))
-}
-
-fn num(v: f64, column: &str, t: f64) -> Result<String, Error> {
-    if v.is_finite() {
-        Ok(format!("{v:?}"))
-    } else {
-        Err(Error::NonFinite {
-            field: format!("path column {column} at t = {t}"),
-            value: v,
-        })
-    }
 }

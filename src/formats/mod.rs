@@ -1,8 +1,9 @@
 //! File formats: the scene (TOML), the JSON report and text summary, the trace CSV, the ball
-//! path CSV, and files written whole or not at all.
+//! path CSV, the numbers they write, and files written whole or not at all.
 
 pub mod atomic_file;
 pub mod ball_paths;
+pub mod number;
 pub mod report;
 pub mod scene;
 pub mod trace;

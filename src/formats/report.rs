@@ -1,20 +1,27 @@
-//! The report of a run: JSON (one object, the keys of the contract) and a human summary.
+//! The report of a run: JSON (one object, the keys of docs/formats.md#json-report) and a
+//! human summary.
 //!
 //! Every float is checked finite before output: a non-finite value fails the run, naming
-//! the field, instead of turning into `null`. Only the fields documented as nullable in
-//! CONTRACTS.md (`theta`, `stick_time`, `stick_impulse`, `throw_angle_deg`) may be null;
-//! optional keys of extensions (`lab_out`, `table`, and in `table` each ball's
-//! `direction_deg`, `deflection_deg` and `rest`) are left out when they do not apply.
+//! the field, instead of turning into `null`. Only the fields documented as nullable
+//! (docs/formats.md#nulls-and-absent-keys: `theta`, `stick_time`, `stick_impulse`,
+//! `throw_angle_deg`) may be null; optional keys of extensions (`friction`, `lab_out`, `table`, and in
+//! `table` each ball's `direction_deg`, `deflection_deg` and `rest`) are left out when they
+//! do not apply.
 
 use crate::apps::runner::SceneOutcome;
 use crate::contact::check::Checks;
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::Scene;
-use crate::model::state::CmState;
+use crate::integrator::{SolverSettings, Stats};
+use crate::model::material::HertzContact;
+use crate::model::params::{Evaluate, Friction};
+use crate::model::state::{CmState, LabMotion};
 use crate::profile::ForceProfile;
 use crate::table_phase::{RollOut, TableOutcome};
 use nalgebra::Vector3;
-use serde::{ser, Serialize, Serializer};
+use serde::ser::{self, SerializeStruct};
+use serde::{Serialize, Serializer};
 
 /// A number that refuses to serialise when it is not finite.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,6 +74,15 @@ pub struct MotionJson {
     pub spin: [Num; 3],
 }
 
+impl From<&LabMotion> for MotionJson {
+    fn from(m: &LabMotion) -> Self {
+        MotionJson {
+            velocity: v3(&m.velocity),
+            spin: v3(&m.spin),
+        }
+    }
+}
+
 /// Both balls' lab motions.
 #[derive(Debug, Serialize)]
 pub struct LabJson {
@@ -74,6 +90,43 @@ pub struct LabJson {
     pub a: MotionJson,
     /// Ball B.
     pub b: MotionJson,
+}
+
+impl From<&(LabMotion, LabMotion)> for LabJson {
+    fn from((a, b): &(LabMotion, LabMotion)) -> Self {
+        LabJson {
+            a: MotionJson::from(a),
+            b: MotionJson::from(b),
+        }
+    }
+}
+
+/// The friction law in JSON, written only when a speed-dependent mu is evaluated once at the
+/// initial slip (docs/formats.md#json-report): the model, `evaluate` and the mu held.
+#[derive(Debug, Serialize)]
+pub struct HeldFrictionJson {
+    model: &'static str,
+    evaluate: &'static str,
+    /// mu(S(0)), held through the contact.
+    mu: Num,
+}
+
+impl HeldFrictionJson {
+    /// The description of `friction` for a contact sliding from `s0` (m/s); `None` unless it
+    /// is speed-dependent and evaluated at the initial slip.
+    pub fn new(friction: &Friction, s0: f64) -> Option<Self> {
+        match friction {
+            Friction::SpeedDependent {
+                evaluate: Evaluate::Initial,
+                ..
+            } => Some(HeldFrictionJson {
+                model: "speed-dependent",
+                evaluate: Evaluate::Initial.name(),
+                mu: Num(friction.mu(s0)),
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// The checks in JSON.
@@ -111,6 +164,16 @@ pub struct HertzJson {
     pub contact_radius: Num,
 }
 
+impl From<&HertzContact> for HertzJson {
+    fn from(h: &HertzContact) -> Self {
+        HertzJson {
+            max_compression: Num(h.max_compression),
+            peak_force: Num(h.peak_force),
+            contact_radius: Num(h.contact_radius),
+        }
+    }
+}
+
 /// Solver settings and work.
 #[derive(Debug, Serialize)]
 pub struct SolverJson {
@@ -123,61 +186,27 @@ pub struct SolverJson {
     rejected_steps: u64,
 }
 
-/// The JSON report (`--json`).
-#[derive(Debug, Serialize)]
-pub struct Report {
-    /// Scene name.
-    pub name: String,
-    /// Profile name.
-    pub profile: &'static str,
-    /// Contact duration (s).
-    pub duration: Num,
-    /// Hertz's contact of the balls' material, when the duration comes from it; absent
-    /// otherwise.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub hertz: Option<HertzJson>,
-    /// Simulated effects.
-    pub effects: Vec<&'static str>,
-    /// Whether the balls collide.
-    pub collision: bool,
-    /// Impulse P (N s).
-    pub impulse: Num,
-    /// S(0) (m/s).
-    pub s0: Num,
-    /// theta (rad), null when S(0) = 0.
-    pub theta: Option<Num>,
-    /// Signed outgoing sliding speed (m/s).
-    pub s_out: Num,
-    /// Whether sliding stopped.
-    pub sticks: bool,
-    /// When sliding stopped (s).
-    pub stick_time: Option<Num>,
-    /// p_stick (N s).
-    pub stick_impulse: Option<Num>,
-    /// Tangential impulse J >= 0 (N s).
-    pub tangential_impulse: Num,
-    /// Heat H (J).
-    pub heat: Num,
-    /// Sliding heat H_sfr (J).
-    pub heat_sliding: Num,
-    /// Incoming centre-of-mass state.
-    pub cm_in: CmJson,
-    /// Outgoing centre-of-mass state.
-    pub cm_out: CmJson,
-    /// Outgoing lab motions (lab scenes).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub lab_out: Option<LabJson>,
-    /// Throw angle (degrees).
-    pub throw_angle_deg: Option<Num>,
-    /// Checks.
-    pub check: CheckJson,
-    /// Solver.
-    pub solver: SolverJson,
-    /// Warnings.
-    pub warnings: Vec<String>,
-    /// The table phase (effect `table`); absent when the effect is off.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub table: Option<TableJson>,
+impl SolverJson {
+    /// The settings of a run and the work it did.
+    pub fn new(settings: &SolverSettings, stats: &Stats) -> Self {
+        SolverJson {
+            method: settings.method().name(),
+            rtol: Num(settings.rtol()),
+            atol: Num(settings.atol()),
+            steps: settings.steps(),
+            rhs_evaluations: stats.rhs_evaluations,
+            accepted_steps: stats.accepted_steps,
+            rejected_steps: stats.rejected_steps,
+        }
+    }
+}
+
+/// The JSON report (`--json`) of a scene's run: a view of the scene and its outcome that
+/// serialises to the keys of docs/formats.md#json-report, in that order.
+#[derive(Debug, Clone, Copy)]
+pub struct Report<'a> {
+    scene: &'a Scene,
+    run: &'a SceneOutcome,
 }
 
 /// The table phase in JSON: both balls from separation until they roll.
@@ -341,60 +370,10 @@ impl TableJson {
     }
 }
 
-impl Report {
-    /// The report of a scene's outcome.
-    pub fn new(scene: &Scene, so: &SceneOutcome) -> Self {
-        let o = &so.outcome;
-        let (incoming, _) = scene
-            .collision()
-            .expect("a scene that ran has a valid collision");
-        Report {
-            name: scene.name.clone(),
-            profile: scene.profile.name(),
-            duration: Num(scene.profile.duration()),
-            hertz: scene.hertz().ok().flatten().map(|h| HertzJson {
-                max_compression: Num(h.max_compression),
-                peak_force: Num(h.peak_force),
-                contact_radius: Num(h.contact_radius),
-            }),
-            effects: scene.effects.simulated(&scene.contact.friction),
-            collision: o.collision,
-            impulse: Num(o.impulse),
-            s0: Num(o.s0),
-            theta: o.theta.map(Num),
-            s_out: Num(o.s_out),
-            sticks: o.sticks,
-            stick_time: o.stick_time.map(Num),
-            stick_impulse: o.stick_impulse.map(Num),
-            tangential_impulse: Num(o.tangential_impulse),
-            heat: Num(o.heat),
-            heat_sliding: Num(o.heat_sliding),
-            cm_in: CmJson::from(&incoming.incoming),
-            cm_out: CmJson::from(&o.out),
-            lab_out: so.lab_out.map(|(a, b)| LabJson {
-                a: MotionJson {
-                    velocity: v3(&a.velocity),
-                    spin: v3(&a.spin),
-                },
-                b: MotionJson {
-                    velocity: v3(&b.velocity),
-                    spin: v3(&b.spin),
-                },
-            }),
-            throw_angle_deg: so.throw_angle_deg.map(Num),
-            check: CheckJson::from(&o.check),
-            solver: SolverJson {
-                method: so.settings.method.name(),
-                rtol: Num(so.settings.rtol),
-                atol: Num(so.settings.atol),
-                steps: so.settings.steps,
-                rhs_evaluations: o.stats.rhs_evaluations,
-                accepted_steps: o.stats.accepted_steps,
-                rejected_steps: o.stats.rejected_steps,
-            },
-            warnings: o.warnings.clone(),
-            table: so.table.as_ref().map(TableJson::new),
-        }
+impl<'a> Report<'a> {
+    /// The report of `run`, the outcome of `scene`.
+    pub fn new(scene: &'a Scene, run: &'a SceneOutcome) -> Self {
+        Report { scene, run }
     }
 
     /// Pretty JSON; fails naming the field when a number is not finite.
@@ -405,7 +384,55 @@ impl Report {
             field: e.path().to_string(),
             value: f64::NAN,
         })?;
-        Ok(String::from_utf8(out).expect("serde_json writes UTF-8"))
+        Ok(String::from_utf8_lossy(&out).into_owned())
+    }
+}
+
+/// The keys of the report, in order (docs/formats.md#json-report).
+impl Serialize for Report<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (scene, run) = (self.scene, self.run);
+        let o = &run.outcome;
+        let r = &o.result;
+        let mut m = s.serialize_struct("Report", 25)?;
+        m.serialize_field("name", &scene.name)?;
+        m.serialize_field("profile", scene.profile.name())?;
+        m.serialize_field("duration", &Num(scene.profile.duration()))?;
+        match scene.hertz() {
+            Ok(Some(h)) => m.serialize_field("hertz", &HertzJson::from(&h))?,
+            _ => m.skip_field("hertz")?,
+        }
+        m.serialize_field("effects", &scene.effects.simulated(&scene.contact.friction))?;
+        match HeldFrictionJson::new(&scene.contact.friction, r.s0) {
+            Some(f) => m.serialize_field("friction", &f)?,
+            None => m.skip_field("friction")?,
+        }
+        m.serialize_field("collision", &r.collided())?;
+        m.serialize_field("impulse", &Num(r.impulse))?;
+        m.serialize_field("s0", &Num(r.s0))?;
+        m.serialize_field("theta", &r.theta.map(Num))?;
+        m.serialize_field("s_out", &Num(r.s_out))?;
+        m.serialize_field("sticks", &r.sticks)?;
+        m.serialize_field("stick_time", &o.stick_time.map(Num))?;
+        m.serialize_field("stick_impulse", &r.stick_impulse.map(Num))?;
+        m.serialize_field("tangential_impulse", &Num(r.tangential_impulse))?;
+        m.serialize_field("heat", &Num(r.heat))?;
+        m.serialize_field("heat_sliding", &Num(r.heat_sliding))?;
+        m.serialize_field("cm_in", &CmJson::from(&run.cm_in))?;
+        m.serialize_field("cm_out", &CmJson::from(&r.out))?;
+        match &run.lab_out {
+            Some(lab) => m.serialize_field("lab_out", &LabJson::from(lab))?,
+            None => m.skip_field("lab_out")?,
+        }
+        m.serialize_field("throw_angle_deg", &run.throw_angle_deg.map(Num))?;
+        m.serialize_field("check", &CheckJson::from(&o.check))?;
+        m.serialize_field("solver", &SolverJson::new(&run.settings, &o.stats))?;
+        m.serialize_field("warnings", &o.warnings)?;
+        match &run.table {
+            Some(t) => m.serialize_field("table", &TableJson::new(t))?,
+            None => m.skip_field("table")?,
+        }
+        m.end()
     }
 }
 
@@ -413,6 +440,7 @@ impl Report {
 pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     use std::fmt::Write;
     let o = &so.outcome;
+    let r = &o.result;
     let mut s = String::new();
     let _ = writeln!(s, "{}", scene.name);
     let _ = writeln!(
@@ -420,7 +448,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  profile {} over {:.4e} s, method {}, effects: {}",
         scene.profile.name(),
         scene.profile.duration(),
-        so.settings.method,
+        so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if let Ok(Some(h)) = scene.hertz() {
@@ -431,47 +459,27 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
             h.max_compression, h.peak_force, h.contact_radius
         );
     }
-    if !o.collision {
+    if HeldFrictionJson::new(&scene.contact.friction, r.s0).is_some() {
+        let _ = writeln!(
+            s,
+            "  friction          mu(S(0)) = {:.6} held through the contact (evaluate = initial)",
+            scene.contact.friction.mu(r.s0)
+        );
+    }
+    if !r.collided() {
         let _ = writeln!(
             s,
             "  no collision: the balls do not approach (U(0) = {:.6} m/s); state unchanged",
-            o.exact.out.u_cm.x
+            so.cm_in.u_cm.x
         );
         return s;
     }
-    let _ = writeln!(s, "  impulse P         {:.9e} N s", o.impulse);
-    let theta = o
-        .theta
-        .map(|t| format!("{:.6} deg", t.to_degrees()))
-        .unwrap_or_else(|| "undefined (no slip)".into());
-    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", o.s0);
-    match (o.sticks, o.stick_time) {
-        (true, Some(t)) => {
-            let _ = writeln!(
-                s,
-                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
-                o.stick_impulse.unwrap_or(0.0)
-            );
-        }
-        _ => {
-            let _ = writeln!(
-                s,
-                "  sliding           throughout, S_out = {:.9} m/s",
-                o.s_out
-            );
-        }
-    }
-    let _ = writeln!(s, "  tangential J      {:.9e} N s", o.tangential_impulse);
-    let _ = writeln!(
-        s,
-        "  heat H            {:.9e} J (sliding {:.9e} J)",
-        o.heat, o.heat_sliding
-    );
+    s.push_str(&contact_summary(r, o.stick_time));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     let _ = writeln!(s, "  centre-of-mass frame, out:");
-    let _ = writeln!(s, "    U        {} m/s", fmt(&o.out.u_cm));
-    let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&o.out.omega_a));
-    let _ = writeln!(s, "    omega_B  {} rad/s", fmt(&o.out.omega_b));
+    let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
+    let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&r.out.omega_a));
+    let _ = writeln!(s, "    omega_B  {} rad/s", fmt(&r.out.omega_b));
     if let Some((a, b)) = so.lab_out {
         let _ = writeln!(s, "  lab frame, out:");
         let _ = writeln!(s, "    v_A      {} m/s", fmt(&a.velocity));
@@ -499,6 +507,41 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     for w in &o.warnings {
         let _ = writeln!(s, "  warning: {w}");
     }
+    s
+}
+
+/// The contact of a collision, human-readable: impulse, sliding, heat.
+fn contact_summary(r: &ContactResult, stick_time: Option<f64>) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "  impulse P         {:.9e} N s", r.impulse);
+    let theta = r
+        .theta
+        .map(|t| format!("{:.6} deg", t.to_degrees()))
+        .unwrap_or_else(|| "undefined (no slip)".into());
+    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
+    match (r.sticks, stick_time) {
+        (true, Some(t)) => {
+            let _ = writeln!(
+                s,
+                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
+                r.stick_impulse.unwrap_or(0.0)
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "  sliding           throughout, S_out = {:.9} m/s",
+                r.s_out
+            );
+        }
+    }
+    let _ = writeln!(s, "  tangential J      {:.9e} N s", r.tangential_impulse);
+    let _ = writeln!(
+        s,
+        "  heat H            {:.9e} J (sliding {:.9e} J)",
+        r.heat, r.heat_sliding
+    );
     s
 }
 

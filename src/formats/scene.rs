@@ -10,6 +10,7 @@
 //! # poisson_ratio = 0.34     # then take their duration from the material (none given)
 //! [contact]
 //! mu = 0.06          # or { model = "speed-dependent", a = 9.951e-3, b = 0.108, c = 1.088 }
+//!                    # (+ evaluate = "initial": mu(S(0)) held; default "along-contact")
 //! restitution = 1.0  # or: impulse = 0.17  (N s); not both; neither: restitution 1
 //! [contact.profile]
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
@@ -43,17 +44,19 @@
 //! ```
 
 use crate::error::Error;
-use crate::integrator::{Method, SolverSettings, DEFAULT_RTOL, DEFAULT_STEPS};
+use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
 use crate::model::material::{HertzContact, Material, POISSON_RATIO_FIELD, YOUNGS_MODULUS_FIELD};
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings};
 use nalgebra::Vector3;
-use serde::Deserialize;
+use serde::de::{self, MapAccess, Visitor};
+use serde::{Deserialize, Deserializer};
+use std::fmt;
 use std::path::{Path, PathBuf};
 
 /// The built-in default scene (`data/scenes/default.toml`): the paper's rolling ball
@@ -67,6 +70,29 @@ pub enum Incoming {
     Cm(CmState),
     /// Both balls in the lab frame.
     Lab(LabScene),
+}
+
+/// A lab scene with the frame between it and the paper's centre-of-mass frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LabFrame<'a> {
+    /// The change of frame.
+    pub frame: Frame,
+    /// The lab scene.
+    pub lab: &'a LabScene,
+}
+
+impl Incoming {
+    /// The paper's centre-of-mass state of balls of radius `radius` (m); for lab input also
+    /// the lab scene with its frame (the balls must touch, see [`Frame::new`]).
+    pub fn to_cm(&self, radius: f64) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
+        Ok(match self {
+            Incoming::Cm(cm) => (*cm, None),
+            Incoming::Lab(lab) => {
+                let frame = Frame::new(lab, radius)?;
+                (frame.to_cm(lab), Some(LabFrame { frame, lab }))
+            }
+        })
+    }
 }
 
 /// A validated scene.
@@ -96,6 +122,60 @@ pub struct Scene {
     pub table: Option<TableParams>,
 }
 
+/// Solver settings as a scene's `[solver]` section or the command line gives them: each
+/// one given replaces the base's (the defaults for a scene, the scene's on the command
+/// line).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverOverrides {
+    /// Method.
+    #[serde(default, deserialize_with = "optional_name")]
+    pub method: Option<Method>,
+    /// Relative tolerance.
+    pub rtol: Option<f64>,
+    /// Absolute tolerance on the scaled variables; default: a new `rtol` when one is
+    /// given, the base's otherwise.
+    pub atol: Option<f64>,
+    /// RK4 steps over the contact.
+    pub steps: Option<u32>,
+    /// The smoothing time transform of pulses with algebraic ends.
+    pub time_transform: Option<bool>,
+}
+
+impl SolverOverrides {
+    /// `base` with these overrides, validated by [`SolverSettings::new`]: a new rtol
+    /// carries atol with it unless atol is given too; `breakpoints` stays the base's, and
+    /// so does `time_transform` unless given.
+    ///
+    /// ```
+    /// use billiard_contact::formats::scene::SolverOverrides;
+    /// use billiard_contact::{Method, SolverSettings};
+    /// let base = SolverSettings::new(Method::Dop853, 1e-10, 1e-12, 1000).unwrap();
+    /// let tighter = SolverOverrides { rtol: Some(1e-12), ..Default::default() };
+    /// let s = tighter.apply(&base).unwrap();
+    /// assert_eq!((s.method(), s.rtol(), s.atol(), s.steps()), (Method::Dop853, 1e-12, 1e-12, 1000));
+    /// let rk4 = SolverOverrides { method: Some(Method::Rk4), ..Default::default() };
+    /// assert_eq!(rk4.apply(&base).unwrap().atol(), 1e-12);
+    /// ```
+    pub fn apply(&self, base: &SolverSettings) -> Result<SolverSettings, Error> {
+        let rtol = self.rtol.unwrap_or(base.rtol());
+        let atol = self.atol.unwrap_or(if self.rtol.is_some() {
+            rtol
+        } else {
+            base.atol()
+        });
+        let settings = SolverSettings::new(
+            self.method.unwrap_or(base.method()),
+            rtol,
+            atol,
+            self.steps.unwrap_or(base.steps()),
+        )?;
+        Ok(settings
+            .with_breakpoints(base.breakpoints())
+            .with_time_transform(self.time_transform.unwrap_or(base.time_transform())))
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
@@ -103,7 +183,7 @@ struct RawScene {
     balls: RawBalls,
     contact: RawContact,
     incoming: RawIncoming,
-    solver: Option<RawSolver>,
+    solver: Option<SolverOverrides>,
     effects: Option<Effects>,
     table: Option<RawTable>,
 }
@@ -119,6 +199,21 @@ struct RawTable {
     height: Option<f64>,
 }
 
+impl RawTable {
+    /// The cloth's parameters: the defaults where a key is absent.
+    fn build(&self) -> Result<TableParams, Error> {
+        let d = TableSettings::default();
+        TableParams::new(TableSettings {
+            mu: self.mu.unwrap_or(d.mu),
+            restitution: self.restitution.unwrap_or(d.restitution),
+            g: self.g.unwrap_or(d.g),
+            rolling_resistance: self.rolling_resistance.unwrap_or(d.rolling_resistance),
+            spin_decay: self.spin_decay.unwrap_or(d.spin_decay),
+            height: self.height,
+        })
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawBalls {
@@ -132,10 +227,105 @@ struct RawBalls {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawContact {
-    mu: toml::Value,
+    mu: FrictionSpec,
     restitution: Option<f64>,
     impulse: Option<f64>,
     profile: ProfileSpec,
+}
+
+/// What `contact.mu` accepts.
+const MU_ACCEPTED: &str = "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., \
+     c = .., evaluate = \"along-contact\" (default) or \"initial\" }";
+
+/// `contact.mu` as written: a number (constant friction) or a table naming the model. Its
+/// values are checked by [`FrictionSpec::build`], through [`Friction`]'s constructors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum FrictionSpec {
+    /// `mu = 0.06`.
+    Constant(f64),
+    /// `mu = { model = "speed-dependent", a = .., b = .., c = .., evaluate = .. }`.
+    Model(FrictionModelSpec),
+}
+
+/// `contact.mu` as a table.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FrictionModelSpec {
+    #[serde(deserialize_with = "name")]
+    model: FrictionModel,
+    a: f64,
+    b: f64,
+    c: f64,
+    #[serde(default, deserialize_with = "optional_name")]
+    evaluate: Option<Evaluate>,
+}
+
+/// The friction models by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum FrictionModel {
+    /// mu(S) = a + b exp(-c S).
+    SpeedDependent,
+}
+
+/// A number or a table, told apart by the TOML value's type. (serde's untagged enums
+/// would do the same but replace the inner error, e.g. a misspelt `b`, by "did not match
+/// any variant"; here the table's own errors come through with their key and line.)
+impl<'de> Deserialize<'de> for FrictionSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct NumberOrTable;
+        impl<'de> Visitor<'de> for NumberOrTable {
+            type Value = FrictionSpec;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(MU_ACCEPTED)
+            }
+            fn visit_f64<E: de::Error>(self, mu: f64) -> Result<FrictionSpec, E> {
+                Ok(FrictionSpec::Constant(mu))
+            }
+            fn visit_i64<E: de::Error>(self, mu: i64) -> Result<FrictionSpec, E> {
+                Ok(FrictionSpec::Constant(mu as f64))
+            }
+            fn visit_u64<E: de::Error>(self, mu: u64) -> Result<FrictionSpec, E> {
+                Ok(FrictionSpec::Constant(mu as f64))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<FrictionSpec, A::Error> {
+                FrictionModelSpec::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(FrictionSpec::Model)
+            }
+        }
+        deserializer.deserialize_any(NumberOrTable)
+    }
+}
+
+/// A value of a unit-variant enum, given by its name: a string first, so that another
+/// type is reported as "expected a string" (TOML's own enum reading says only "wanted
+/// string or table"), then the variant of that name.
+fn name<'de, D: Deserializer<'de>, T: Deserialize<'de>>(deserializer: D) -> Result<T, D::Error> {
+    let name = String::deserialize(deserializer)?;
+    T::deserialize(de::IntoDeserializer::<D::Error>::into_deserializer(name))
+}
+
+/// [`name`] of an optional key.
+fn optional_name<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    deserializer: D,
+) -> Result<Option<T>, D::Error> {
+    name(deserializer).map(Some)
+}
+
+impl FrictionSpec {
+    /// The validated friction.
+    fn build(self) -> Result<Friction, Error> {
+        match self {
+            FrictionSpec::Constant(mu) => Friction::constant(mu),
+            FrictionSpec::Model(FrictionModelSpec {
+                model: FrictionModel::SpeedDependent,
+                a,
+                b,
+                c,
+                evaluate,
+            }) => Ok(Friction::speed_dependent(a, b, c)?.evaluated(evaluate.unwrap_or_default())),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -143,6 +333,34 @@ struct RawContact {
 struct RawIncoming {
     cm: Option<RawCm>,
     lab: Option<RawLab>,
+}
+
+impl RawIncoming {
+    /// Exactly one of the two frames, every component finite.
+    fn build(self) -> Result<Incoming, Error> {
+        match (self.cm, self.lab) {
+            (Some(cm), None) => Ok(Incoming::Cm(CmState::new(
+                vec3("incoming.cm.u", cm.u)?,
+                vec3("incoming.cm.omega_a", cm.omega_a.unwrap_or_default())?,
+                vec3("incoming.cm.omega_b", cm.omega_b.unwrap_or_default())?,
+            ))),
+            (None, Some(lab)) => Ok(Incoming::Lab(LabScene {
+                a: lab_ball("incoming.lab.a", &lab.a)?,
+                b: lab_ball("incoming.lab.b", &lab.b)?,
+                up: vec3("incoming.lab.up", lab.up.unwrap_or([0.0, 0.0, 1.0]))?,
+            })),
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "incoming",
+                "both [incoming.cm] and [incoming.lab]",
+                "exactly one of [incoming.cm] or [incoming.lab]",
+            )),
+            (None, None) => Err(Error::invalid(
+                "incoming",
+                "empty",
+                "a section [incoming.cm] (u, omega_a, omega_b) or [incoming.lab] (a, b, up)",
+            )),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -167,16 +385,6 @@ struct RawLabBall {
     position: [f64; 3],
     velocity: [f64; 3],
     spin: Option<[f64; 3]>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSolver {
-    method: Option<String>,
-    rtol: Option<f64>,
-    atol: Option<f64>,
-    steps: Option<u32>,
-    time_transform: Option<bool>,
 }
 
 impl Scene {
@@ -210,19 +418,10 @@ impl Scene {
             raw.balls.alpha.unwrap_or(ALPHA_SOLID),
         )?;
         let material = material_of(&raw.balls)?;
-        let friction = parse_mu(&raw.contact.mu)?;
-        let impulse = match (raw.contact.restitution, raw.contact.impulse) {
-            (Some(e), None) => ImpulseRule::restitution(e)?,
-            (None, Some(p)) => ImpulseRule::explicit(p)?,
-            (None, None) => ImpulseRule::restitution(1.0)?,
-            (Some(e), Some(p)) => {
-                return Err(Error::invalid(
-                    "contact.restitution",
-                    format!("{e} together with contact.impulse = {p}"),
-                    "one of restitution or impulse, not both",
-                ))
-            }
-        };
+        let friction = raw.contact.mu.build()?;
+        let impulse =
+            ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
+                .unwrap_or(ImpulseRule::Restitution(1.0));
         check_duration_source(&raw.contact.profile, material.as_ref())?;
         // Without the material the profile is built here, before the incoming state (whose
         // errors come second); with it, once the approach speed is known.
@@ -230,54 +429,18 @@ impl Scene {
             None => Some(raw.contact.profile.build(base)?),
             Some(_) => None,
         };
-        let incoming =
-            match (raw.incoming.cm, raw.incoming.lab) {
-                (Some(cm), None) => Incoming::Cm(CmState::new(
-                    vec3("incoming.cm.u", cm.u)?,
-                    vec3("incoming.cm.omega_a", cm.omega_a.unwrap_or_default())?,
-                    vec3("incoming.cm.omega_b", cm.omega_b.unwrap_or_default())?,
-                )),
-                (None, Some(lab)) => Incoming::Lab(LabScene {
-                    a: lab_ball("incoming.lab.a", &lab.a)?,
-                    b: lab_ball("incoming.lab.b", &lab.b)?,
-                    up: vec3("incoming.lab.up", lab.up.unwrap_or([0.0, 0.0, 1.0]))?,
-                }),
-                (Some(_), Some(_)) => {
-                    return Err(Error::invalid(
-                        "incoming",
-                        "both [incoming.cm] and [incoming.lab]",
-                        "exactly one of [incoming.cm] or [incoming.lab]",
-                    ))
-                }
-                (None, None) => return Err(Error::invalid(
-                    "incoming",
-                    "empty",
-                    "a section [incoming.cm] (u, omega_a, omega_b) or [incoming.lab] (a, b, up)",
-                )),
-            };
-        let solver = match raw.solver {
-            None => SolverSettings::default(),
-            Some(s) => {
-                let method = match s.method {
-                    Some(m) => m.parse::<Method>()?,
-                    None => Method::Dop853,
-                };
-                let rtol = s.rtol.unwrap_or(DEFAULT_RTOL);
-                SolverSettings::new(
-                    method,
-                    rtol,
-                    s.atol.unwrap_or(rtol),
-                    s.steps.unwrap_or(DEFAULT_STEPS),
-                )?
-                .with_time_transform(s.time_transform.unwrap_or(true))
-            }
-        };
+        let incoming = raw.incoming.build()?;
+        let solver = raw
+            .solver
+            .unwrap_or_default()
+            .apply(&SolverSettings::default())?;
         let contact = Contact { friction, impulse };
         let effects = raw.effects.unwrap_or_default();
         let profile = match (given, &material) {
             (Some(p), _) => p,
             (None, Some(mat)) => {
-                let (c, _) = centre_of_mass(ball, contact, effects, &incoming)?;
+                let (cm, _) = incoming.to_cm(ball.radius)?;
+                let c = Collision::new(ball, contact, effects, cm)?;
                 let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
                 raw.contact.profile.build_with(base, Some(hertz.duration))?
             }
@@ -298,20 +461,7 @@ impl Scene {
             solver,
             effects,
             source: source.map(Path::to_path_buf),
-            table: match raw.table {
-                None => None,
-                Some(t) => {
-                    let d = TableSettings::default();
-                    Some(TableParams::new(TableSettings {
-                        mu: t.mu.unwrap_or(d.mu),
-                        restitution: t.restitution.unwrap_or(d.restitution),
-                        g: t.g.unwrap_or(d.g),
-                        rolling_resistance: t.rolling_resistance.unwrap_or(d.rolling_resistance),
-                        spin_decay: t.spin_decay.unwrap_or(d.spin_decay),
-                        height: t.height,
-                    })?)
-                }
-            },
+            table: raw.table.as_ref().map(RawTable::build).transpose()?,
         };
         // Validate the geometry and the impulse now, so a bad scene fails at load.
         scene.collision()?;
@@ -322,29 +472,37 @@ impl Scene {
     /// The cloth under the balls when the effect `table` is on (`None` when off): needs a
     /// lab scene whose line of centres is horizontal, both centres r above the cloth.
     pub fn cloth(&self) -> Result<Option<Table>, Error> {
-        if !self.effects.table {
-            return Ok(None);
-        }
         match &self.incoming {
-            Incoming::Cm(_) => Err(Error::invalid(
-                "effects.table",
-                true,
-                "a scene with [incoming.lab]: the table needs the balls' positions and `up` \
-                 (the centre-of-mass frame has no cloth)",
-            )),
-            Incoming::Lab(lab) => Ok(Some(Table::new(
-                self.table.unwrap_or_default(),
-                lab.up,
-                lab.a.position,
-                lab.b.position,
-                self.ball.radius,
-            )?)),
+            Incoming::Lab(lab) => self.cloth_under(lab),
+            Incoming::Cm(_) if self.effects.table => Err(table_needs_lab_scene()),
+            Incoming::Cm(_) => Ok(None),
         }
     }
 
-    /// The collision in the centre-of-mass frame, and the lab frame for lab scenes.
-    pub fn collision(&self) -> Result<(Collision, Option<Frame>), Error> {
-        centre_of_mass(self.ball, self.contact, self.effects, &self.incoming)
+    /// The cloth under the balls of the lab scene `lab` when the effect `table` is on
+    /// (`None` when off).
+    pub fn cloth_under(&self, lab: &LabScene) -> Result<Option<Table>, Error> {
+        if !self.effects.table {
+            return Ok(None);
+        }
+        Table::new(
+            self.table.unwrap_or_default(),
+            lab.up,
+            lab.a.position,
+            lab.b.position,
+            self.ball.radius,
+        )
+        .map(Some)
+    }
+
+    /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
+    /// lab scene.
+    pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
+        let (cm, lab) = self.incoming.to_cm(self.ball.radius)?;
+        Ok((
+            Collision::new(self.ball, self.contact, self.effects, cm)?,
+            lab,
+        ))
     }
 
     /// Hertz's contact of the balls' material at the scene's approach speed, when the scene
@@ -356,23 +514,6 @@ impl Scene {
         let (c, _) = self.collision()?;
         HertzContact::identical(&self.ball, material, c.incoming.u_cm.x).map(Some)
     }
-}
-
-/// The collision of `incoming` in the centre-of-mass frame, and the lab frame for lab input.
-fn centre_of_mass(
-    ball: Ball,
-    contact: Contact,
-    effects: Effects,
-    incoming: &Incoming,
-) -> Result<(Collision, Option<Frame>), Error> {
-    let (cm, frame) = match incoming {
-        Incoming::Cm(cm) => (*cm, None),
-        Incoming::Lab(lab) => {
-            let frame = Frame::new(lab, ball.radius)?;
-            (frame.to_cm(lab), Some(frame))
-        }
-    };
-    Ok((Collision::new(ball, contact, effects, cm)?, frame))
 }
 
 /// The balls' material, when `[balls]` gives it: `youngs_modulus` and `poisson_ratio`
@@ -423,6 +564,16 @@ fn check_duration_source(spec: &ProfileSpec, material: Option<&Material>) -> Res
     Ok(())
 }
 
+/// The effect `table` in a centre-of-mass scene.
+pub(crate) fn table_needs_lab_scene() -> Error {
+    Error::invalid(
+        "effects.table",
+        true,
+        "a scene with [incoming.lab]: the table needs the balls' positions and `up` \
+         (the centre-of-mass frame has no cloth)",
+    )
+}
+
 fn vec3(field: &str, v: [f64; 3]) -> Result<Vector3<f64>, Error> {
     for (i, x) in v.iter().enumerate() {
         if !x.is_finite() {
@@ -442,56 +593,6 @@ fn lab_ball(field: &str, b: &RawLabBall) -> Result<LabBall, Error> {
         velocity: vec3(&format!("{field}.velocity"), b.velocity)?,
         spin: vec3(&format!("{field}.spin"), b.spin.unwrap_or_default())?,
     })
-}
-
-fn parse_mu(v: &toml::Value) -> Result<Friction, Error> {
-    const EXPECTED: &str =
-        "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., c = .. }";
-    match v {
-        toml::Value::Float(x) => Friction::constant(*x),
-        toml::Value::Integer(i) => Friction::constant(*i as f64),
-        toml::Value::Table(t) => {
-            let model = t.get("model").and_then(|m| m.as_str());
-            if model != Some("speed-dependent") {
-                return Err(Error::invalid(
-                    "contact.mu.model",
-                    t.get("model")
-                        .map(|m| m.to_string())
-                        .unwrap_or_else(|| "missing".into()),
-                    "\"speed-dependent\" (mu(S) = a + b exp(-c S))",
-                ));
-            }
-            for key in t.keys() {
-                const KEYS: [&str; 4] = ["model", "a", "b", "c"];
-                if !KEYS.contains(&key.as_str()) {
-                    let hint = closest(key, &KEYS)
-                        .map(|k| format!(" (did you mean `{k}`?)"))
-                        .unwrap_or_default();
-                    return Err(Error::invalid(
-                        format!("contact.mu.{key}"),
-                        t[key].to_string(),
-                        format!("no such key: the speed-dependent model takes a, b, c{hint}"),
-                    ));
-                }
-            }
-            let get = |k: &str| -> Result<f64, Error> {
-                match t.get(k) {
-                    Some(toml::Value::Float(x)) => Ok(*x),
-                    Some(toml::Value::Integer(i)) => Ok(*i as f64),
-                    Some(other) => {
-                        Err(Error::invalid(format!("contact.mu.{k}"), other, "a number"))
-                    }
-                    None => Err(Error::invalid(
-                        format!("contact.mu.{k}"),
-                        "missing",
-                        "a number >= 0",
-                    )),
-                }
-            };
-            Friction::speed_dependent(get("a")?, get("b")?, get("c")?)
-        }
-        other => Err(Error::invalid("contact.mu", other, EXPECTED)),
-    }
 }
 
 /// The TOML error in one line: where (line, column), which field (its dotted path, as in
@@ -517,13 +618,14 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
         })
         .unwrap_or_default();
     let path = e.path().to_string();
-    let table = if path.is_empty() || path == "." {
+    // The TOML table (section or inline table) where the error is.
+    let section = if path.is_empty() || path == "." {
         None
     } else {
         Some(path)
     };
     // The path of an unknown key already ends with it.
-    let join = |key: &str| match &table {
+    let join = |key: &str| match &section {
         Some(t) if t == key || t.ends_with(&format!(".{key}")) => t.clone(),
         Some(t) => format!("{t}.{key}"),
         None => key.to_string(),
@@ -541,19 +643,24 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
                 let hint = closest(name, &candidates)
                     .map(|best| format!(" (did you mean `{best}`?)"))
                     .unwrap_or_default();
-                let expected = expected.trim_start_matches(',').trim();
                 return if what == "field" {
+                    let expected = expected.trim_start_matches(',').trim();
                     format!("{at}{}: unknown key, {expected}{hint}", join(name))
                 } else {
-                    let field = table.clone().unwrap_or_else(|| "value".into());
-                    format!("{at}{field} = \"{name}\": unknown name, {expected}{hint}")
+                    // Names are values: listed as they are written, without backticks.
+                    let field = section.clone().unwrap_or_else(|| "value".into());
+                    let names = match candidates.as_slice() {
+                        [one] => one.to_string(),
+                        many => format!("one of {}", many.join(", ")),
+                    };
+                    format!("{at}{field} = \"{name}\": unknown name, expected {names}{hint}")
                 };
             }
         }
     }
     if let Some(rest) = plain.strip_prefix("missing field `") {
         if let Some((name, _)) = rest.split_once('`') {
-            return match &table {
+            return match &section {
                 None => format!("missing section [{name}]: a scene needs [balls], [contact], [contact.profile] and [incoming.cm] or [incoming.lab]"),
                 Some(_) => format!("{at}{}: missing (required)", join(name)),
             };
@@ -562,7 +669,7 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
     let plain = plain
         .replace("expected f64", "expected a number")
         .replace("expected u32", "expected a whole number in [0, 4294967295]");
-    match &table {
+    match &section {
         Some(t) => format!("{at}{t}: {plain}"),
         None => format!("{at}{plain}"),
     }
@@ -616,6 +723,108 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("did you mean `restitution`"), "{e}");
+    }
+
+    /// The scene with `contact.mu` replaced by `mu`, parsed.
+    fn with_mu(mu: &str) -> Result<Scene, Error> {
+        let text = DEFAULT_SCENE.replacen("mu = 0.06", &format!("mu = {mu}"), 1);
+        assert_ne!(text, DEFAULT_SCENE);
+        Scene::parse(&text, Path::new("."), None)
+    }
+
+    #[test]
+    fn typed_mu_takes_a_number_or_the_speed_dependent_model() {
+        assert_eq!(
+            with_mu("0.25").unwrap().contact.friction,
+            Friction::Constant(0.25)
+        );
+        // A TOML integer is a number too.
+        assert_eq!(
+            with_mu("0").unwrap().contact.friction,
+            Friction::Constant(0.0)
+        );
+        let s = with_mu("{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1 }").unwrap();
+        assert_eq!(
+            s.contact.friction,
+            Friction::SpeedDependent {
+                a: 0.01,
+                b: 0.1,
+                c: 1.0,
+                evaluate: Evaluate::AlongContact,
+            }
+        );
+        let s = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"initial\" }",
+        )
+        .unwrap();
+        assert_eq!(
+            s.contact.friction,
+            Friction::speed_dependent(0.01, 0.1, 1.0)
+                .unwrap()
+                .evaluated(Evaluate::Initial)
+        );
+        let e = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"start\" }",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("contact.mu.evaluate")
+                && e.contains("along-contact")
+                && e.contains("initial"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn typed_mu_rejects_other_values_naming_the_key() {
+        let e = with_mu("\"x\"").unwrap_err().to_string();
+        assert!(e.contains("contact.mu: invalid type: string \"x\""), "{e}");
+        assert!(
+            e.contains("a number >= 0, or { model = \"speed-dependent\""),
+            "{e}"
+        );
+        let e = with_mu("{ model = \"speed-dependent\", a = 0.01, bb = 0.1, c = 1 }")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("contact.mu.bb: unknown key"), "{e}");
+        assert!(e.contains("did you mean `b`"), "{e}");
+        let e = with_mu("{ model = \"constant\", a = 0.01, b = 0.1, c = 1 }")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("contact.mu.model = \"constant\": unknown name, expected speed-dependent"),
+            "{e}"
+        );
+        // Validation through Friction's constructors, after the types.
+        let e = with_mu("{ model = \"speed-dependent\", a = -0.01, b = 0.1, c = 1 }")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "contact.mu.a = -0.01: >= 0");
+        let e = with_mu("-0.5").unwrap_err().to_string();
+        assert_eq!(e, "contact.mu = -0.5: mu >= 0");
+    }
+
+    #[test]
+    fn method_is_typed() {
+        let with = |m: &str| {
+            let text = format!("{DEFAULT_SCENE}\n[solver]\nmethod = {m}\n");
+            Scene::parse(&text, Path::new("."), None)
+        };
+        assert_eq!(with("\"rk4\"").unwrap().solver.method(), Method::Rk4);
+        let e = with("\"euler\"").unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "solver.method = \"euler\": unknown name, expected one of closed-form, rk4, \
+                 dopri5, dop853"
+            ),
+            "{e}"
+        );
+        let e = with("3").unwrap_err().to_string();
+        assert!(
+            e.contains("solver.method: invalid type: integer `3`"),
+            "{e}"
+        );
     }
 
     #[test]

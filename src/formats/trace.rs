@@ -1,11 +1,12 @@
 //! Trace rows of a run and their CSV form.
 //!
-//! Columns (header cells `name (unit)`, CONTRACTS.md): `t (s)`, `f (N)`, `p (N s)`,
+//! Columns (header cells `name (unit)`, docs/formats.md#trace-csv): `t (s)`, `f (N)`, `p (N s)`,
 //! `U (m/s)`, `V (m/s)`, `W (m/s)`, `omega_a_x (rad/s)` .. `omega_b_z (rad/s)`, `S (m/s)`,
 //! `theta (rad)`, `H_sfr (J)`. The state is the paper's centre-of-mass frame. After
 //! sticking, S is 0 and theta is the last sliding value; theta is empty when S(0) = 0.
 
 use crate::error::Error;
+use crate::formats::number::{finite_output, shortest};
 use crate::model::state::CmState;
 use std::io::Write;
 
@@ -107,26 +108,16 @@ impl<W: Write> TraceSink for CsvTrace<W> {
             r.slip_speed,
         ];
         for (name, v) in HEADER.iter().zip(values) {
-            if !v.is_finite() {
-                return Err(Error::NonFinite {
-                    field: format!("trace column {name} at t = {}", r.t),
-                    value: v,
-                });
-            }
-            self.out.write_field(ryu_like(v))?;
+            let v = finite_output(v, || format!("trace column {name} at t = {}", r.t))?;
+            self.out.write_field(shortest(v))?;
         }
         match r.theta {
-            Some(th) => self.out.write_field(ryu_like(th))?,
+            Some(th) => self.out.write_field(shortest(th))?,
             None => self.out.write_field("")?,
         }
-        self.out.write_field(ryu_like(r.heat_sliding))?;
+        self.out.write_field(shortest(r.heat_sliding))?;
         self.out.write_record(None::<&[u8]>)?;
         self.rows += 1;
         Ok(())
     }
-}
-
-/// Shortest representation that reads back to the same f64.
-fn ryu_like(v: f64) -> String {
-    format!("{v:?}")
 }

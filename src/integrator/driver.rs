@@ -18,7 +18,7 @@
 use super::record::Recorder;
 use super::rhs::SlidingState;
 use super::settings::{Sampling, SolverSettings, Stats};
-use super::stages::{ContactStage, Problem, StopReason};
+use super::stages::{ContactStage, Problem, Run, StopReason};
 use super::stepping::Stepper;
 use super::time_map::{TimeMap, GRADED_ENDS};
 use crate::error::Error;
@@ -83,16 +83,18 @@ pub fn integrate<P: ForceProfile + ?Sized>(
             "> 0 N s: integrate needs balls that approach (U(0) > 0)",
         ));
     }
-    let mut stepper = Stepper::new(settings)?;
     let time_map = TimeMap::for_run(profile, settings);
     let problem = Problem::new(c, profile, time_map);
     let sampling = trace.as_ref().map_or(Sampling::Steps, |t| t.1);
-    let mut rec = Recorder::new(trace, c.theta());
+    let mut run = Run {
+        stepper: Stepper::new(settings)?,
+        rec: Recorder::new(trace, c.theta()),
+    };
     let mut y = SlidingState::initial(problem.slip0);
     let (mut stage, mut stop) = initial_stage(c);
-    rec.emit(&problem.units, &y, Some(0.0));
+    run.rec.emit(&problem.units, &y, Some(0.0));
 
-    let (kinks, graded): (&[f64], &[f64]) = match settings.breakpoints {
+    let (kinks, graded): (&[f64], &[f64]) = match settings.breakpoints() {
         false => (&[], &[]),
         true if time_map.is_identity() && profile.end_power().is_some() => {
             (profile.breakpoints(), &GRADED_ENDS)
@@ -104,7 +106,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     while x < 1.0 {
         let end = segments.end_after(x);
         while y.x() < end {
-            let (next, reason) = problem.step(stage, y, end, &mut stepper, &mut rec)?;
+            let (next, reason) = problem.step(stage, y, end, &mut run)?;
             y = next;
             if let StopReason::SlidingStopped { time, impulse } = reason {
                 (stop.time, stop.impulse) = (Some(time), Some(impulse));
@@ -115,16 +117,16 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                 } else {
                     stage = ContactStage::Frozen;
                 }
-                rec.emit(&problem.units, &y, stop.time);
+                run.rec.emit(&problem.units, &y, stop.time);
             }
         }
         x = end;
         if let Some(t) = segments.sample_reached(x, profile.duration()) {
-            rec.emit(&problem.units, &y, Some(t));
+            run.rec.emit(&problem.units, &y, Some(t));
         }
     }
-    rec.take_error()?;
-    Ok(result(&problem, &y, stop, &rec, stepper.stats))
+    run.rec.take_error()?;
+    Ok(result(&problem, &y, stop, &run))
 }
 
 /// The stage the contact starts in, and the stop when there is no sliding to stop.
@@ -149,8 +151,7 @@ fn result<P: ForceProfile + ?Sized>(
     problem: &Problem<'_, P>,
     y: &SlidingState,
     stop: Stop,
-    rec: &Recorder<'_>,
-    stats: Stats,
+    run: &Run<'_>,
 ) -> Integrated {
     let c = problem.c;
     let s_out = if c.active_friction().is_none() {
@@ -167,9 +168,9 @@ fn result<P: ForceProfile + ?Sized>(
         sticks: stop.sticks,
         stick_time: stop.time,
         stick_impulse: stop.impulse,
-        theta_drift: rec.theta_drift,
-        slip_consistency: rec.slip_consistency,
-        stats,
+        theta_drift: run.rec.theta_drift,
+        slip_consistency: run.rec.slip_consistency,
+        stats: run.stepper.stats,
     }
 }
 

@@ -41,6 +41,13 @@ pub(super) enum StopReason {
     },
 }
 
+/// The mutable side of a run: the stepper (method, carried step size, work) and the
+/// recorder (trace, first error, measures).
+pub(super) struct Run<'r> {
+    pub(super) stepper: Stepper,
+    pub(super) rec: Recorder<'r>,
+}
+
 /// A collision in the integrator's scaled variables: the right-hand sides and what the
 /// stages share.
 pub(super) struct Problem<'a, P: ForceProfile + ?Sized> {
@@ -83,7 +90,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
             profile: self.profile,
             time_map: self.time_map,
             impulse: self.pi,
-            friction: self.c.contact.friction,
+            friction: self.c.active_friction().unwrap_or(self.c.contact.friction),
             speed_scale: self.c.scales.speed,
             inv_alpha: 1.0 / self.c.ball.alpha,
             e0: self.e0,
@@ -99,18 +106,12 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         stage: ContactStage,
         y: SlidingState,
         stop: f64,
-        stepper: &mut Stepper,
-        rec: &mut Recorder<'_>,
+        run: &mut Run<'_>,
     ) -> Result<(SlidingState, StopReason), Error> {
         match stage {
-            ContactStage::Sliding => self.slide(y, stop, stepper, rec),
-            ContactStage::Frozen => Ok((
-                self.slide_frozen(y, stop, stepper, rec)?,
-                StopReason::ReachedEnd,
-            )),
-            ContactStage::Normal => {
-                Ok((self.press(y, stop, stepper, rec)?, StopReason::ReachedEnd))
-            }
+            ContactStage::Sliding => self.slide(y, stop, run),
+            ContactStage::Frozen => Ok((self.slide_frozen(y, stop, run)?, StopReason::ReachedEnd)),
+            ContactStage::Normal => Ok((self.press(y, stop, run)?, StopReason::ReachedEnd)),
         }
     }
 
@@ -119,29 +120,30 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         &self,
         y: SlidingState,
         stop: f64,
-        stepper: &mut Stepper,
-        rec: &mut Recorder<'_>,
+        run: &mut Run<'_>,
     ) -> Result<(SlidingState, StopReason), Error> {
         let rhs = self.sliding_rhs(Direction::CurrentSlip);
         let mut prev = y;
         let mut crossed = None;
-        let end = stepper.advance_checked(&rhs, y.0, stop, rec, |rec, v| {
-            let st = SlidingState(*v);
-            // A slip within round-off of zero has stopped: a step that lands there (a
-            // sample time, a breakpoint) is the stop itself.
-            if rhs.event(&st) <= self.stop_floor {
-                crossed = Some(st);
-                return true;
-            }
-            rec.measure_sliding(&st, self.e0, &self.slip0, rhs.slip_floor);
-            rec.emit_step(&self.units, &st);
-            prev = st;
-            false
-        })?;
+        let end = run
+            .stepper
+            .advance_checked(&rhs, y.0, stop, &mut run.rec, |rec, v| {
+                let st = SlidingState(*v);
+                // A slip within round-off of zero has stopped: a step that lands there (a
+                // sample time, a breakpoint) is the stop itself.
+                if rhs.event(&st) <= self.stop_floor {
+                    crossed = Some(st);
+                    return true;
+                }
+                rec.measure_sliding(&st, self.e0, &self.slip0, rhs.slip_floor);
+                rec.emit_step(&self.units, &st);
+                prev = st;
+                false
+            })?;
         let Some(cross) = crossed else {
             return Ok((SlidingState(end), StopReason::ReachedEnd));
         };
-        let at = locate_stop(&rhs, stepper, self.profile, &prev, &cross)?;
+        let at = locate_stop(&rhs, &mut run.stepper, self.profile, &prev, &cross)?;
         // The event is pinned down by the impulse (docs/model.md#locating-the-stop-of-sliding):
         // the fraction q of P the integrator itself delivered up to the stop (-Delta U / pi),
         // and the time at which the exact p(t) reaches it. Where the method's own quadrature
@@ -157,27 +159,22 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
         &self,
         y: SlidingState,
         stop: f64,
-        stepper: &mut Stepper,
-        rec: &mut Recorder<'_>,
+        run: &mut Run<'_>,
     ) -> Result<SlidingState, Error> {
         let rhs = self.sliding_rhs(Direction::Frozen);
-        let end = stepper.advance_checked(&rhs, y.0, stop, rec, |rec, v| {
-            let st = SlidingState(*v);
-            rec.measure_frozen(&st, self.e0, rhs.slip_floor);
-            rec.emit_step(&self.units, &st);
-            false
-        })?;
+        let end = run
+            .stepper
+            .advance_checked(&rhs, y.0, stop, &mut run.rec, |rec, v| {
+                let st = SlidingState(*v);
+                rec.measure_frozen(&st, self.e0, rhs.slip_floor);
+                rec.emit_step(&self.units, &st);
+                false
+            })?;
         Ok(SlidingState(end))
     }
 
     /// The normal force alone (no friction, or stuck): only x and U move.
-    fn press(
-        &self,
-        y: SlidingState,
-        stop: f64,
-        stepper: &mut Stepper,
-        rec: &mut Recorder<'_>,
-    ) -> Result<SlidingState, Error> {
+    fn press(&self, y: SlidingState, stop: f64, run: &mut Run<'_>) -> Result<SlidingState, Error> {
         let rhs = NormalRhs {
             profile: self.profile,
             time_map: self.time_map,
@@ -191,12 +188,14 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
             st
         };
         let y0 = NormalState::new(y.x(), y.delta_u()[0]);
-        let end = stepper.advance_checked(&rhs, y0.0, stop, rec, |rec, v| {
-            if rec.takes_steps() {
-                rec.emit(&self.units, &full(v), None);
-            }
-            false
-        })?;
+        let end = run
+            .stepper
+            .advance_checked(&rhs, y0.0, stop, &mut run.rec, |rec, v| {
+                if rec.takes_steps() {
+                    rec.emit(&self.units, &full(v), None);
+                }
+                false
+            })?;
         Ok(full(&end))
     }
 }
@@ -232,11 +231,13 @@ pub(super) mod tests {
     fn step_sliding(c: &Collision) -> (SlidingState, StopReason) {
         let profile = HalfSine::new(TAU).unwrap();
         let problem = Problem::new(c, &profile, TimeMap::Identity);
-        let mut stepper = Stepper::new(&SolverSettings::default()).unwrap();
-        let mut rec = Recorder::new(None, c.theta());
+        let mut run = Run {
+            stepper: Stepper::new(&SolverSettings::default()).unwrap(),
+            rec: Recorder::new(None, c.theta()),
+        };
         let y0 = SlidingState::initial(problem.slip0);
         problem
-            .step(ContactStage::Sliding, y0, 1.0, &mut stepper, &mut rec)
+            .step(ContactStage::Sliding, y0, 1.0, &mut run)
             .unwrap()
     }
 

@@ -107,7 +107,7 @@ impl TimeMap {
     /// `time_transform` is on and the profile has algebraic ends, else the identity.
     pub fn for_run<P: ForceProfile + ?Sized>(profile: &P, settings: &SolverSettings) -> Self {
         match profile.end_power() {
-            Some(n) if settings.time_transform => Self::sidi(sidi_order(n)),
+            Some(n) if settings.time_transform() => Self::sidi(sidi_order(n)),
             _ => TimeMap::Identity,
         }
     }

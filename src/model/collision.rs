@@ -7,8 +7,9 @@ use crate::model::params::{Ball, Contact, Friction};
 use crate::model::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
-/// Natural scales of a collision (CONTRACTS.md): errors are reported relative to them and
-/// the integrator works in the variables they make dimensionless.
+/// Natural scales of a collision (docs/model.md#scales-and-scaled-errors): errors are
+/// reported relative to them and the integrator works in the variables they make
+/// dimensionless.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
     /// Reference speed v_ref = max(|U(0)|, S(0), |U(0)| (vector), r |Omega^A(0)|,
@@ -137,9 +138,12 @@ impl Collision {
         self.impulse > 0.0
     }
 
-    /// The friction model actually acting: `None` when friction is off (effect) or zero.
+    /// The friction law actually acting through this contact: `None` when friction is off
+    /// (effect) or zero; a speed-dependent mu evaluated at the initial slip is the constant
+    /// mu(S(0)) ([`Friction::acting_from`]).
+    #[inline]
     pub fn active_friction(&self) -> Option<Friction> {
-        let f = self.contact.friction;
+        let f = self.contact.friction.acting_from(self.s0);
         if self.effects.friction && !f.is_zero() {
             Some(f)
         } else {

@@ -12,6 +12,13 @@ use nalgebra::{Matrix3, Vector3};
 /// Relative tolerance on |p_B - p_A| = 2r.
 pub const TOUCH_TOLERANCE: f64 = 1e-9;
 
+/// The horizontal part of `v`: v - up (v . up), its part perpendicular to the unit vector
+/// `up` (any unit vector: the part perpendicular to it).
+#[inline]
+pub fn horizontal(v: &Vector3<f64>, up: &Vector3<f64>) -> Vector3<f64> {
+    v - up * v.dot(up)
+}
+
 /// Both balls in the lab frame, with the direction `up` (away from the table).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LabScene {
@@ -35,6 +42,16 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// The paper's frame itself: the identity basis, at rest, `up` = +z. Gives the throw
+    /// angle of centre-of-mass scenes.
+    pub fn paper() -> Self {
+        Frame {
+            basis: Matrix3::identity(),
+            v_cm: Vector3::zeros(),
+            up: Vector3::z(),
+        }
+    }
+
     /// The frame of a lab scene whose balls touch: |p_B - p_A| = 2r within
     /// [`TOUCH_TOLERANCE`] relative; `up` must be a non-zero finite vector.
     pub fn new(scene: &LabScene, radius: f64) -> Result<Self, Error> {
@@ -60,14 +77,15 @@ impl Frame {
         }
         let up = scene.up / up_norm;
         let ex = d / dist;
-        let mut ez = up - ex * up.dot(&ex);
+        // e_z: `up` without its e_x part.
+        let mut ez = horizontal(&up, &ex);
         if ez.norm() < 1e-12 {
             // `up` along the line of centres: any perpendicular will do (the result does
             // not depend on it); take the lab axis least aligned with e_x.
             let i = ex.iamin();
             let mut axis = Vector3::zeros();
             axis[i] = 1.0;
-            ez = axis - ex * axis.dot(&ex);
+            ez = horizontal(&axis, &ex);
         }
         let ez = ez.normalize();
         let ey = ez.cross(&ex);
@@ -109,8 +127,8 @@ impl Frame {
     /// horizontal velocity change vanishes.
     pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
         let ex = self.basis.column(0).into_owned();
-        let line = ex - self.up * ex.dot(&self.up);
-        let dv = delta_v_b - self.up * delta_v_b.dot(&self.up);
+        let line = horizontal(&ex, &self.up);
+        let dv = horizontal(delta_v_b, &self.up);
         if line.norm() < 1e-12 || dv.norm() <= 1e-12 * delta_v_b.norm() || dv.norm() == 0.0 {
             return None;
         }
@@ -123,6 +141,24 @@ impl Frame {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn horizontal_part_by_hand() {
+        // up = (0, 0.6, 0.8) (unit), v = (1, 2, 3): v . up = 1.2 + 2.4 = 3.6, so
+        // v - 3.6 up = (1, 2 - 2.16, 3 - 2.88) = (1, -0.16, 0.12), and that is
+        // perpendicular to up: -0.16 * 0.6 + 0.12 * 0.8 = 0.
+        let up = Vector3::new(0.0, 0.6, 0.8);
+        let h = horizontal(&Vector3::new(1.0, 2.0, 3.0), &up);
+        assert!((h - Vector3::new(1.0, -0.16, 0.12)).amax() < 1e-15, "{h}");
+        assert!(h.dot(&up).abs() < 1e-15);
+        // A vertical vector has no horizontal part; a horizontal one is its own.
+        assert_eq!(
+            horizontal(&(2.5 * Vector3::z()), &Vector3::z()),
+            Vector3::zeros()
+        );
+        let flat = Vector3::new(0.3, -0.7, 0.0);
+        assert_eq!(horizontal(&flat, &Vector3::z()), flat);
+    }
 
     fn ball(p: [f64; 3], v: [f64; 3], w: [f64; 3]) -> LabBall {
         LabBall {

@@ -97,13 +97,13 @@ impl Ball {
 }
 
 /// Coefficient of sliding friction between the balls.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Friction {
     /// Coulomb friction with a constant coefficient mu >= 0.
     Constant(f64),
     /// mu(S) = a + b exp(-c S), S the sliding speed in m/s (the fit used in the
-    /// billiards literature for ball-ball friction), applied at every instant.
+    /// billiards literature for ball-ball friction), evaluated as `evaluate` says.
     SpeedDependent {
         /// Speed-independent part a >= 0.
         a: f64,
@@ -111,7 +111,35 @@ pub enum Friction {
         b: f64,
         /// Decay rate c >= 0 (s/m).
         c: f64,
+        /// At every instant of the contact, or once at the initial slip S(0).
+        evaluate: Evaluate,
     },
+}
+
+/// When a speed-dependent mu(S) is evaluated (`contact.mu.evaluate` in scene files,
+/// docs/model.md#speed-dependent-friction).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Evaluate {
+    /// mu(S) at the current sliding speed S at every instant, as S falls (the default).
+    #[default]
+    AlongContact,
+    /// mu(S(0)) once, at the initial sliding speed, held through the whole contact (the
+    /// convention of Alciatore's throw analysis and of pooltool).
+    Initial,
+}
+
+impl Evaluate {
+    /// Every convention, in the order of their names in the help and errors.
+    pub const ALL: [Evaluate; 2] = [Evaluate::AlongContact, Evaluate::Initial];
+
+    /// The name in scene files and reports.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Evaluate::AlongContact => "along-contact",
+            Evaluate::Initial => "initial",
+        }
+    }
 }
 
 impl Friction {
@@ -149,7 +177,45 @@ impl Friction {
                 return Err(Error::invalid(name, v, format!("<= {MU_MAX:e}")));
             }
         }
-        Ok(Friction::SpeedDependent { a, b, c })
+        Ok(Friction::SpeedDependent {
+            a,
+            b,
+            c,
+            evaluate: Evaluate::AlongContact,
+        })
+    }
+
+    /// The same law evaluated as `evaluate` says (constant friction is unchanged).
+    ///
+    /// ```
+    /// use billiard_contact::{Evaluate, Friction};
+    /// let f = Friction::speed_dependent(9.951e-3, 0.108, 1.088).unwrap();
+    /// let held = f.evaluated(Evaluate::Initial);
+    /// assert_eq!(held.acting_from(2.0), Friction::Constant(f.mu(2.0)));
+    /// assert_eq!(f.acting_from(2.0), f);
+    /// ```
+    pub fn evaluated(self, evaluate: Evaluate) -> Self {
+        match self {
+            Friction::SpeedDependent { a, b, c, .. } => {
+                Friction::SpeedDependent { a, b, c, evaluate }
+            }
+            f @ Friction::Constant(_) => f,
+        }
+    }
+
+    /// The law that acts through a contact whose sliding starts at speed `s0` (m/s): for a
+    /// speed-dependent mu evaluated at the initial slip, the constant mu(S(0)); otherwise
+    /// this law itself. Every method (closed form, batch kernel, integrators) takes its
+    /// friction from here.
+    #[inline]
+    pub fn acting_from(self, s0: f64) -> Self {
+        match self {
+            Friction::SpeedDependent {
+                evaluate: Evaluate::Initial,
+                ..
+            } => Friction::Constant(self.mu(s0)),
+            f => f,
+        }
     }
 
     /// The coefficient at sliding speed `s` (m/s).
@@ -157,7 +223,7 @@ impl Friction {
     pub fn mu(&self, s: f64) -> f64 {
         match *self {
             Friction::Constant(mu) => mu,
-            Friction::SpeedDependent { a, b, c } => a + b * (-c * s).exp(),
+            Friction::SpeedDependent { a, b, c, .. } => a + b * (-c * s).exp(),
         }
     }
 
@@ -198,6 +264,37 @@ impl ImpulseRule {
     pub fn explicit(p: f64) -> Result<Self, Error> {
         positive("contact.impulse", p, "N s")?;
         Ok(ImpulseRule::Explicit(p))
+    }
+
+    /// The rule of a restitution `e` or an explicit impulse `p` (N s), validated; `None`
+    /// when neither is given. Both is an error naming `{prefix}restitution` and
+    /// `{prefix}impulse` (the keys as the input spells them: `contact.` in a scene, none
+    /// in a batch row).
+    ///
+    /// ```
+    /// use billiard_contact::ImpulseRule;
+    /// assert_eq!(ImpulseRule::from_either("", Some(0.9), None).unwrap(),
+    ///            Some(ImpulseRule::restitution(0.9).unwrap()));
+    /// assert_eq!(ImpulseRule::from_either("", None, None).unwrap(), None);
+    /// let e = ImpulseRule::from_either("contact.", Some(1.0), Some(0.1)).unwrap_err();
+    /// assert_eq!(e.to_string(), "contact.restitution = 1 together with contact.impulse = 0.1: \
+    ///                            one of restitution or impulse, not both");
+    /// ```
+    pub fn from_either(
+        prefix: &str,
+        restitution: Option<f64>,
+        impulse: Option<f64>,
+    ) -> Result<Option<Self>, Error> {
+        match (restitution, impulse) {
+            (Some(e), None) => ImpulseRule::restitution(e).map(Some),
+            (None, Some(p)) => ImpulseRule::explicit(p).map(Some),
+            (None, None) => Ok(None),
+            (Some(e), Some(p)) => Err(Error::invalid(
+                format!("{prefix}restitution"),
+                format!("{e} together with {prefix}impulse = {p}"),
+                "one of restitution or impulse, not both",
+            )),
+        }
     }
 
     /// The impulse P (N s) for normal approach speed `u0` (m/s) and mass `m` (kg).

@@ -115,10 +115,7 @@ fn both_centres_r_above(
     Ok(())
 }
 
-/// The horizontal part v - (v.n) n of `v` (same unit as `v`), `up` the unit vertical n.
-pub(crate) fn horizontal(v: &Vector3<f64>, up: &Vector3<f64>) -> Vector3<f64> {
-    v - up * v.dot(up)
-}
+pub(crate) use crate::model::frame::horizontal;
 
 /// The horizontal slip u = v_h - r (w x n) (m/s) of the contact point with the cloth, for
 /// a ball with `velocity` (m/s) and `spin` (rad/s), `up` the unit vertical n.

@@ -42,6 +42,34 @@ pub struct Exact {
     pub e: [f64; 2],
     /// p_stick (N s), infinite without friction.
     pub p_stick: f64,
+    /// (a, b, c) of a speed-dependent mu(S) = a + b exp(-c S) (c in s/m); `None`: constant
+    /// `mu`. With it, `mu` is mu(0) = a + b.
+    pub speed_law: Option<(f64, f64, f64)>,
+}
+
+/// The slide potential G(S) = integral_0^S dS' / mu(S') of mu(S) = a + b exp(-c S), derived
+/// here: 1/mu = e^(cS) / (a e^(cS) + b), so G = ln(1 + a (e^(cS) - 1) / (a + b)) / (a c),
+/// written with ln_1p / expm1 so that a -> 0 (G = (e^(cS) - 1) / ((a + b) c)) and c -> 0
+/// (G = S / (a + b)) keep their digits. Checked against quadrature in
+/// tests/friction_speed_dependent.rs.
+pub fn slide_potential(a: f64, b: f64, c: f64, s: f64) -> f64 {
+    let cs = c * s;
+    let em1_over_c = if cs == 0.0 { s } else { cs.exp_m1() / c };
+    let x = a * c * em1_over_c / (a + b);
+    let ln1p_over_x = if x == 0.0 { 1.0 } else { x.ln_1p() / x };
+    ln1p_over_x * em1_over_c / (a + b)
+}
+
+/// The slip S with G(S) = g (the inverse of [`slide_potential`]):
+/// S = ln(1 + (a + b) (e^(a c g) - 1) / a) / c, with the same limits.
+pub fn slip_of_potential(a: f64, b: f64, c: f64, g: f64) -> f64 {
+    let z = a * c * g;
+    let em1_over_z = if z == 0.0 { 1.0 } else { z.exp_m1() / z };
+    // y / c with y = (a + b) (e^z - 1) / a.
+    let y_over_c = em1_over_z * g * (a + b);
+    let y = y_over_c * c;
+    let ln1p_over_y = if y == 0.0 { 1.0 } else { y.ln_1p() / y };
+    ln1p_over_y * y_over_c
 }
 
 /// The state and sliding after a normal impulse p.
@@ -92,7 +120,29 @@ impl Exact {
             s0,
             e,
             p_stick,
+            speed_law: None,
         }
+    }
+
+    /// The same with mu(S) = a + b exp(-c S): dS/dp = -k mu(S) (eqs 25-33 along e0) gives
+    /// G(S(0)) - G(S(p)) = k p, so sliding stops at p_stick = G(S(0)) / k, and the
+    /// tangential impulse is J = (S(0) - S(p)) / k; the heat of eq 49 is
+    /// integral S dJ = J S(0) - k J^2 / 2, the same expression in J as for constant mu.
+    pub fn speed_dependent(
+        m: f64,
+        r: f64,
+        alpha: f64,
+        (a, b, c): (f64, f64, f64),
+        e_rest: f64,
+        impulse: Option<f64>,
+        incoming: CmState,
+    ) -> Self {
+        let mut x = Exact::new(m, r, alpha, a + b, e_rest, impulse, incoming);
+        x.speed_law = Some((a, b, c));
+        if x.s0 > 0.0 && a + b > 0.0 {
+            x.p_stick = slide_potential(a, b, c, x.s0) / x.k();
+        }
+        x
     }
 
     pub fn k(&self) -> f64 {
@@ -106,10 +156,14 @@ impl Exact {
     /// The exact state after normal impulse `p`.
     pub fn at(&self, p: f64) -> ExactAt {
         let (m, r, alpha) = (self.m, self.r, self.alpha);
-        let j = if self.mu > 0.0 && self.s0 > 0.0 {
-            self.mu * p.min(self.p_stick)
-        } else {
-            0.0
+        let j = match self.speed_law {
+            _ if self.mu <= 0.0 || self.s0 == 0.0 => 0.0,
+            None => self.mu * p.min(self.p_stick),
+            Some(_) if p >= self.p_stick => self.s0 / self.k(),
+            Some((a, b, c)) => {
+                let g = slide_potential(a, b, c, self.s0) - self.k() * p;
+                (self.s0 - slip_of_potential(a, b, c, g)) / self.k()
+            }
         };
         let mut s = self.incoming;
         s.u_cm.x -= p / m;
@@ -162,6 +216,46 @@ impl Exact {
     }
 }
 
+#[path = "mod.rs"]
+mod first_principles;
+
+/// Phi(s) of the Hertz pulse: the inverse of tests/common's `hertz_time`, the quadrature of
+/// the energy integral of delta'' = -delta^(3/2) (not the library's `Hertz`), by the
+/// Illinois variant of regula falsi (a dozen evaluations where bisection takes 50).
+pub fn hertz_phi(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    let g = |q: f64| first_principles::hertz_time(q) - s;
+    let (mut a, mut b, mut ga, mut gb) = (0.0, 1.0, -s, 1.0 - s);
+    if ga == 0.0 {
+        return 0.0;
+    }
+    if gb == 0.0 {
+        return 1.0;
+    }
+    let mut side = 0;
+    for _ in 0..100 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        let gc = g(c);
+        if gc == 0.0 || (b - a).abs() <= 4.0 * f64::EPSILON {
+            return c;
+        }
+        if (gc < 0.0) == (ga < 0.0) {
+            (a, ga) = (c, gc);
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        } else {
+            (b, gb) = (c, gc);
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
+}
+
 /// Phi(s) of the half-sine: sin^2(pi s / 2).
 pub fn half_sine_phi(s: f64) -> f64 {
     (0.5 * PI * s.clamp(0.0, 1.0)).sin().powi(2)
@@ -203,10 +297,7 @@ pub fn collision(
 
 /// The default tolerance settings of a method (rk4: the default 1000 steps).
 pub fn settings(method: Method) -> SolverSettings {
-    SolverSettings {
-        method,
-        ..SolverSettings::default()
-    }
+    SolverSettings::default().with_method(method)
 }
 
 /// The default scene (data/scenes/default.toml: rolling ball, 30 degree cut, half-sine)
@@ -247,17 +338,17 @@ pub fn run_bounded<P: ForceProfile + ?Sized>(
     baseline: u64,
 ) -> Outcome {
     let o = solve(c, profile, settings, None)
-        .unwrap_or_else(|e| panic!("{label} ({}): {e}", settings.method));
+        .unwrap_or_else(|e| panic!("{label} ({}): {e}", settings.method()));
     let evals = o.stats.rhs_evaluations;
     eprintln!(
         "cost {label:<48} {:>8}: {evals:>7} rhs evaluations ({:.2} x default {baseline})",
-        settings.method.name(),
+        settings.method().name(),
         evals as f64 / baseline as f64
     );
     assert!(
         evals <= COST_FACTOR * baseline,
         "{label} ({}): {evals} rhs evaluations > {COST_FACTOR} x {baseline}",
-        settings.method
+        settings.method()
     );
     o
 }
@@ -303,47 +394,54 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     let method = o.method;
     let label = format!("{} ({})", x.label, method.name());
     let want = ex.out();
-    let err = ex.scaled_error(&o.out, &want.state);
+    let err = ex.scaled_error(&o.result.out, &want.state);
     assert!(err <= tol, "{label}: scaled state error {err:e} > {tol:e}");
-    assert!(o.out.is_finite(), "{label}: non-finite state");
+    assert!(o.result.out.is_finite(), "{label}: non-finite state");
     let v = ex.v_ref();
     let e_ref = ex.m * v * v;
     // Heats: H from eq 50 and H_sfr (eq 49 with the stick rule).
     assert!(
-        (o.heat - want.heat).abs() <= 10.0 * tol * e_ref,
+        (o.result.heat - want.heat).abs() <= 10.0 * tol * e_ref,
         "{label}: H = {:e}, exact {:e}",
-        o.heat,
+        o.result.heat,
         want.heat
     );
     assert!(
-        (o.heat_sliding - want.heat_sliding).abs() <= 10.0 * tol * e_ref,
+        (o.result.heat_sliding - want.heat_sliding).abs() <= 10.0 * tol * e_ref,
         "{label}: H_sfr = {:e}, exact {:e}",
-        o.heat_sliding,
+        o.result.heat_sliding,
         want.heat_sliding
     );
     assert!(
-        o.heat >= -10.0 * tol * e_ref,
+        o.result.heat >= -10.0 * tol * e_ref,
         "{label}: H = {:e} < 0",
-        o.heat
+        o.result.heat
     );
-    assert!(o.heat_sliding >= -10.0 * tol * e_ref, "{label}: H_sfr < 0");
-    assert!(o.s_out >= 0.0, "{label}: S_out = {:e} < 0", o.s_out);
     assert!(
-        (o.s_out - want.slip).abs() <= 10.0 * tol * v,
+        o.result.heat_sliding >= -10.0 * tol * e_ref,
+        "{label}: H_sfr < 0"
+    );
+    assert!(
+        o.result.s_out >= 0.0,
+        "{label}: S_out = {:e} < 0",
+        o.result.s_out
+    );
+    assert!(
+        (o.result.s_out - want.slip).abs() <= 10.0 * tol * v,
         "{label}: S_out = {:e}, exact {:e}",
-        o.s_out,
+        o.result.s_out,
         want.slip
     );
     // Tangential impulse J (scalar, >= 0) to the same scaled accuracy (impulse m v_ref).
-    assert!(o.tangential_impulse >= 0.0);
+    assert!(o.result.tangential_impulse >= 0.0);
     assert!(
-        (o.tangential_impulse - want.j).abs() <= 10.0 * tol * ex.m * v,
+        (o.result.tangential_impulse - want.j).abs() <= 10.0 * tol * ex.m * v,
         "{label}: J = {:e}, exact {:e}",
-        o.tangential_impulse,
+        o.result.tangential_impulse,
         want.j
     );
     // theta: null exactly when S(0) = 0, never NaN, in (-pi, pi].
-    match o.theta {
+    match o.result.theta {
         None => assert_eq!(ex.s0, 0.0, "{label}: theta null with S(0) > 0"),
         Some(t) => {
             assert!(ex.s0 > 0.0, "{label}: theta {t} with S(0) = 0");
@@ -356,8 +454,8 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     // No friction in a random direction: the tangential velocity change is along -e0,
     // and no larger than the stick rule allows (J <= m S(0) / (2 (1 + 1/alpha))).
     let dv = (
-        o.out.u_cm.y - ex.incoming.u_cm.y,
-        o.out.u_cm.z - ex.incoming.u_cm.z,
+        o.result.out.u_cm.y - ex.incoming.u_cm.y,
+        o.result.out.u_cm.z - ex.incoming.u_cm.z,
     );
     let across = (dv.0 * ex.e[1] - dv.1 * ex.e[0]).abs();
     let along = -(dv.0 * ex.e[0] + dv.1 * ex.e[1]);
@@ -382,15 +480,15 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
     // Sticking and the event (docs/formats.md).
     if ex.p > 0.0 && ex.s0 == 0.0 && ex.mu > 0.0 {
-        assert!(o.sticks, "{label}: S(0) = 0 must stick");
+        assert!(o.result.sticks, "{label}: S(0) = 0 must stick");
         assert_eq!(o.stick_time, Some(0.0), "{label}");
-        assert_eq!(o.stick_impulse, Some(0.0), "{label}");
+        assert_eq!(o.result.stick_impulse, Some(0.0), "{label}");
         return;
     }
     if x.sticks_decided {
-        assert_eq!(o.sticks, ex.sticks(), "{label}: sticks");
+        assert_eq!(o.result.sticks, ex.sticks(), "{label}: sticks");
     }
-    if o.sticks {
+    if o.result.sticks {
         let t = o.stick_time.expect("stick time when sticking");
         assert!((0.0..=tau).contains(&t), "{label}: stick time {t:e}");
         let p_at = ex.p * (x.phi)(t / tau);
@@ -399,7 +497,7 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
             "{label}: p(t_stick) = {p_at:e}, p_stick = {:e}",
             ex.p_stick
         );
-        let p_rep = o.stick_impulse.expect("stick impulse when sticking");
+        let p_rep = o.result.stick_impulse.expect("stick impulse when sticking");
         assert!(
             (p_rep - ex.p_stick).abs() <= EVENT_IMPULSE_TOL * ex.p,
             "{label}: stick_impulse {p_rep:e} vs {:e}",
@@ -410,9 +508,9 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
 }
 
-#[path = "quadrature.rs"]
-mod quadrature;
-pub use quadrature::gauss_legendre;
+// The one copy of the nodes: through tests/common/mod.rs (loading quadrature.rs twice is
+// a duplicate module).
+pub use first_principles::gauss_legendre;
 
 /// Composite Gauss-Legendre quadrature of `f` over [a, b].
 pub fn quad(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {

@@ -9,7 +9,8 @@
 
 use super::FONT;
 use crate::error::Error;
-use crate::table_phase::{horizontal, BallMotion, RollOut, TableOutcome};
+use crate::model::frame::horizontal;
+use crate::table_phase::{BallMotion, RollOut, TableOutcome};
 use nalgebra::Vector3;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

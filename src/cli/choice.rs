@@ -1,0 +1,119 @@
+//! The closed choices of the options (`--method`, `--profiles`) as clap value enums over the
+//! library's own lists ([`Method::ALL`], [`ProfileKind::ALL`]) and names, so that each name
+//! is defined once and clap lists the accepted values in the help and in its errors.
+
+use billiard_contact::work_precision::ProfileKind;
+use billiard_contact::Method;
+use clap::builder::{EnumValueParser, PossibleValue, TypedValueParser};
+use clap::ValueEnum;
+use std::ffi::OsStr;
+use std::marker::PhantomData;
+
+/// A clap value enum over a library enum with `ALL` and `name()`.
+macro_rules! choice {
+    ($(#[$doc:meta])* $choice:ident($inner:ty)) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub struct $choice(pub $inner);
+
+        impl ValueEnum for $choice {
+            fn value_variants<'a>() -> &'a [Self] {
+                const ALL: [$choice; <$inner>::ALL.len()] = {
+                    let mut all = [$choice(<$inner>::ALL[0]); <$inner>::ALL.len()];
+                    let mut i = 1;
+                    while i < all.len() {
+                        all[i] = $choice(<$inner>::ALL[i]);
+                        i += 1;
+                    }
+                    all
+                };
+                &ALL
+            }
+
+            fn to_possible_value(&self) -> Option<PossibleValue> {
+                Some(PossibleValue::new(self.0.name()))
+            }
+        }
+    };
+}
+
+choice!(
+    /// A `--method` value.
+    MethodChoice(Method)
+);
+
+choice!(
+    /// A `--profiles` value.
+    ProfileChoice(ProfileKind)
+);
+
+/// clap's parser of a value enum applied to the value with surrounding white space removed,
+/// so that a list reads the same with or without spaces after its commas.
+#[derive(Debug)]
+pub struct Trimmed<E>(PhantomData<E>);
+
+impl<E> Trimmed<E> {
+    /// The parser.
+    pub fn new() -> Self {
+        Trimmed(PhantomData)
+    }
+}
+
+impl<E> Default for Trimmed<E> {
+    fn default() -> Self {
+        Trimmed::new()
+    }
+}
+
+impl<E> Clone for Trimmed<E> {
+    fn clone(&self) -> Self {
+        Trimmed::new()
+    }
+}
+
+impl<E: ValueEnum + Clone + Send + Sync + 'static> TypedValueParser for Trimmed<E> {
+    type Value = E;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &OsStr,
+    ) -> Result<E, clap::Error> {
+        let trimmed = value.to_str().map_or(value, |s| OsStr::new(s.trim()));
+        EnumValueParser::<E>::new().parse_ref(cmd, arg, trimmed)
+    }
+
+    fn possible_values(&self) -> Option<Box<dyn Iterator<Item = PossibleValue> + '_>> {
+        Some(Box::new(
+            E::value_variants()
+                .iter()
+                .filter_map(ValueEnum::to_possible_value),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_method_and_profile_is_a_choice_under_its_name() {
+        let methods: Vec<Method> = MethodChoice::value_variants().iter().map(|c| c.0).collect();
+        assert_eq!(methods, Method::ALL);
+        assert_eq!(
+            MethodChoice::from_str("dopri5", false),
+            Ok(MethodChoice(Method::Dopri5))
+        );
+        let profiles: Vec<ProfileKind> = ProfileChoice::value_variants()
+            .iter()
+            .map(|c| c.0)
+            .collect();
+        assert_eq!(profiles, ProfileKind::ALL);
+        assert_eq!(
+            ProfileChoice::from_str("sine-power", false),
+            Ok(ProfileChoice(ProfileKind::SinePower))
+        );
+        assert!(ProfileChoice::from_str("sine", false).is_err());
+    }
+}

@@ -1,0 +1,174 @@
+//! `billiard-contact run`: one scene, its report or summary on stdout, and optionally its
+//! trace, the balls' paths on the table and their top view.
+
+use super::choice::MethodChoice;
+use super::load_scene;
+use billiard_contact::formats::atomic_file::AtomicFile;
+use billiard_contact::formats::ball_paths::{
+    ball_path_rows, write_ball_paths, DEFAULT_BALL_PATH_SAMPLES,
+};
+use billiard_contact::formats::report::{summary, Report};
+use billiard_contact::formats::scene::SolverOverrides;
+use billiard_contact::formats::trace::CsvTrace;
+use billiard_contact::table_phase::TableOutcome;
+use billiard_contact::{run_scene, Error, Sampling, Scene, SceneOutcome};
+use clap::Args;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The options of `run`.
+#[derive(Args, Clone, Default)]
+pub struct RunArgs {
+    /// Scene file (TOML); the built-in default scene when omitted.
+    scene: Option<PathBuf>,
+    /// Print one JSON object on stdout instead of the summary.
+    #[arg(long)]
+    json: bool,
+    /// Write a CSV trace (centre-of-mass frame) to this file.
+    #[arg(long, value_name = "FILE.csv")]
+    trace: Option<PathBuf>,
+    /// Trace rows at t = i duration / N, i = 0..N (plus the stick event), instead of one row
+    /// per accepted step.
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    samples: Option<u64>,
+    /// Method (overrides the scene).
+    #[arg(long, value_name = "M")]
+    method: Option<MethodChoice>,
+    /// Relative tolerance (overrides the scene).
+    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    rtol: Option<f64>,
+    /// Absolute tolerance on the scaled variables (default: rtol).
+    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    atol: Option<f64>,
+    /// RK4 steps over the contact (overrides the scene).
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    steps: Option<u32>,
+    /// Integrate hertz and fractional sine-power pulses in a smoothed time variable
+    /// (default true; false: steps graded toward the ends instead). Overrides the scene.
+    #[arg(long, value_name = "BOOL")]
+    time_transform: Option<bool>,
+    /// Write both balls' paths on the table (lab frame, until both roll) to this CSV
+    /// (needs `[effects] table = true`).
+    #[arg(long = "path", value_name = "FILE.csv")]
+    ball_paths: Option<PathBuf>,
+    /// Uniform intervals of the path CSV (plus every change of phase; default 200).
+    #[arg(long = "path-samples", value_name = "N")]
+    ball_path_samples: Option<u64>,
+    /// Draw a top view of both balls' paths with the line of centres (SVG, or PNG for a
+    /// `.png` name; needs `[effects] table = true`).
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+}
+
+impl RunArgs {
+    /// The options that override the scene's `[solver]`.
+    fn solver_overrides(&self) -> SolverOverrides {
+        SolverOverrides {
+            method: self.method.map(|m| m.0),
+            rtol: self.rtol,
+            atol: self.atol,
+            steps: self.steps,
+            time_transform: self.time_transform,
+        }
+    }
+
+    /// The checks of the options that need the scene.
+    fn validate(&self, scene: &Scene) -> Result<(), Error> {
+        if self.samples == Some(0) {
+            return Err(Error::invalid("--samples", 0, "at least 1"));
+        }
+        if (self.ball_paths.is_some() || self.plot.is_some()) && !scene.effects.table {
+            return Err(Error::invalid(
+                if self.ball_paths.is_some() {
+                    "--path"
+                } else {
+                    "--plot"
+                },
+                "given",
+                "the table effect: set `table = true` under [effects] in the scene (lab frame, \
+                 horizontal line of centres)",
+            ));
+        }
+        if self.ball_path_samples == Some(0) {
+            return Err(Error::invalid("--path-samples", 0, "at least 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Runs the scene; prints the JSON report or the summary once every file is written.
+pub fn run(args: &RunArgs) -> Result<(), Error> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let settings = args.solver_overrides().apply(&scene.solver)?;
+    args.validate(&scene)?;
+    let sampling = match args.samples {
+        Some(n) => Sampling::Uniform(n),
+        None => Sampling::Steps,
+    };
+    let render = |outcome: &SceneOutcome| -> Result<String, Error> {
+        Ok(if args.json {
+            Report::new(&scene, outcome).to_json()? + "\n"
+        } else {
+            summary(&scene, outcome)
+        })
+    };
+    // The trace becomes visible only once the whole run, report included, succeeded.
+    let (text, outcome) = match &args.trace {
+        Some(path) => {
+            let file = AtomicFile::create(path)?;
+            let mut csv = CsvTrace::new(file)?;
+            let outcome = run_scene(&scene, &settings, Some((&mut csv, sampling)))?;
+            let text = render(&outcome)?;
+            csv.finish()?.commit()?;
+            (text, outcome)
+        }
+        None => {
+            let outcome = run_scene(&scene, &settings, None)?;
+            (render(&outcome)?, outcome)
+        }
+    };
+    if let Some(table_phase) = &outcome.table {
+        if let Some(path) = &args.ball_paths {
+            let samples = args.ball_path_samples.unwrap_or(DEFAULT_BALL_PATH_SAMPLES);
+            let rows = ball_path_rows(table_phase, samples);
+            write_ball_paths(AtomicFile::create(path)?, &rows)?.commit()?;
+        }
+        if let Some(path) = &args.plot {
+            write_plot(path, table_phase, &scene)?;
+        }
+    }
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+        .map_err(|e| Error::io("stdout", e))
+}
+
+/// The top view of the table phase: SVG through an atomic file, PNG for a `.png` name
+/// (rendered beside the target and renamed into place).
+fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<(), Error> {
+    use billiard_contact::plot::paths;
+    let title = format!("{}: top view", scene.name);
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if png {
+        let file = AtomicFile::create(path)?;
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
+        let drawn = paths::png(table_phase, scene.ball.radius, &title, &temp);
+        let moved =
+            drawn.and_then(|_| std::fs::rename(&temp, path).map_err(|e| Error::io(path, e)));
+        if moved.is_err() {
+            let _ = std::fs::remove_file(&temp);
+        }
+        drop(file);
+        moved
+    } else {
+        let svg = paths::svg(table_phase, scene.ball.radius, &title)?;
+        let mut file = AtomicFile::create(path)?;
+        file.write_all(svg.as_bytes())
+            .map_err(|e| Error::io(path, e))?;
+        file.commit()
+    }
+}
