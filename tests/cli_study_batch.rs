@@ -16,7 +16,7 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 #[test]
-fn work_precision_writes_csv_svg_png() {
+fn work_precision_writes_csv_svg_png_md() {
     let dir = temp_dir("wp");
     let out = bin()
         .args([
@@ -47,7 +47,11 @@ fn work_precision_writes_csv_svg_png() {
     let png = std::fs::read(dir.join("work_precision.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
     let summary = String::from_utf8_lossy(&out.stdout);
-    assert!(summary.contains("error<=1e-9"), "{summary}");
+    assert!(summary.contains("error<=1e-10"), "{summary}");
+    // The cost tables: a row per line, the adaptive methods against the half-sine.
+    let md = std::fs::read_to_string(dir.join("work_precision.md")).unwrap();
+    assert!(md.contains("| rectangle | dop853 |"), "{md}");
+    assert!(md.contains("Against the half-sine"), "{md}");
     // Redraw from the CSV alone.
     std::fs::remove_file(dir.join("work_precision.png")).unwrap();
     let re = bin()
@@ -57,6 +61,11 @@ fn work_precision_writes_csv_svg_png() {
         .unwrap();
     assert!(re.status.success());
     assert!(dir.join("work_precision.png").exists());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("work_precision.md")).unwrap(),
+        md,
+        "--replot rewrites the same tables from the CSV"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
