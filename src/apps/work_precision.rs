@@ -807,7 +807,10 @@ pub fn markdown(rows: &[StudyRow]) -> String {
                 .iter()
                 .filter_map(|r| r.error)
                 .min_by(f64::total_cmp)
-                .map_or("-".to_string(), |e| format!("{e:.1e}"));
+                .map_or("-".to_string(), |e| match e {
+                    0.0 => "0".to_string(),
+                    e => format!("{e:.1e}"),
+                });
             let _ = write!(
                 s,
                 "| {} | {} | {} | {best} |",
