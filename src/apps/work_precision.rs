@@ -887,7 +887,7 @@ pub fn human_seconds(t: f64) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     fn quick() -> StudyOptions {
@@ -979,6 +979,31 @@ mod tests {
         assert!(d.seconds_per_contact > 0.0);
     }
 
+    /// A row of `method` on `profile` with `error`, `n` evaluations and `t` seconds per
+    /// contact, the defaults elsewhere.
+    pub(crate) fn made_up_row(profile: &str, method: &str, error: f64, n: u64, t: f64) -> StudyRow {
+        StudyRow {
+            profile: profile.into(),
+            method: method.into(),
+            rtol: None,
+            steps: None,
+            error: Some(error),
+            stick_time_error: None,
+            stats: Stats {
+                rhs_evaluations: n,
+                accepted_steps: n / 4,
+                rejected_steps: 0,
+            },
+            seconds_per_contact: t,
+            breakpoints: true,
+            time_transform: true,
+            scene: "s".into(),
+            samples: 1,
+            solves_per_sample: 1,
+            note: String::new(),
+        }
+    }
+
     /// error = 3 N^-4 (slope -4 exactly) for N up to 2048 (1.7e-13), then a round-off tail
     /// that grows with the work (2e-13, 3e-13: inside the window, but left out of the fit,
     /// which ends at the most accurate run).
@@ -991,25 +1016,10 @@ mod tests {
         };
         let rows: Vec<StudyRow> = [16u64, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192]
             .iter()
-            .map(|&n| StudyRow {
-                profile: "p".into(),
-                method: "m".into(),
-                rtol: None,
-                steps: Some(n as u32),
-                error: Some(error(n)),
-                stick_time_error: None,
-                stats: Stats {
-                    rhs_evaluations: n,
-                    accepted_steps: n / 4,
-                    rejected_steps: 0,
-                },
-                seconds_per_contact: n as f64 * 1e-9,
-                breakpoints: true,
-                time_transform: true,
-                scene: "s".into(),
-                samples: 1,
-                solves_per_sample: 1,
-                note: String::new(),
+            .map(|&n| {
+                let mut r = made_up_row("p", "m", error(n), n, n as f64 * 1e-9);
+                r.steps = Some(n as u32);
+                r
             })
             .collect();
         let s = series(&rows);
@@ -1077,24 +1087,8 @@ mod tests {
     #[test]
     fn markdown_cost_tables() {
         let row = |profile: &str, rtol: f64, error: f64, n: u64, t: f64| StudyRow {
-            profile: profile.into(),
-            method: "dop853".into(),
             rtol: Some(rtol),
-            steps: None,
-            error: Some(error),
-            stick_time_error: None,
-            stats: Stats {
-                rhs_evaluations: n,
-                accepted_steps: n / 12,
-                rejected_steps: 0,
-            },
-            seconds_per_contact: t,
-            breakpoints: true,
-            time_transform: true,
-            scene: "s".into(),
-            samples: 1,
-            solves_per_sample: 1,
-            note: String::new(),
+            ..made_up_row(profile, "dop853", error, n, t)
         };
         let rows = vec![
             row("half-sine", 1e-6, 1e-7, 40, 2e-6),

@@ -318,28 +318,14 @@ pub fn write(rows: &[StudyRow], svg: &Path, png: &Path) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrator::Stats;
+    use crate::apps::work_precision::tests::made_up_row;
 
     fn row(method: &str, error: f64, t: f64, bp: bool) -> StudyRow {
+        let n = (t * 1e9).round() as u64;
         StudyRow {
-            profile: "half-sine".into(),
-            method: method.into(),
-            rtol: None,
-            steps: None,
-            error: Some(error),
-            stick_time_error: None,
-            stats: Stats {
-                rhs_evaluations: (t * 1e9).round() as u64,
-                accepted_steps: 1,
-                rejected_steps: 0,
-            },
-            seconds_per_contact: t,
             breakpoints: bp,
-            time_transform: true,
             scene: "scene".into(),
-            samples: 1,
-            solves_per_sample: 1,
-            note: String::new(),
+            ..made_up_row("half-sine", method, error, n, t)
         }
     }
 
