@@ -15,8 +15,8 @@
 //! **One collision in memory**: build a [`Collision`] from the balls ([`Ball`]), the contact
 //! ([`Contact`]: friction and impulse rule), the [`Effects`] to simulate and the incoming
 //! centre-of-mass state ([`CmState`]), then [`solve`] it with a force [`profile`] and
-//! [`SolverSettings`]. The [`Outcome`] holds the outgoing state, the impulse, the stick event
-//! and the checks.
+//! [`SolverSettings`]. The [`Outcome`] holds the [`ContactResult`] (outgoing state, impulse,
+//! sliding, heat), the stick time and the checks.
 //!
 //! ```
 //! use billiard_contact::nalgebra::Vector3;
@@ -34,8 +34,8 @@
 //! let outcome = solve(&collision, &HalfSine::new(2.5e-4), &SolverSettings::default(), None)?;
 //! // S(0) = 2V = 1 m/s never reaches 0 (p_stick = m S(0) / (2 mu (1 + 1/alpha)) > P = 2 m U(0)),
 //! // so friction acts throughout: V' = V - mu P / m = 0.5 - 2 (0.06) (1) = 0.38 m/s (eqs 24-25).
-//! assert!((outcome.out.u_cm.y - 0.38).abs() < 1e-10);
-//! assert!((outcome.out.u_cm.x + 1.0).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.y - 0.38).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.x + 1.0).abs() < 1e-10);
 //! # Ok::<(), billiard_contact::Error>(())
 //! ```
 //!
@@ -101,7 +101,7 @@ pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::params::{
-    Ball, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, Contact, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

@@ -139,8 +139,8 @@ fn closed_form_rows_match_the_closed_form() {
 #[test]
 fn paper_special_case_row() {
     let s = setup(Method::ClosedForm);
-    let (m, r, mu) = (s.ball.mass, s.ball.radius, 0.06);
-    assert_eq!(s.ball.mass, 0.17);
+    let (m, r, mu) = (s.ball.mass(), s.ball.radius(), 0.06);
+    assert_eq!(s.ball.mass(), 0.17);
     let (u, v) = (1.0, 0.5);
     let text = format!(
         "u_x,u_y,u_z,omega_a_x,omega_a_y,omega_a_z,mu\n{},{},0,{},{},0,{mu}\n",

@@ -149,9 +149,9 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
     }
     let b = setup.ball;
     let ball = Ball::new(
-        o.mass.unwrap_or(b.mass),
-        o.radius.unwrap_or(b.radius),
-        o.alpha.unwrap_or(b.alpha),
+        o.mass.unwrap_or(b.mass()),
+        o.radius.unwrap_or(b.radius()),
+        o.alpha.unwrap_or(b.alpha()),
     )?;
     let friction = match o.mu {
         Some(mu) => Friction::constant(mu)?,
@@ -184,7 +184,7 @@ fn resolve_with(
     input: &BatchInput,
 ) -> Result<BatchOutput, Error> {
     let (ball, contact) = params_of(setup, &input.overrides)?;
-    let (cm, lab) = input.incoming.to_cm(ball.radius)?;
+    let (cm, lab) = input.incoming.to_cm(ball.radius())?;
     let profile = &setup.profile;
     let time_scale = input.overrides.duration.unwrap_or(profile.duration());
     let mut out = if setup.settings.method == Method::ClosedForm {

@@ -401,7 +401,7 @@ impl Scene {
         let friction = raw.contact.mu.build()?;
         let impulse =
             ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
-                .unwrap_or(ImpulseRule::Restitution(1.0));
+                .unwrap_or(ImpulseRule::ELASTIC);
         let profile = raw.contact.profile.build(base)?;
         let incoming = raw.incoming.build()?;
         let solver = raw
@@ -451,7 +451,7 @@ impl Scene {
             lab.up,
             lab.a.position,
             lab.b.position,
-            self.ball.radius,
+            self.ball.radius(),
         )
         .map(Some)
     }
@@ -459,7 +459,7 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
-        let (cm, lab) = self.incoming.to_cm(self.ball.radius)?;
+        let (cm, lab) = self.incoming.to_cm(self.ball.radius())?;
         Ok((
             Collision::new(self.ball, self.contact, self.effects, cm)?,
             lab,
@@ -611,6 +611,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::FrictionLaw;
 
     #[test]
     fn default_scene_parses() {
@@ -639,17 +640,17 @@ mod tests {
     fn typed_mu_takes_a_number_or_the_speed_dependent_model() {
         assert_eq!(
             with_mu("0.25").unwrap().contact.friction,
-            Friction::Constant(0.25)
+            Friction::constant(0.25).unwrap()
         );
         // A TOML integer is a number too.
         assert_eq!(
             with_mu("0").unwrap().contact.friction,
-            Friction::Constant(0.0)
+            Friction::constant(0.0).unwrap()
         );
         let s = with_mu("{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1 }").unwrap();
         assert_eq!(
-            s.contact.friction,
-            Friction::SpeedDependent {
+            s.contact.friction.law(),
+            FrictionLaw::SpeedDependent {
                 a: 0.01,
                 b: 0.1,
                 c: 1.0

@@ -387,7 +387,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     };
     let pi = c.impulse / sc.impulse;
     let e0 = c.direction.unwrap_or_else(Vector2::zeros);
-    let slip0 = c.incoming.slip(c.ball.radius) / sc.speed;
+    let slip0 = c.incoming.slip(c.ball.radius()) / sc.speed;
     // The event function at or below which the slip counts as stopped: its round-off level,
     // a relative 1e-14 of S(0) (an impulse error of at most 1e-14 p_stick).
     let stop_floor = 1e-14 * slip0.norm();
@@ -396,7 +396,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         impulse: pi,
         friction: c.contact.friction,
         speed_scale: sc.speed,
-        inv_alpha: 1.0 / c.ball.alpha,
+        inv_alpha: 1.0 / c.ball.alpha(),
         e0,
         direction,
         slip_floor: SLIP_ROUND_OFF * slip0.norm(),

@@ -269,7 +269,7 @@ mod tests {
         let rhs = SlidingRhs {
             profile: &profile,
             impulse: 1.3,
-            friction: Friction::Constant(0.2),
+            friction: Friction::constant(0.2).unwrap(),
             speed_scale: 1.0,
             inv_alpha: 2.5,
             e0: Vector2::new(0.6, 0.8),
