@@ -41,10 +41,7 @@ fn bench(c: &mut Criterion) {
     let scene = Scene::default_scene();
     let setup = BatchSetup::from_scene(
         &scene,
-        SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        SolverSettings::default().with_method(Method::ClosedForm),
     );
     let n = 4096;
     let input = states(n);

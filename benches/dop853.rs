@@ -29,9 +29,9 @@ fn bench(cr: &mut Criterion) {
     let tau = scene.profile.duration();
     let mut g = cr.benchmark_group("dop853");
     for p in [
-        Profile::HalfSine(HalfSine::new(tau)),
+        Profile::HalfSine(HalfSine::new(tau).unwrap()),
         Profile::SinePower(SinePower::new(tau, 1.5).unwrap()),
-        Profile::Hertz(Hertz::new(tau)),
+        Profile::Hertz(Hertz::new(tau).unwrap()),
     ] {
         for method in [Method::Dop853, Method::Dopri5] {
             let Some(s) = loosest(&c, &p, method, 1e-10) else {
@@ -42,12 +42,12 @@ fn bench(cr: &mut Criterion) {
             eprintln!(
                 "{method} {}: rtol {:e}, error {:.2e}, {} evaluations, {} steps",
                 p.name(),
-                s.rtol,
+                s.rtol(),
                 o.check.closed_form_error,
                 o.stats.rhs_evaluations,
                 o.stats.accepted_steps
             );
-            let name = format!("{method}/{}/error<=1e-10 (rtol {:e})", p.name(), s.rtol);
+            let name = format!("{method}/{}/error<=1e-10 (rtol {:e})", p.name(), s.rtol());
             g.bench_function(name, |b| {
                 b.iter(|| solve(black_box(&c), black_box(&p), &s, None).unwrap())
             });
@@ -65,7 +65,7 @@ mod closed_form;
 fn cpu_time() {
     let scene = Scene::default_scene();
     let (c, _) = scene.collision().unwrap();
-    let p = Profile::HalfSine(HalfSine::new(scene.profile.duration()));
+    let p = Profile::HalfSine(HalfSine::new(scene.profile.duration()).unwrap());
     let s = loosest(&c, &p, Method::Dop853, 1e-10).expect("dop853 reaches 1e-10");
     let n = 200_000;
     let (wall, cpu) = closed_form::per_call(n, || {
@@ -73,7 +73,7 @@ fn cpu_time() {
     });
     println!(
         "dop853 half-sine error <= 1e-10 (rtol {:e}): {:.2} us wall, {} CPU per contact ({n} solves)",
-        s.rtol,
+        s.rtol(),
         wall * 1e6,
         cpu.map(|c| format!("{:.2} us", c * 1e6))
             .unwrap_or_else(|| "n/a".into()),

@@ -51,11 +51,10 @@ fn bench(c: &mut Criterion) {
             (Method::Dop853, 1000),
             (Method::ClosedForm, 1000),
         ] {
-            let settings = SolverSettings {
-                method,
-                steps,
-                ..Default::default()
-            };
+            let settings = SolverSettings::default()
+                .with_method(method)
+                .with_steps(steps)
+                .unwrap();
             let mut group = c.benchmark_group(format!("{tag} / {method}"));
             group
                 .warm_up_time(Duration::from_millis(500))

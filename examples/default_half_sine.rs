@@ -23,7 +23,7 @@ const TOLERANCE: f64 = 1e-9;
 fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
-        Profile::HalfSine(HalfSine::new(duration)),
+        Profile::HalfSine(HalfSine::new(duration)?),
         "default_half_sine",
         TOLERANCE,
     )

@@ -26,7 +26,7 @@ const TOLERANCE: f64 = 1e-8;
 fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
-        Profile::Hertz(Hertz::new(duration)),
+        Profile::Hertz(Hertz::new(duration)?),
         "default_hertz",
         TOLERANCE,
     )

@@ -24,7 +24,7 @@ const TOLERANCE: f64 = 1e-13;
 fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
-        Profile::Rectangle(Rectangle::new(duration)),
+        Profile::Rectangle(Rectangle::new(duration)?),
         "default_rectangle",
         TOLERANCE,
     )

@@ -445,22 +445,18 @@ fn found(sum: &mut Summary, artifacts: Option<&Path>, kind: &str, input: &str, d
 
 /// Caps the work of a parsed scene: rk4 steps and the adaptive tolerance.
 fn bounded(s: &SolverSettings) -> SolverSettings {
-    SolverSettings {
-        steps: s.steps.min(20_000),
-        rtol: s.rtol.max(1e-12),
-        atol: s.atol.max(1e-12),
-        ..*s
-    }
+    // Each bound moves a valid value towards the middle of its range: the setters accept it.
+    s.with_steps(s.steps().min(20_000))
+        .and_then(|b| b.with_rtol(s.rtol().max(1e-12)))
+        .and_then(|b| b.with_atol(s.atol().max(1e-12)))
+        .unwrap_or(*s)
 }
 
 /// Runs a parsed scene with the closed form and with its own (bounded) method; both reports
 /// must serialise (finite numbers).
 fn run_parsed(scene: &Scene, sum: &mut Summary, artifacts: Option<&Path>, input: &str) {
     let own = bounded(&scene.solver);
-    let closed = SolverSettings {
-        method: Method::ClosedForm,
-        ..own
-    };
+    let closed = own.with_method(Method::ClosedForm);
     for settings in [closed, own] {
         sum.runs += 1;
         match run_scene(scene, &settings, None) {
@@ -472,7 +468,7 @@ fn run_parsed(scene: &Scene, sum: &mut Summary, artifacts: Option<&Path>, input:
                         artifacts,
                         "non-finite",
                         input,
-                        &format!("{}: {e}", settings.method),
+                        &format!("{}: {e}", settings.method()),
                     );
                 }
             }
@@ -484,7 +480,7 @@ fn run_parsed(scene: &Scene, sum: &mut Summary, artifacts: Option<&Path>, input:
                     artifacts,
                     "failed-run",
                     input,
-                    &format!("{}: {e}", settings.method),
+                    &format!("{}: {e}", settings.method()),
                 );
             }
         }
@@ -540,7 +536,10 @@ fn check_table(
         Scene::parse(&text, Path::new("."), None).expect("seed scene")
     });
     scene.profile = p;
-    scene.solver.method = *rng.pick(&[Method::Rk4, Method::Dopri5, Method::Dop853]);
+    scene.solver =
+        scene
+            .solver
+            .with_method(*rng.pick(&[Method::Rk4, Method::Dopri5, Method::Dop853]));
     run_parsed(&scene, sum, artifacts, input);
 }
 

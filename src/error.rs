@@ -2,17 +2,22 @@
 //!
 //! Every variant carries the physical or file context a user needs to fix the
 //! problem: the field, the value and the accepted range; the file and line; the
-//! integrator, the scaled time and the cause. Bad input and failed runs are told
+//! method, the scaled time and the cause. Bad input and failed runs are told
 //! apart by [`Error::is_bad_input`], which the command line maps to exit codes
 //! 2 and 1.
 
 use std::path::PathBuf;
 
 /// Errors of the library and the command line.
+///
+/// Match on the variant to tell the cases apart; the message ([`std::fmt::Display`]) is one
+/// line meant for people. [`Error::is_bad_input`] sorts the variants into the user's input
+/// (exit code 2) and failed runs (exit code 1). New variants may be added.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A parameter outside its physical range.
+    /// A parameter outside its accepted range: from a validating constructor or setter
+    /// (ball, contact, profile, solver settings, table) or from a scene file's value.
     #[error("{field} = {value}: {expected}")]
     InvalidParameter {
         /// Dotted name of the field, as in the scene file (e.g. `balls.mass`).
@@ -21,6 +26,28 @@ pub enum Error {
         value: String,
         /// What is accepted, and why when it is not obvious.
         expected: String,
+    },
+
+    /// A lab-frame scene whose balls do not touch: the distance of the centres is not 2r
+    /// within a relative `tolerance` (the message names the field
+    /// `incoming.lab.b.position`).
+    #[error(
+        "incoming.lab.b.position = [{}, {}, {}] (|p_B - p_A| = {distance} m): the balls must \
+         touch: |p_B - p_A| = 2r = {contact_distance} m within a relative {tolerance:e}",
+        .position_b[0], .position_b[1], .position_b[2]
+    )]
+    NotTouching {
+        /// Position of ball B (m, lab frame), as given.
+        position_b: [f64; 3],
+        /// |p_B - p_A| (m).
+        distance: f64,
+        /// 2r (m), the distance of touching balls.
+        contact_distance: f64,
+        /// |p_B - p_A| - 2r (m): positive when the balls are apart, negative when they
+        /// overlap.
+        gap: f64,
+        /// Accepted relative difference of the distance from 2r.
+        tolerance: f64,
     },
 
     /// A scene file that is not valid TOML or does not match the scene format.
@@ -32,18 +59,19 @@ pub enum Error {
         message: String,
     },
 
-    /// A tabulated profile CSV with a bad line.
+    /// A tabulated profile with a bad point: a line of its CSV file, or a point given to
+    /// [`crate::profile::Tabulated::new`] (line 0).
     #[error("{path}:{line}: {message}")]
     ProfileTable {
-        /// The CSV file.
+        /// The CSV file (or the name the caller gave the table).
         path: PathBuf,
-        /// 1-based line number in the file (0 when the file as a whole is at fault).
+        /// 1-based line number in the file (0 when the table as a whole is at fault).
         line: u64,
         /// What is wrong with that line.
         message: String,
     },
 
-    /// A batch input CSV with a bad line.
+    /// A batch input CSV with a bad line (including a row whose run failed).
     #[error("{path}:{line}: {message}")]
     BatchInput {
         /// The CSV file.
@@ -54,10 +82,10 @@ pub enum Error {
         message: String,
     },
 
-    /// Reading or writing a file failed.
+    /// Reading or writing a file (or a stream: `stdout`, a trace writer) failed.
     #[error("{path}: {source}")]
     Io {
-        /// The file concerned.
+        /// The file concerned, or the stream when it has no path.
         path: PathBuf,
         /// The cause.
         #[source]
@@ -80,19 +108,74 @@ pub enum Error {
         source: serde_json::Error,
     },
 
-    /// The ODE integrator gave up.
-    #[error("{method} failed at t/duration = {scaled_time:.6e}: {source}")]
-    Integration {
-        /// Method name (`rk4`, `dopri5`, `dop853`).
-        method: &'static str,
-        /// Scaled time t/duration of the segment start where it failed.
-        scaled_time: f64,
-        /// The cause reported by `ode_solvers`.
-        #[source]
-        source: ode_solvers::dop_shared::IntegrationError,
+    /// Drawing a figure failed (the plotting backend's error, typically the file it
+    /// renders to).
+    #[error("{path}: {message}")]
+    Plot {
+        /// The figure's file (`plot` when the caller did not say).
+        path: PathBuf,
+        /// What went wrong, with the backend's cause.
+        message: String,
     },
 
-    /// A computed quantity is NaN or infinite: the run failed.
+    /// The worker threads of a batch could not be started (`--threads`).
+    #[error("thread pool: {source}")]
+    ThreadPool {
+        /// The cause reported by the thread pool.
+        #[from]
+        source: rayon::ThreadPoolBuildError,
+    },
+
+    /// An adaptive method (`dopri5`, `dop853`) needed a step below its floor of about
+    /// 10 eps |t|: the force profile or the state changes faster than double precision
+    /// can resolve there.
+    #[error(
+        "{method} failed at t/duration = {scaled_time:.6e}: step size underflow (segment from \
+         t/duration = {segment_start:.6e})"
+    )]
+    StepSizeTooSmall {
+        /// The method.
+        method: crate::integrator::Method,
+        /// Scaled time t/duration where the method gave up.
+        scaled_time: f64,
+        /// Scaled time of the start of the segment it was integrating.
+        segment_start: f64,
+    },
+
+    /// An adaptive method took its maximum number of steps in one segment without reaching
+    /// its end (a tolerance too tight for the profile).
+    #[error(
+        "{method} failed at t/duration = {scaled_time:.6e}: more than {steps} steps (segment \
+         from t/duration = {segment_start:.6e})"
+    )]
+    TooManySteps {
+        /// The method.
+        method: crate::integrator::Method,
+        /// Scaled time t/duration where the method gave up.
+        scaled_time: f64,
+        /// Scaled time of the start of the segment it was integrating.
+        segment_start: f64,
+        /// The step limit.
+        steps: u32,
+    },
+
+    /// An adaptive method's stiffness test fired: explicit steps are limited by stability,
+    /// not accuracy (a friction law too steep for the method).
+    #[error(
+        "{method} failed at t/duration = {scaled_time:.6e}: the problem became stiff (segment \
+         from t/duration = {segment_start:.6e})"
+    )]
+    Stiff {
+        /// The method.
+        method: crate::integrator::Method,
+        /// Scaled time t/duration where the method gave up.
+        scaled_time: f64,
+        /// Scaled time of the start of the segment it was integrating.
+        segment_start: f64,
+    },
+
+    /// A computed quantity is NaN or infinite (an integrated state, a report or trace
+    /// value): the run failed.
     #[error("non-finite result: {field} = {value}")]
     NonFinite {
         /// Name of the output field.
@@ -134,13 +217,19 @@ impl Error {
     }
 
     /// True when the error is the user's input (exit code 2), false when the run
-    /// itself failed (exit code 1).
+    /// itself failed (exit code 1). I/O errors count as input (a path that cannot be read
+    /// or written) unless interrupted or out of memory; a figure that cannot be drawn and
+    /// worker threads that cannot be started count as input too (the output path, the
+    /// `--threads` asked for).
     pub fn is_bad_input(&self) -> bool {
         match self {
             Error::InvalidParameter { .. }
+            | Error::NotTouching { .. }
             | Error::Scene { .. }
             | Error::ProfileTable { .. }
-            | Error::BatchInput { .. } => true,
+            | Error::BatchInput { .. }
+            | Error::Plot { .. }
+            | Error::ThreadPool { .. } => true,
             Error::Io { source, .. } => !matches!(
                 source.kind(),
                 std::io::ErrorKind::Interrupted | std::io::ErrorKind::OutOfMemory
@@ -156,5 +245,125 @@ pub fn finite(field: &str, value: f64) -> Result<f64, Error> {
         Ok(value)
     } else {
         Err(Error::invalid(field, value, "a finite number"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::Method;
+    use crate::model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
+    use crate::model::state::LabBall;
+    use nalgebra::Vector3;
+
+    fn at(p: [f64; 3]) -> LabBall {
+        LabBall {
+            position: Vector3::from(p),
+            velocity: Vector3::new(1.0, 0.0, 0.0),
+            spin: Vector3::zeros(),
+        }
+    }
+
+    /// Balls 7 cm apart with r = 3 cm: NotTouching with a 1 cm gap, and the message the
+    /// lab frame gave as an InvalidParameter before it had its own variant.
+    #[test]
+    fn balls_apart_are_not_touching() {
+        let scene = LabScene {
+            a: at([0.0; 3]),
+            b: at([0.07, 0.0, 0.0]),
+            up: Vector3::z(),
+        };
+        let e = Frame::new(&scene, 0.03).unwrap_err();
+        let Error::NotTouching {
+            gap,
+            distance,
+            contact_distance,
+            ..
+        } = e
+        else {
+            panic!("{e:?}");
+        };
+        assert!((distance - 0.07).abs() < 1e-15);
+        assert_eq!(contact_distance, 0.06);
+        assert!((gap - 0.01).abs() < 1e-15);
+        let old = Error::invalid(
+            "incoming.lab.b.position",
+            format!("[0.07, 0, 0] (|p_B - p_A| = {distance} m)"),
+            format!(
+                "the balls must touch: |p_B - p_A| = 2r = 0.06 m within a relative \
+                 {TOUCH_TOLERANCE:e}"
+            ),
+        );
+        assert_eq!(e.to_string(), old.to_string());
+        assert!(e.is_bad_input());
+    }
+
+    /// Exit codes: the variants that replaced an InvalidParameter or an Io (kind Other)
+    /// stay bad input (2); the integrator's failures stay failed runs (1).
+    #[test]
+    fn exit_codes_of_the_new_variants() {
+        let plot = Error::Plot {
+            path: "fig.png".into(),
+            message: "drawing the figure: backend".into(),
+        };
+        assert!(plot.is_bad_input());
+        assert_eq!(plot.to_string(), "fig.png: drawing the figure: backend");
+        for e in [
+            Error::StepSizeTooSmall {
+                method: Method::Dopri5,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+            },
+            Error::TooManySteps {
+                method: Method::Dop853,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+                steps: 100_000,
+            },
+            Error::Stiff {
+                method: Method::Dop853,
+                scaled_time: 0.5,
+                segment_start: 0.25,
+            },
+        ] {
+            assert!(!e.is_bad_input(), "{e}");
+            let m = e.to_string();
+            assert!(m.contains("failed at t/duration = 5.000000e-1"), "{m}");
+            assert!(m.contains("segment from t/duration = 2.500000e-1"), "{m}");
+            assert!(!m.contains('\n'), "{m}");
+        }
+    }
+
+    /// A second global thread pool is refused: ThreadPool, bad input as the `--threads`
+    /// failure it stands for, with rayon's message.
+    #[test]
+    fn thread_pool_failure() {
+        // The first call may or may not find the global pool initialised (another test
+        // may have used it); the second always does.
+        let _ = rayon::ThreadPoolBuilder::new().build_global();
+        let source = rayon::ThreadPoolBuilder::new()
+            .build_global()
+            .expect_err("the global pool exists");
+        let message = source.to_string();
+        let e = Error::from(source);
+        assert!(matches!(e, Error::ThreadPool { .. }));
+        assert_eq!(e.to_string(), format!("thread pool: {message}"));
+        assert!(e.is_bad_input());
+    }
+
+    #[test]
+    fn invalid_names_field_value_and_range() {
+        let e = finite("balls.mass", f64::NAN).unwrap_err();
+        let Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } = &e
+        else {
+            panic!("{e:?}");
+        };
+        assert_eq!((field.as_str(), value.as_str()), ("balls.mass", "NaN"));
+        assert_eq!(expected, "a finite number");
+        assert_eq!(e.to_string(), "balls.mass = NaN: a finite number");
     }
 }

@@ -31,7 +31,7 @@
 //! // A stun cut: U = (1, 0.5, 0) m/s (ball A in the centre-of-mass frame), no spin.
 //! let incoming = CmState::new(Vector3::new(1.0, 0.5, 0.0), Vector3::zeros(), Vector3::zeros());
 //! let collision = Collision::new(ball, contact, Effects::default(), incoming)?;
-//! let outcome = solve(&collision, &HalfSine::new(2.5e-4), &SolverSettings::default(), None)?;
+//! let outcome = solve(&collision, &HalfSine::new(2.5e-4)?, &SolverSettings::default(), None)?;
 //! // S(0) = 2V = 1 m/s never reaches 0 (p_stick = m S(0) / (2 mu (1 + 1/alpha)) > P = 2 m U(0)),
 //! // so friction acts throughout: V' = V - mu P / m = 0.5 - 2 (0.06) (1) = 0.38 m/s (eqs 24-25).
 //! assert!((outcome.result.out.u_cm.y - 0.38).abs() < 1e-10);
@@ -86,6 +86,7 @@ pub mod table_phase;
 pub use apps::batch;
 #[cfg(feature = "plots")]
 pub use apps::plot;
+pub use apps::sweep;
 pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
@@ -101,7 +102,8 @@ pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::params::{
-    Ball, Contact, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID,
+    MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

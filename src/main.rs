@@ -33,6 +33,9 @@ enum Command {
     WorkPrecision(cli::work_precision::StudyArgs),
     /// Resolve one collision per row of a CSV file (see README, "Batch").
     Batch(cli::batch::BatchArgs),
+    /// Throw chart: one scene over a grid of cut angles, speeds and spins; writes
+    /// DIR/sweep.csv, sweep.svg and sweep.png.
+    Sweep(cli::sweep::SweepArgs),
 }
 
 fn main() -> ExitCode {
@@ -57,6 +60,7 @@ fn main() -> ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::WorkPrecision(args)) => cli::work_precision::work_precision(&args),
         Some(Command::Batch(args)) => cli::batch::batch(&args),
+        Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
         None => cli::run::run(&cli.run),
     };
     match result {

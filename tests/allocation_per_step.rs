@@ -74,14 +74,14 @@ fn check(profile: &Profile, method: Method, loose: SolverSettings, tight: Solver
 
 #[test]
 fn rk4_allocations_do_not_grow_with_steps() {
-    let p = Profile::HalfSine(HalfSine::new(2.5e-4));
+    let p = Profile::HalfSine(HalfSine::new(2.5e-4).unwrap());
     let s = |n| SolverSettings::new(Method::Rk4, 1e-10, 1e-10, n).unwrap();
     check(&p, Method::Rk4, s(10), s(20_000));
 }
 
 #[test]
 fn adaptive_allocations_do_not_grow_with_steps() {
-    let p = Profile::HalfSine(HalfSine::new(2.5e-4));
+    let p = Profile::HalfSine(HalfSine::new(2.5e-4).unwrap());
     for m in [Method::Dopri5, Method::Dop853] {
         let s = |r| SolverSettings::new(m, r, r, 1000).unwrap();
         check(&p, m, s(1e-3), s(1e-13));

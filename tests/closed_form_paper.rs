@@ -252,11 +252,8 @@ fn closed_form_matches_first_principles_over_random_states() {
 #[test]
 fn solve_closed_form_method_matches_first_principles() {
     let mut rng = Rng::new(0x5eed_0002);
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
-    let profile = HalfSine::new(TAU);
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
+    let profile = HalfSine::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for _ in 0..STATES / 4 {
         let case = random_case(&mut rng);
@@ -348,10 +345,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
             b,
         ),
     ];
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for case in &cases {
         assert_eq!(case.pair.slip(b.r), Vector3::zeros());
         let c = collision(&case.balls, &case.law, &case.pair).unwrap();
@@ -366,7 +360,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
         let mut expected = c.incoming;
         expected.u_cm.x -= want.impulse / b.m;
         assert_eq!(cf.result.out, expected);
-        let o = solve(&c, &HalfSine::new(TAU), &settings, None).unwrap();
+        let o = solve(&c, &HalfSine::new(TAU).unwrap(), &settings, None).unwrap();
         assert!(o.result.sticks);
         assert_eq!(o.stick_time, Some(0.0));
         assert_eq!(o.result.stick_impulse, Some(0.0));
@@ -655,11 +649,8 @@ fn without_stick_effect_the_paper_formulas_apply_and_eq_57_is_flagged() {
     assert!(cf.violates_eq57());
     let o = solve(
         &c,
-        &HalfSine::new(TAU),
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &HalfSine::new(TAU).unwrap(),
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();

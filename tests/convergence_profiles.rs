@@ -69,7 +69,7 @@ fn subjects() -> Vec<Subject> {
     vec![
         Subject {
             name: "half-sine",
-            profile: Box::new(HalfSine::new(TAU)),
+            profile: Box::new(HalfSine::new(TAU).unwrap()),
             fraction: Box::new(common::half_sine_fraction),
             time: Box::new(common::half_sine_time),
             exact: false,
@@ -77,7 +77,7 @@ fn subjects() -> Vec<Subject> {
         },
         Subject {
             name: "hertz",
-            profile: Box::new(Hertz::new(TAU)),
+            profile: Box::new(Hertz::new(TAU).unwrap()),
             fraction: Box::new(|s| common::invert(common::hertz_time, s)),
             time: Box::new(common::hertz_time),
             exact: false,
@@ -93,7 +93,7 @@ fn subjects() -> Vec<Subject> {
         },
         Subject {
             name: "rectangle",
-            profile: Box::new(Rectangle::new(TAU)),
+            profile: Box::new(Rectangle::new(TAU).unwrap()),
             fraction: Box::new(|s| s.clamp(0.0, 1.0)),
             time: Box::new(|q| q),
             exact: true,
@@ -186,7 +186,10 @@ fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, 
     let err = error(case, &o, &want);
     let what = format!(
         "{} / {} / {} rtol {:e}",
-        sub.name, case.name, s.method, s.rtol
+        sub.name,
+        case.name,
+        s.method(),
+        s.rtol()
     );
     assert!(err <= tol, "{what}: scaled error {err:e} > {tol:e}");
     // The run's own check agrees with the independent error (same scales).
@@ -291,7 +294,7 @@ fn rk4_with_1000_steps_converges_to_the_closed_form() {
 /// or sticking (the stop is located by re-stepping with the same method).
 #[test]
 fn rk4_observed_order_is_four_on_the_half_sine() {
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     for case in cases() {
         let c = collision(&case);
         let want = resolve(&BALLS, &case.law, &case.pair);
@@ -317,7 +320,7 @@ fn rk4_observed_order_is_four_on_the_half_sine() {
 /// number of steps, one included, and so is the located stop (g is affine in t).
 #[test]
 fn rk4_is_exact_for_the_rectangle() {
-    let profile = Rectangle::new(TAU);
+    let profile = Rectangle::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for case in cases() {
         let c = collision(&case);

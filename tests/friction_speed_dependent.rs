@@ -129,14 +129,11 @@ fn time_stepping_converges_to_the_quadrature_answer() {
         let w = (o.result.out.omega_a - exact.omega_a).amax() / c.scales.spin;
         d.max(w)
     };
-    let profile = HalfSine::new(2.5e-4);
+    let profile = HalfSine::new(2.5e-4).unwrap();
     let cf = solve(
         &c,
         &profile,
-        &SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        },
+        &SolverSettings::default().with_method(Method::ClosedForm),
         None,
     )
     .unwrap();
@@ -185,7 +182,7 @@ fn sliding_speed_follows_the_quadrature_along_the_pulse() {
     let mut rows: Vec<TraceRow> = Vec::new();
     solve(
         &c,
-        &HalfSine::new(2.5e-4),
+        &HalfSine::new(2.5e-4).unwrap(),
         &st,
         Some((&mut rows, Sampling::Uniform(40))),
     )
@@ -210,11 +207,8 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
     let p_stick = g_quad(c.s0) / k();
     assert!(p_stick < c.impulse);
     for method in [Method::ClosedForm, Method::Dop853] {
-        let st = SolverSettings {
-            method,
-            ..Default::default()
-        };
-        let o = solve(&c, &HalfSine::new(2.5e-4), &st, None).unwrap();
+        let st = SolverSettings::default().with_method(method);
+        let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &st, None).unwrap();
         assert!(o.result.sticks);
         let found = o.result.stick_impulse.unwrap();
         assert!(
@@ -233,7 +227,7 @@ fn b_zero_reduces_exactly_to_constant_mu() {
     for u in [[1.0, 1.0, 0.0], [1.0, 0.1, 0.0]] {
         let sd = collision(u, Friction::speed_dependent(0.06, 0.0, C).unwrap());
         let cm = collision(u, Friction::constant(0.06).unwrap());
-        let profile = HalfSine::new(2.5e-4);
+        let profile = HalfSine::new(2.5e-4).unwrap();
         let st = SolverSettings::default();
         let (a, b) = (
             solve(&sd, &profile, &st, None).unwrap(),
@@ -243,10 +237,7 @@ fn b_zero_reduces_exactly_to_constant_mu() {
         assert_eq!(a.stick_time, b.stick_time);
         assert_eq!(a.result.s_out, b.result.s_out);
         assert_eq!(a.stats, b.stats);
-        let cf = SolverSettings {
-            method: Method::ClosedForm,
-            ..Default::default()
-        };
+        let cf = SolverSettings::default().with_method(Method::ClosedForm);
         let (a, b) = (
             solve(&sd, &profile, &cf, None).unwrap(),
             solve(&cm, &profile, &cf, None).unwrap(),

@@ -10,8 +10,8 @@ mod fuzz;
 use billiard_contact::formats::report::Report;
 use billiard_contact::profile::{parse_table, Profile, Tabulated};
 use billiard_contact::run_scene;
+use billiard_contact::Method;
 use billiard_contact::Scene;
-use billiard_contact::{Method, SolverSettings};
 use std::path::Path;
 
 #[test]
@@ -67,10 +67,7 @@ fn regressions_run_with_finite_output() {
         };
         seen += 1;
         for method in [Method::ClosedForm, Method::Dop853] {
-            let settings = SolverSettings {
-                method,
-                ..scene.solver
-            };
+            let settings = scene.solver.with_method(method);
             let out = run_scene(&scene, &settings, None)
                 .unwrap_or_else(|e| panic!("{} ({method}): {e}", path.display()));
             Report::new(&scene, &out)

@@ -104,14 +104,13 @@ fn a_million_samples_in_constant_memory() {
         M,
         R,
     );
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::ClosedForm, Method::Rk4, Method::Dop853] {
-        let s = SolverSettings {
-            method,
-            // One rk4 step per sample at 1e6 samples.
-            steps: 1,
-            ..SolverSettings::default()
-        };
+        // One rk4 step per sample at 1e6 samples.
+        let s = SolverSettings::default()
+            .with_method(method)
+            .with_steps(1)
+            .unwrap();
         let mut results = Vec::new();
         for n in [1_000u64, 1_000_000] {
             let mut sink = Counter {
@@ -142,10 +141,7 @@ fn a_million_samples_in_constant_memory() {
     }
 
     // The CSV writer streams too: 1e6 rows written to io::sink.
-    let s = SolverSettings {
-        method: Method::ClosedForm,
-        ..SolverSettings::default()
-    };
+    let s = SolverSettings::default().with_method(Method::ClosedForm);
     let (rows, peak) = peak_growth(|| {
         let mut csv = CsvTrace::new(std::io::sink()).unwrap();
         solve(
@@ -166,11 +162,10 @@ fn a_million_samples_in_constant_memory() {
 
     // A million rk4 steps in a single segment (no samples): the solver's output must not
     // grow with the step count.
-    let s = SolverSettings {
-        method: Method::Rk4,
-        steps: 1_000_000,
-        ..SolverSettings::default()
-    };
+    let s = SolverSettings::default()
+        .with_method(Method::Rk4)
+        .with_steps(1_000_000)
+        .unwrap();
     let (o, peak) = peak_growth(|| solve(&c, &profile, &s, None).unwrap());
     eprintln!("rk4, 1e6 steps in one segment: peak heap growth {peak} bytes");
     assert!(o.stats.accepted_steps >= 1_000_000);

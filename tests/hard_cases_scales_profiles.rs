@@ -91,7 +91,7 @@ fn far_from_billiards_same_scaled_accuracy_and_work() {
                     m,
                     r,
                 );
-                let profile = HalfSine::new(tau);
+                let profile = HalfSine::new(tau).unwrap();
                 let o = run_bounded(&label, &c, &profile, &s, cost);
                 let exact = Exact::new(m, r, 0.4, MU, 0.9, None, incoming);
                 let x = Expect {
@@ -147,7 +147,7 @@ fn durations_with_the_same_impulse() {
                 M,
                 R,
             );
-            let o = solve(&c, &HalfSine::new(tau), &s, None).unwrap();
+            let o = solve(&c, &HalfSine::new(tau).unwrap(), &s, None).unwrap();
             let t_rel = o.stick_time.unwrap() / tau;
             // Stick time: p_stick / P = q, t = tau (2/pi) asin(sqrt(q)).
             let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
@@ -207,7 +207,7 @@ fn hard_profiles() -> Vec<Hard<'static>> {
     vec![
         Hard {
             name: "rectangle",
-            profile: Box::new(Rectangle::new(TAU)),
+            profile: Box::new(Rectangle::new(TAU).unwrap()),
             phi: Box::new(|s: f64| s.clamp(0.0, 1.0)),
             tol: [1e-13, 1e-13, 1e-13],
         },
@@ -250,8 +250,8 @@ fn hard_profiles() -> Vec<Hard<'static>> {
         },
         Hard {
             name: "hertz",
-            profile: Box::new(Hertz::new(TAU)),
-            phi: Box::new(|s| Hertz::new(1.0).cumulative(s)),
+            profile: Box::new(Hertz::new(TAU).unwrap()),
+            phi: Box::new(|s| Hertz::new(1.0).unwrap().cumulative(s)),
             // t^1.5 ends, as sine-power 1.5. Observed rk4 2.8e-9, dopri5 6.2e-10, dop853
             // 2.8e-10 (without the graded steps dop853 reached 1.6e-6 in a property test).
             tol: [1e-8, 2e-9, 1e-9],

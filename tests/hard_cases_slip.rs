@@ -38,7 +38,7 @@ fn case(
     };
     let c = collision(alpha, mu, rule, incoming, M, R);
     let exact = Exact::new(M, R, alpha, mu, e_rest, impulse, incoming);
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     let x = Expect {
         label,
         exact,
@@ -99,7 +99,7 @@ fn zero_slip_side_spin_gears_the_cut() {
     let rule = ImpulseRule::restitution(0.9).unwrap();
     let c = collision(0.4, MU, rule, incoming, M, r);
     let exact = Exact::new(M, r, 0.4, MU, 0.9, None, incoming);
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     let x = Expect {
         label: "geared cut, S(0) = 0",
         exact,
@@ -182,7 +182,7 @@ fn sliding_stops_just_after_the_first_step() {
     let u0 = 1.0;
     let p = 2.0 * M * u0;
     let k = 2.0 * (1.0 + 1.0 / 0.4) / M;
-    let profile = HalfSine::new(TAU);
+    let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::Rk4, Method::Dopri5, Method::Dop853] {
         // The first accepted step of a slide that does not stop.
         let c = collision(

@@ -232,10 +232,10 @@ impl Case {
 
     fn profile(&self) -> Profile {
         match &self.profile {
-            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau)),
-            ProfileKind::Hertz => Profile::Hertz(Hertz::new(self.tau)),
+            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau).unwrap()),
+            ProfileKind::Hertz => Profile::Hertz(Hertz::new(self.tau).unwrap()),
             ProfileKind::SinePower(n) => Profile::SinePower(SinePower::new(self.tau, *n).unwrap()),
-            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(self.tau)),
+            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(self.tau).unwrap()),
             ProfileKind::Table(pts) => Profile::Tabulated(
                 Tabulated::new(pts, Some(self.tau), Path::new("random.csv")).unwrap(),
             ),
@@ -243,10 +243,7 @@ impl Case {
     }
 
     fn settings(&self) -> SolverSettings {
-        SolverSettings {
-            method: self.method,
-            ..SolverSettings::default()
-        }
+        SolverSettings::default().with_method(self.method)
     }
 
     /// Scaled accuracy the method reaches on this profile at the default settings
@@ -396,7 +393,7 @@ proptest! {
         let c = case.collision();
         let profile = case.profile();
         let mut rows: Vec<TraceRow> = Vec::new();
-        let o = solve(&c, &profile, &SolverSettings { steps: 200, ..case.settings() }, Some((&mut rows, Sampling::Steps))).unwrap();
+        let o = solve(&c, &profile, &case.settings().with_steps(200).unwrap(), Some((&mut rows, Sampling::Steps))).unwrap();
         if !(c.collides() && c.s0 > 0.0 && c.active_friction().is_some()) {
             return Ok(());
         }

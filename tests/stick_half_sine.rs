@@ -163,7 +163,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
     let (_, p, p_stick) = shot.exact();
     assert!(p_stick < p, "{}: must stick", shot.what);
     let q = p_stick / p;
-    let o = solve(&c, &HalfSine::new(TAU), settings, None).unwrap();
+    let o = solve(&c, &HalfSine::new(TAU).unwrap(), settings, None).unwrap();
     assert!(o.result.sticks, "{}", shot.what);
     let t = o.stick_time.unwrap() / TAU;
     let dp = (p_fraction(t) - q).abs();
@@ -171,7 +171,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
         dp <= STICK_IMPULSE_TOL,
         "{} ({}): p(t_stick)/P = {}, p_stick/P = {q}",
         shot.what,
-        settings.method,
+        settings.method(),
         p_fraction(t)
     );
     // The reported stick impulse is the impulse at the reported time.
@@ -183,7 +183,7 @@ fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
             dt <= STICK_TIME_TOL,
             "{} ({}): t/tau = {t}, exact {exact}, error {dt:e}",
             shot.what,
-            settings.method
+            settings.method()
         );
         (dt, dp)
     } else {
@@ -228,7 +228,7 @@ fn stops_early_middle_and_late_in_the_pulse() {
         eprintln!(
             "spinning states, {} rtol 1e-12: largest |t - t_exact| {wt:.2e} tau, \
              |p - p_stick| {wp:.2e} P",
-            settings.method
+            settings.method()
         );
     }
 }
@@ -236,16 +236,19 @@ fn stops_early_middle_and_late_in_the_pulse() {
 /// The closed-form method reports the exact time from the profile's inverse.
 #[test]
 fn closed_form_method_reports_the_exact_stick_time() {
-    let settings = SolverSettings {
-        method: Method::ClosedForm,
-        ..Default::default()
-    };
+    let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for shot in stun_cuts()
         .into_iter()
         .chain(spinning(&[1e-10, 0.2, 0.5, 0.999]))
     {
         let (_, p, p_stick) = shot.exact();
-        let o = solve(&shot.collision(), &HalfSine::new(TAU), &settings, None).unwrap();
+        let o = solve(
+            &shot.collision(),
+            &HalfSine::new(TAU).unwrap(),
+            &settings,
+            None,
+        )
+        .unwrap();
         let t = o.stick_time.unwrap() / TAU;
         let exact = t_exact(p_stick / p);
         assert!(
@@ -270,7 +273,7 @@ fn the_stop_is_one_trace_row() {
             let mut rows: Vec<TraceRow> = Vec::new();
             let o = solve(
                 &shot.collision(),
-                &HalfSine::new(TAU),
+                &HalfSine::new(TAU).unwrap(),
                 &dop853(),
                 Some((&mut rows, sampling)),
             )

@@ -27,10 +27,10 @@ const TAU: f64 = 2.5e-4;
 fn profiles() -> Vec<Profile> {
     let table = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/profiles/measured_pulse.csv");
     vec![
-        Profile::HalfSine(HalfSine::new(TAU)),
-        Profile::Hertz(Hertz::new(TAU)),
+        Profile::HalfSine(HalfSine::new(TAU).unwrap()),
+        Profile::Hertz(Hertz::new(TAU).unwrap()),
         Profile::SinePower(SinePower::new(TAU, 1.5).unwrap()),
-        Profile::Rectangle(Rectangle::new(TAU)),
+        Profile::Rectangle(Rectangle::new(TAU).unwrap()),
         Profile::Tabulated(Tabulated::from_csv_file(&table, Some(TAU)).unwrap()),
     ]
 }
@@ -113,8 +113,8 @@ fn theta_is_constant_while_sliding() {
         let what = format!(
             "state {i}, {}, {} rtol {:e}",
             profile.name(),
-            settings.method,
-            settings.rtol
+            settings.method(),
+            settings.rtol()
         );
         assert!(
             o.check.theta_drift <= THETA_TOL,
@@ -179,7 +179,7 @@ fn theta_is_constant_for_small_oblique_slip() {
             let mut rows: Vec<TraceRow> = Vec::new();
             let out = solve(
                 &c,
-                &HalfSine::new(TAU),
+                &HalfSine::new(TAU).unwrap(),
                 &settings,
                 Some((&mut rows, Sampling::Uniform(50))),
             )

@@ -267,10 +267,7 @@ fn throw_is_undefined_without_a_horizontal_line_or_change() {
     for text in [vertical, apart] {
         let scene = Scene::parse(&text, Path::new("."), None).unwrap();
         for method in [Method::ClosedForm, Method::Dop853] {
-            let settings = SolverSettings {
-                method,
-                ..Default::default()
-            };
+            let settings = SolverSettings::default().with_method(method);
             let so = run_scene(&scene, &settings, None).unwrap();
             assert_eq!(so.throw_angle_deg, None, "{text}");
         }

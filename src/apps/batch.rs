@@ -174,7 +174,7 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 
 /// The closed-form kernel of the setup's own parameters, when the method is the closed form.
 fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
-    (setup.settings.method == Method::ClosedForm)
+    (setup.settings.method() == Method::ClosedForm)
         .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
 }
 
@@ -187,7 +187,7 @@ fn resolve_with(
     let (cm, lab) = input.incoming.to_cm(ball.radius())?;
     let profile = &setup.profile;
     let time_scale = input.overrides.duration.unwrap_or(profile.duration());
-    let mut out = if setup.settings.method == Method::ClosedForm {
+    let mut out = if setup.settings.method() == Method::ClosedForm {
         let own;
         let kernel = match shared {
             Some(k) if input.overrides.is_empty() => k,
@@ -236,7 +236,7 @@ fn resolve_with(
 /// use nalgebra::Vector3;
 /// let setup = BatchSetup::from_scene(
 ///     &Scene::default_scene(),
-///     SolverSettings { method: Method::ClosedForm, ..Default::default() },
+///     SolverSettings::default().with_method(Method::ClosedForm),
 /// );
 /// let head_on = CmState::new(Vector3::new(1.0, 0.0, 0.0), Vector3::zeros(), Vector3::zeros());
 /// let out = resolve_slice(&setup, &[BatchInput::cm(head_on)]);
@@ -665,7 +665,7 @@ pub fn run_csv<R: Read, W: Write>(
         .from_reader(input);
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
-    let method = setup.settings.method;
+    let method = setup.settings.method();
     let kernel = shared_kernel(setup);
     let mut w = output;
     let io = |e: std::io::Error| Error::io("batch output", e);

@@ -1,8 +1,9 @@
 //! Applications built on the contact: running a scene, batches of collisions, the
-//! work-precision study and the figures.
+//! work-precision study, throw sweeps and the figures.
 
 pub mod batch;
 #[cfg(feature = "plots")]
 pub mod plot;
 pub mod runner;
+pub mod sweep;
 pub mod work_precision;

@@ -118,13 +118,13 @@ impl ProfileKind {
         }
         let tau = own.duration();
         Ok(match self {
-            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(tau)),
-            ProfileKind::Hertz => Profile::Hertz(Hertz::new(tau)),
+            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(tau)?),
+            ProfileKind::Hertz => Profile::Hertz(Hertz::new(tau)?),
             ProfileKind::SinePower => Profile::SinePower(SinePower::new(
                 tau,
                 crate::profile::DEFAULT_SINE_POWER_EXPONENT,
             )?),
-            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(tau)),
+            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(tau)?),
             ProfileKind::Tabulated => {
                 let source = Path::new("data/profiles/measured_pulse.csv");
                 let points = parse_table(MEASURED_PULSE, source)?;
@@ -196,7 +196,7 @@ impl Setting {
             steps: self.steps,
         };
         let mut s = overrides.apply(&SolverSettings::default())?;
-        s.breakpoints = self.breakpoints;
+        s = s.with_breakpoints(self.breakpoints);
         Ok(s)
     }
 }

@@ -5,6 +5,7 @@
 pub mod batch;
 pub mod choice;
 pub mod run;
+pub mod sweep;
 pub mod work_precision;
 
 use billiard_contact::{Error, Scene};

@@ -249,7 +249,7 @@ impl ClosedFormBatch {
         let s0 = planar_length(slip);
         let theta = (s0 > 0.0).then(|| slip_angle(slip));
         let law = match self.friction {
-            Some(f) if p > 0.0 => Some(SlidingLaw::new(f, s0, self.k, self.stick)),
+            Some(f) if p > 0.0 => Some(SlidingLaw::new(f.acting_from(s0), s0, self.k, self.stick)),
             _ => None,
         };
         let stick_impulse = law.and_then(|l| l.stick_impulse());

@@ -133,7 +133,7 @@ impl Friction {
     pub fn slide_potential(&self, s: f64) -> f64 {
         match self.law() {
             FrictionLaw::Constant(mu) => s / mu,
-            FrictionLaw::SpeedDependent { a, b, c } => {
+            FrictionLaw::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     return s / (a + b);
                 }
@@ -167,7 +167,7 @@ impl Friction {
     pub fn slide_speed(&self, g: f64) -> f64 {
         match self.law() {
             FrictionLaw::Constant(mu) => mu * g,
-            FrictionLaw::SpeedDependent { a, b, c } => {
+            FrictionLaw::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {

@@ -32,7 +32,7 @@ pub struct Outcome {
 /// Default number of trace rows of the closed-form method without `--samples`.
 pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 
-/// Resolves a collision with `settings.method`, optionally streaming a trace.
+/// Resolves a collision with `settings.method()`, optionally streaming a trace.
 ///
 /// ```
 /// # use billiard_contact::*;
@@ -42,8 +42,8 @@ pub const CLOSED_FORM_TRACE_SAMPLES: u64 = 100;
 ///                         impulse: ImpulseRule::restitution(1.0).unwrap() };
 /// let s = CmState::new(Vector3::new(0.5, 0.25, 0.0), Vector3::zeros(), Vector3::zeros());
 /// let c = Collision::new(ball, contact, Effects::default(), s).unwrap();
-/// let settings = SolverSettings { rtol: 1e-12, atol: 1e-12, ..Default::default() };
-/// let o = solve(&c, &HalfSine::new(2.5e-4), &settings, None).unwrap();
+/// let settings = SolverSettings::default().with_rtol(1e-12).unwrap().with_atol(1e-12).unwrap();
+/// let o = solve(&c, &HalfSine::new(2.5e-4).unwrap(), &settings, None).unwrap();
 /// assert!(o.check.closed_form_error < 1e-10);
 /// assert!((o.result.out.u_cm.x + 0.5).abs() < 1e-10); // eq 24 with P = 2 m U(0)
 /// ```
@@ -55,7 +55,7 @@ pub fn solve<P: ForceProfile + ?Sized>(
 ) -> Result<Outcome, Error> {
     let exact = ClosedForm::new(c);
     let mut outcome = Outcome {
-        method: settings.method,
+        method: settings.method(),
         result: exact.result,
         stick_time: None,
         check: Checks::default(),
@@ -68,7 +68,7 @@ pub fn solve<P: ForceProfile + ?Sized>(
         if let Some((sink, sampling)) = trace {
             // Nothing happens: the samples asked for (the closed form's default number of
             // them), or, without steps to show, the start and the end.
-            let n = match (sampling, settings.method) {
+            let n = match (sampling, settings.method()) {
                 (Sampling::Uniform(n), _) => n,
                 (Sampling::Steps, Method::ClosedForm) => CLOSED_FORM_TRACE_SAMPLES,
                 (Sampling::Steps, _) => 1,
@@ -89,7 +89,7 @@ pub fn solve<P: ForceProfile + ?Sized>(
             c.impulse, exact_result.s_out
         ));
     }
-    match settings.method {
+    match settings.method() {
         Method::ClosedForm => {
             outcome.check = checks(
                 c,

@@ -4,7 +4,7 @@
 //! Every float is checked finite before output: a non-finite value fails the run, naming
 //! the field, instead of turning into `null`. Only the fields documented as nullable
 //! (docs/formats.md#nulls-and-absent-keys: `theta`, `stick_time`, `stick_impulse`,
-//! `throw_angle_deg`) may be null; optional keys of extensions (`lab_out`, `table`, and in
+//! `throw_angle_deg`) may be null; optional keys of extensions (`friction`, `lab_out`, `table`, and in
 //! `table` each ball's `direction_deg`, `deflection_deg` and `rest`) are left out when they
 //! do not apply.
 
@@ -14,6 +14,7 @@ use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::Scene;
 use crate::integrator::{SolverSettings, Stats};
+use crate::model::params::{Evaluate, Friction, FrictionLaw};
 use crate::model::state::{CmState, LabMotion};
 use crate::profile::ForceProfile;
 use crate::table_phase::{RollOut, TableOutcome};
@@ -99,6 +100,34 @@ impl From<&(LabMotion, LabMotion)> for LabJson {
     }
 }
 
+/// The friction law in JSON, written only when a speed-dependent mu is evaluated once at the
+/// initial slip (docs/formats.md#json-report): the model, `evaluate` and the mu held.
+#[derive(Debug, Serialize)]
+pub struct HeldFrictionJson {
+    model: &'static str,
+    evaluate: &'static str,
+    /// mu(S(0)), held through the contact.
+    mu: Num,
+}
+
+impl HeldFrictionJson {
+    /// The description of `friction` for a contact sliding from `s0` (m/s); `None` unless it
+    /// is speed-dependent and evaluated at the initial slip.
+    pub fn new(friction: &Friction, s0: f64) -> Option<Self> {
+        match friction.law() {
+            FrictionLaw::SpeedDependent {
+                evaluate: Evaluate::Initial,
+                ..
+            } => Some(HeldFrictionJson {
+                model: "speed-dependent",
+                evaluate: Evaluate::Initial.name(),
+                mu: Num(friction.mu(s0)),
+            }),
+            _ => None,
+        }
+    }
+}
+
 /// The checks in JSON.
 #[derive(Debug, Serialize)]
 pub struct CheckJson {
@@ -139,10 +168,10 @@ impl SolverJson {
     /// The settings of a run and the work it did.
     pub fn new(settings: &SolverSettings, stats: &Stats) -> Self {
         SolverJson {
-            method: settings.method.name(),
-            rtol: Num(settings.rtol),
-            atol: Num(settings.atol),
-            steps: settings.steps,
+            method: settings.method().name(),
+            rtol: Num(settings.rtol()),
+            atol: Num(settings.atol()),
+            steps: settings.steps(),
             rhs_evaluations: stats.rhs_evaluations,
             accepted_steps: stats.accepted_steps,
             rejected_steps: stats.rejected_steps,
@@ -343,11 +372,15 @@ impl Serialize for Report<'_> {
         let (scene, run) = (self.scene, self.run);
         let o = &run.outcome;
         let r = &o.result;
-        let mut m = s.serialize_struct("Report", 23)?;
+        let mut m = s.serialize_struct("Report", 24)?;
         m.serialize_field("name", &scene.name)?;
         m.serialize_field("profile", scene.profile.name())?;
         m.serialize_field("duration", &Num(scene.profile.duration()))?;
         m.serialize_field("effects", &scene.effects.simulated(&scene.contact.friction))?;
+        match HeldFrictionJson::new(&scene.contact.friction, r.s0) {
+            Some(f) => m.serialize_field("friction", &f)?,
+            None => m.skip_field("friction")?,
+        }
         m.serialize_field("collision", &r.collided())?;
         m.serialize_field("impulse", &Num(r.impulse))?;
         m.serialize_field("s0", &Num(r.s0))?;
@@ -389,9 +422,16 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         "  profile {} over {:.4e} s, method {}, effects: {}",
         scene.profile.name(),
         scene.profile.duration(),
-        so.settings.method,
+        so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
+    if HeldFrictionJson::new(&scene.contact.friction, r.s0).is_some() {
+        let _ = writeln!(
+            s,
+            "  friction          mu(S(0)) = {:.6} held through the contact (evaluate = initial)",
+            scene.contact.friction.mu(r.s0)
+        );
+    }
     if !r.collided() {
         let _ = writeln!(
             s,

@@ -8,6 +8,7 @@
 //! alpha = 0.4        # I = alpha m r^2; default 0.4
 //! [contact]
 //! mu = 0.06          # or { model = "speed-dependent", a = 9.951e-3, b = 0.108, c = 1.088 }
+//!                    # (+ evaluate = "initial": mu(S(0)) held; default "along-contact")
 //! restitution = 1.0  # or: impulse = 0.17  (N s); not both; neither: restitution 1
 //! [contact.profile]
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
@@ -44,7 +45,7 @@ use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings};
@@ -142,23 +143,24 @@ impl SolverOverrides {
     /// let base = SolverSettings::new(Method::Dop853, 1e-10, 1e-12, 1000).unwrap();
     /// let tighter = SolverOverrides { rtol: Some(1e-12), ..Default::default() };
     /// let s = tighter.apply(&base).unwrap();
-    /// assert_eq!((s.method, s.rtol, s.atol, s.steps), (Method::Dop853, 1e-12, 1e-12, 1000));
+    /// assert_eq!((s.method(), s.rtol(), s.atol(), s.steps()), (Method::Dop853, 1e-12, 1e-12, 1000));
     /// let rk4 = SolverOverrides { method: Some(Method::Rk4), ..Default::default() };
-    /// assert_eq!(rk4.apply(&base).unwrap().atol, 1e-12);
+    /// assert_eq!(rk4.apply(&base).unwrap().atol(), 1e-12);
     /// ```
     pub fn apply(&self, base: &SolverSettings) -> Result<SolverSettings, Error> {
-        let rtol = self.rtol.unwrap_or(base.rtol);
-        let atol = self
-            .atol
-            .unwrap_or(if self.rtol.is_some() { rtol } else { base.atol });
-        let mut settings = SolverSettings::new(
-            self.method.unwrap_or(base.method),
+        let rtol = self.rtol.unwrap_or(base.rtol());
+        let atol = self.atol.unwrap_or(if self.rtol.is_some() {
+            rtol
+        } else {
+            base.atol()
+        });
+        let settings = SolverSettings::new(
+            self.method.unwrap_or(base.method()),
             rtol,
             atol,
-            self.steps.unwrap_or(base.steps),
+            self.steps.unwrap_or(base.steps()),
         )?;
-        settings.breakpoints = base.breakpoints;
-        Ok(settings)
+        Ok(settings.with_breakpoints(base.breakpoints()))
     }
 }
 
@@ -218,8 +220,8 @@ struct RawContact {
 }
 
 /// What `contact.mu` accepts.
-const MU_ACCEPTED: &str =
-    "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., c = .. }";
+const MU_ACCEPTED: &str = "a number >= 0, or { model = \"speed-dependent\", a = .., b = .., \
+     c = .., evaluate = \"along-contact\" (default) or \"initial\" }";
 
 /// `contact.mu` as written: a number (constant friction) or a table naming the model. Its
 /// values are checked by [`FrictionSpec::build`], through [`Friction`]'s constructors.
@@ -227,7 +229,7 @@ const MU_ACCEPTED: &str =
 enum FrictionSpec {
     /// `mu = 0.06`.
     Constant(f64),
-    /// `mu = { model = "speed-dependent", a = .., b = .., c = .. }`.
+    /// `mu = { model = "speed-dependent", a = .., b = .., c = .., evaluate = .. }`.
     Model(FrictionModelSpec),
 }
 
@@ -240,6 +242,8 @@ struct FrictionModelSpec {
     a: f64,
     b: f64,
     c: f64,
+    #[serde(default, deserialize_with = "optional_name")]
+    evaluate: Option<Evaluate>,
 }
 
 /// The friction models by name.
@@ -304,7 +308,8 @@ impl FrictionSpec {
                 a,
                 b,
                 c,
-            }) => Friction::speed_dependent(a, b, c),
+                evaluate,
+            }) => Ok(Friction::speed_dependent(a, b, c)?.evaluated(evaluate.unwrap_or_default())),
         }
     }
 }
@@ -653,8 +658,30 @@ mod tests {
             FrictionLaw::SpeedDependent {
                 a: 0.01,
                 b: 0.1,
-                c: 1.0
+                c: 1.0,
+                evaluate: Evaluate::AlongContact,
             }
+        );
+        let s = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"initial\" }",
+        )
+        .unwrap();
+        assert_eq!(
+            s.contact.friction,
+            Friction::speed_dependent(0.01, 0.1, 1.0)
+                .unwrap()
+                .evaluated(Evaluate::Initial)
+        );
+        let e = with_mu(
+            "{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1, evaluate = \"start\" }",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("contact.mu.evaluate")
+                && e.contains("along-contact")
+                && e.contains("initial"),
+            "{e}"
         );
     }
 
@@ -693,7 +720,7 @@ mod tests {
             let text = format!("{DEFAULT_SCENE}\n[solver]\nmethod = {m}\n");
             Scene::parse(&text, Path::new("."), None)
         };
-        assert_eq!(with("\"rk4\"").unwrap().solver.method, Method::Rk4);
+        assert_eq!(with("\"rk4\"").unwrap().solver.method(), Method::Rk4);
         let e = with("\"euler\"").unwrap_err().to_string();
         assert!(
             e.contains(

@@ -1,9 +1,25 @@
 //! The time-stepping integrator of eqs 14-19: solver settings, the scaled right-hand sides,
 //! the stepping driver and the location of the stop of sliding.
+//!
+//! | file | what it holds |
+//! |---|---|
+//! | `settings` | [`SolverSettings`], [`Method`], [`Stats`], [`Sampling`] |
+//! | `rhs` | eqs 14-19 in scaled, autonomous form, and the states they act on |
+//! | `driver` | [`integrate`]: segments between breakpoints and samples, the result |
+//! | `stages` | the stages of the contact (sliding, frozen, normal) and why a stage's stepping stops |
+//! | `stepping` | one call of an `ode_solvers` method over a span, with the named step-control constants |
+//! | `stop_event` | location of the stop of sliding (regula falsi, Illinois) |
+//! | `units` | scaled states back to physical ones and trace rows |
+//! | `record` | trace rows, the first error, theta drift and slip consistency of a run |
 
 mod driver;
+mod record;
 pub(crate) mod rhs;
 mod settings;
+mod stages;
+mod stepping;
+mod stop_event;
+mod units;
 
 pub use driver::{integrate, Integrated};
 pub use settings::{Method, Sampling, SolverSettings, Stats, DEFAULT_RTOL, DEFAULT_STEPS};

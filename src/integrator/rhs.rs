@@ -1,7 +1,8 @@
 //! Equations 14-19 as `ode_solvers` systems, in scaled, autonomous form.
 //!
-//! Scaled variables (CONTRACTS.md scales): time s = t / tau, velocities over v_ref, spins
-//! times r / v_ref, heat over m v_ref^2, and pi = P / (m v_ref). With phi the normalised
+//! Scaled variables (docs/model.md#scales-and-scaled-errors): time s = t / tau, velocities
+//! over v_ref, spins times r / v_ref, heat over m v_ref^2, and pi = P / (m v_ref). With phi
+//! the normalised
 //! profile ([`crate::profile`]), n = pi phi(s) and mu from the current sliding speed,
 //! eqs 14-19 and 20-21, 47 read
 //!
@@ -265,7 +266,7 @@ mod tests {
     /// derivative of (2V + Omega_z, 2W - Omega_y) (scaled, r = 1).
     #[test]
     fn slip_rate_is_consistent_with_15_19() {
-        let profile = Rectangle::new(1.0);
+        let profile = Rectangle::new(1.0).unwrap();
         let rhs = SlidingRhs {
             profile: &profile,
             impulse: 1.3,

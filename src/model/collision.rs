@@ -138,9 +138,12 @@ impl Collision {
         self.impulse > 0.0
     }
 
-    /// The friction model actually acting: `None` when friction is off (effect) or zero.
+    /// The friction law actually acting through this contact: `None` when friction is off
+    /// (effect) or zero; a speed-dependent mu evaluated at the initial slip is the constant
+    /// mu(S(0)) ([`Friction::acting_from`]).
+    #[inline]
     pub fn active_friction(&self) -> Option<Friction> {
-        let f = self.contact.friction;
+        let f = self.contact.friction.acting_from(self.s0);
         if self.effects.friction && !f.is_zero() {
             Some(f)
         } else {

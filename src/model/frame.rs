@@ -57,17 +57,13 @@ impl Frame {
         let dist = d.norm();
         let touching = (dist - 2.0 * radius).abs() <= TOUCH_TOLERANCE * 2.0 * radius;
         if !touching {
-            return Err(Error::invalid(
-                "incoming.lab.b.position",
-                format!(
-                    "[{}, {}, {}] (|p_B - p_A| = {dist} m)",
-                    scene.b.position.x, scene.b.position.y, scene.b.position.z
-                ),
-                format!(
-                    "the balls must touch: |p_B - p_A| = 2r = {} m within a relative {TOUCH_TOLERANCE:e}",
-                    2.0 * radius
-                ),
-            ));
+            return Err(Error::NotTouching {
+                position_b: scene.b.position.into(),
+                distance: dist,
+                contact_distance: 2.0 * radius,
+                gap: dist - 2.0 * radius,
+                tolerance: TOUCH_TOLERANCE,
+            });
         }
         let up_norm = scene.up.norm();
         if !(up_norm > 0.0 && up_norm.is_finite()) {

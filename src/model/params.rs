@@ -1,7 +1,7 @@
 //! Ball and contact parameters, validated on construction.
 
 use crate::error::{finite, Error};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Largest `alpha` of a sphere: a thin spherical shell has I = (2/3) m r^2, and no
 /// radial mass distribution puts more of the mass farther out.
@@ -128,7 +128,7 @@ pub enum FrictionLaw {
     /// Coulomb friction with a constant coefficient mu >= 0.
     Constant(f64),
     /// mu(S) = a + b exp(-c S), S the sliding speed in m/s (the fit used in the
-    /// billiards literature for ball-ball friction), applied at every instant.
+    /// billiards literature for ball-ball friction), evaluated as `evaluate` says.
     SpeedDependent {
         /// Speed-independent part a >= 0.
         a: f64,
@@ -136,7 +136,35 @@ pub enum FrictionLaw {
         b: f64,
         /// Decay rate c >= 0 (s/m).
         c: f64,
+        /// At every instant of the contact, or once at the initial slip S(0).
+        evaluate: Evaluate,
     },
+}
+
+/// When a speed-dependent mu(S) is evaluated (`contact.mu.evaluate` in scene files,
+/// docs/model.md#speed-dependent-friction).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Evaluate {
+    /// mu(S) at the current sliding speed S at every instant, as S falls (the default).
+    #[default]
+    AlongContact,
+    /// mu(S(0)) once, at the initial sliding speed, held through the whole contact (the
+    /// convention of Alciatore's throw analysis and of pooltool).
+    Initial,
+}
+
+impl Evaluate {
+    /// Every convention, in the order of their names in the help and errors.
+    pub const ALL: [Evaluate; 2] = [Evaluate::AlongContact, Evaluate::Initial];
+
+    /// The name in scene files and reports.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Evaluate::AlongContact => "along-contact",
+            Evaluate::Initial => "initial",
+        }
+    }
 }
 
 impl Friction {
@@ -177,7 +205,12 @@ impl Friction {
             }
         }
         Ok(Friction {
-            law: FrictionLaw::SpeedDependent { a, b, c },
+            law: FrictionLaw::SpeedDependent {
+                a,
+                b,
+                c,
+                evaluate: Evaluate::AlongContact,
+            },
         })
     }
 
@@ -187,12 +220,48 @@ impl Friction {
         self.law
     }
 
+    /// The same law evaluated as `evaluate` says (constant friction is unchanged).
+    ///
+    /// ```
+    /// use billiard_contact::{Evaluate, Friction};
+    /// let f = Friction::speed_dependent(9.951e-3, 0.108, 1.088).unwrap();
+    /// let held = f.evaluated(Evaluate::Initial);
+    /// assert_eq!(held.acting_from(2.0), Friction::constant(f.mu(2.0)).unwrap());
+    /// assert_eq!(f.acting_from(2.0), f);
+    /// ```
+    pub fn evaluated(self, evaluate: Evaluate) -> Self {
+        match self.law {
+            FrictionLaw::SpeedDependent { a, b, c, .. } => Friction {
+                law: FrictionLaw::SpeedDependent { a, b, c, evaluate },
+            },
+            FrictionLaw::Constant(_) => self,
+        }
+    }
+
+    /// The law that acts through a contact whose sliding starts at speed `s0` (m/s): for a
+    /// speed-dependent mu evaluated at the initial slip, the constant mu(S(0)); otherwise
+    /// this law itself. Every method (closed form, batch kernel, integrators) takes its
+    /// friction from here.
+    #[inline]
+    pub fn acting_from(self, s0: f64) -> Self {
+        match self.law {
+            // mu(S(0)) of a valid law is finite and >= 0.
+            FrictionLaw::SpeedDependent {
+                evaluate: Evaluate::Initial,
+                ..
+            } => Friction {
+                law: FrictionLaw::Constant(self.mu(s0)),
+            },
+            _ => self,
+        }
+    }
+
     /// The coefficient at sliding speed `s` (m/s).
     #[inline]
     pub fn mu(&self, s: f64) -> f64 {
         match self.law {
             FrictionLaw::Constant(mu) => mu,
-            FrictionLaw::SpeedDependent { a, b, c } => a + b * (-c * s).exp(),
+            FrictionLaw::SpeedDependent { a, b, c, .. } => a + b * (-c * s).exp(),
         }
     }
 

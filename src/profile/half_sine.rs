@@ -1,6 +1,7 @@
 //! Half-sine pulse f(t) = (pi P / (2 tau)) sin(pi t / tau).
 
-use super::ForceProfile;
+use super::{valid_duration, ForceProfile};
+use crate::error::Error;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
 /// Half-sine pulse: phi(s) = (pi/2) sin(pi s), Phi(s) = sin^2(pi s / 2).
@@ -10,16 +11,21 @@ pub struct HalfSine {
 }
 
 impl HalfSine {
-    /// A half-sine pulse of `duration` tau (s), validated by the caller.
+    /// A half-sine pulse of `duration` tau (s), finite and > 0 (else
+    /// [`Error::InvalidParameter`] naming `contact.profile.duration`).
     ///
     /// ```
     /// use billiard_contact::profile::{ForceProfile, HalfSine};
-    /// let p = HalfSine::new(2.5e-4);
+    /// let p = HalfSine::new(2.5e-4)?;
     /// // peak force pi P / (2 tau) at mid-contact
     /// assert!((p.force(1.25e-4, 0.17) - std::f64::consts::PI * 0.17 / 5e-4).abs() < 1e-9);
+    /// assert!(HalfSine::new(0.0).is_err());
+    /// # Ok::<(), billiard_contact::Error>(())
     /// ```
-    pub fn new(duration: f64) -> Self {
-        HalfSine { duration }
+    pub fn new(duration: f64) -> Result<Self, Error> {
+        Ok(HalfSine {
+            duration: valid_duration(duration)?,
+        })
     }
 }
 
@@ -51,8 +57,8 @@ impl ForceProfile for HalfSine {
         }
     }
 
-    /// s = (2/pi) asin(sqrt(q)), from the nearer end (ERRATA.md: the arccos form loses
-    /// digits for small q).
+    /// s = (2/pi) asin(sqrt(q)), from the nearer end (the arccos form loses digits for
+    /// small q: docs/model.md#the-exact-state-during-the-contact).
     fn time_at_cumulative(&self, q: f64) -> f64 {
         if q <= 0.0 {
             0.0
@@ -72,6 +78,6 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&HalfSine::new(1e-3), 1e-13);
+        crate::profile::tests::check_profile(&HalfSine::new(1e-3).unwrap(), 1e-13);
     }
 }

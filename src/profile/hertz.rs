@@ -12,11 +12,12 @@
 //! ```
 //!
 //! and the pulse is symmetric about s = 1/2. The contact time is
-//! (4/5) B(2/5, 1/2) delta_max / v0 (ERRATA.md; 2.9432752... delta_max / v0). The curve's
+//! (4/5) B(2/5, 1/2) delta_max / v0 = 2.9432752... delta_max / v0 (docs/model.md#force-profiles). The curve's
 //! shape is universal: c and v0 only set the duration and the impulse, both given.
 
 use super::beta::{beta, inc_beta};
-use super::ForceProfile;
+use super::{valid_duration, ForceProfile};
+use crate::error::Error;
 
 /// a = 2/5 in I_u(a, b).
 const A: f64 = 0.4;
@@ -31,47 +32,49 @@ pub struct Hertz {
     beta_ab: f64,
 }
 
-/// A point of the rising half: u = (delta/delta_max)^(5/2) and w = sqrt(1 - u), both to
-/// full relative accuracy.
+/// The compression at a point of the rising half: u = (delta/delta_max)^(5/2) and
+/// w = delta'/v0 = sqrt(1 - u), both to full relative accuracy.
 #[derive(Debug, Clone, Copy)]
-struct Phase {
+struct Compression {
     u: f64,
     w: f64,
 }
 
 impl Hertz {
-    /// A Hertz pulse of `duration` tau (s), validated by the caller.
+    /// A Hertz pulse of `duration` tau (s), finite and > 0 (else
+    /// [`Error::InvalidParameter`] naming `contact.profile.duration`).
     ///
     /// ```
     /// use billiard_contact::profile::{ForceProfile, Hertz};
-    /// let p = Hertz::new(1.0);
+    /// let p = Hertz::new(1.0)?;
     /// // peak of phi: B(2/5, 1/2) / 2
     /// let b = billiard_contact::profile::beta::beta(0.4, 0.5);
     /// assert!((p.shape(0.5) - b / 2.0).abs() < 1e-12);
+    /// # Ok::<(), billiard_contact::Error>(())
     /// ```
-    pub fn new(duration: f64) -> Self {
-        Hertz {
-            duration,
+    pub fn new(duration: f64) -> Result<Self, Error> {
+        Ok(Hertz {
+            duration: valid_duration(duration)?,
             beta_ab: beta(A, B_),
-        }
+        })
     }
 
-    /// The phase at scaled time s in [0, 1/2], from the interpolants of [`Fits`] (a few
+    /// The compression at scaled time s in [0, 1/2], from the interpolants of [`Fits`] (a few
     /// dozen flops and two square roots, instead of a Newton iteration on the incomplete
     /// Beta function per call).
     #[inline]
-    fn phase(&self, s: f64) -> Phase {
-        fits().phase(s)
+    fn compression(&self, s: f64) -> Compression {
+        fits().compression(s)
     }
 }
 
-/// The phase at scaled time s in [0, 1/2] by Newton's method on I_u(2/5, 1/2) = 2 s: exact
-/// to a few ulp, about 2 microseconds. The reference the interpolants are built from.
-fn phase_newton(s: f64, bb: f64) -> Phase {
+/// The compression at scaled time s in [0, 1/2] by Newton's method on I_u(2/5, 1/2) = 2 s:
+/// exact to a few ulp, about 2 microseconds. The reference the interpolants are built from.
+fn compression_newton(s: f64, bb: f64) -> Compression {
     {
         let t2 = (2.0 * s).clamp(0.0, 1.0);
         if t2 == 0.0 {
-            return Phase { u: 0.0, w: 1.0 };
+            return Compression { u: 0.0, w: 1.0 };
         }
         if t2 <= 0.5 {
             // Newton in z = u^a: I = z / (a B) (1 + O(u)), dI/dz = 1 / (a B w).
@@ -89,7 +92,7 @@ fn phase_newton(s: f64, bb: f64) -> Phase {
                 }
             }
             let u = z.powf(1.0 / A);
-            Phase {
+            Compression {
                 u,
                 w: (1.0 - u).sqrt(),
             }
@@ -109,7 +112,7 @@ fn phase_newton(s: f64, bb: f64) -> Phase {
                     break;
                 }
             }
-            Phase { u: 1.0 - w * w, w }
+            Compression { u: 1.0 - w * w, w }
         }
     }
 }
@@ -117,7 +120,7 @@ fn phase_newton(s: f64, bb: f64) -> Phase {
 /// Terms of the Chebyshev interpolants. The functions are analytic on their intervals with
 /// the nearest singularity far away: the coefficients fall below 1e-16 after 8 (early) and
 /// 11 (late) terms; more would only add the reference's round-off (the test
-/// `interpolants_match_newton` checks against [`phase_newton`]).
+/// `interpolants_match_newton` checks against [`compression_newton`]).
 const TERMS: usize = 12;
 /// Chebyshev nodes sampled to compute the coefficients (more than TERMS: no aliasing).
 const SAMPLES: usize = 28;
@@ -188,7 +191,7 @@ impl Fits {
         let early = chebyshev(
             |v| {
                 let sigma = v.powf(0.4);
-                let ph = phase_newton(sigma / (A * bb) / 2.0, bb);
+                let ph = compression_newton(sigma / (A * bb) / 2.0, bb);
                 ph.u.powf(A) / sigma
             },
             0.0,
@@ -197,7 +200,7 @@ impl Fits {
         let late = chebyshev(
             |x| {
                 let t = x.sqrt();
-                let ph = phase_newton((1.0 - t) / 2.0, bb);
+                let ph = compression_newton((1.0 - t) / 2.0, bb);
                 ph.w / (0.5 * bb * t)
             },
             0.0,
@@ -212,24 +215,24 @@ impl Fits {
     }
 
     #[inline]
-    fn phase(&self, s: f64) -> Phase {
+    fn compression(&self, s: f64) -> Compression {
         let t2 = (2.0 * s).clamp(0.0, 1.0);
         if t2 == 0.0 {
-            return Phase { u: 0.0, w: 1.0 };
+            return Compression { u: 0.0, w: 1.0 };
         }
         if t2 <= 0.5 {
             let sigma = A * self.bb * t2;
             let v = sigma * sigma * sigma.sqrt();
             let z = sigma * clenshaw(&self.early, 2.0 * v / self.v_max - 1.0);
             let u = (z * z * z.sqrt()).min(1.0);
-            Phase {
+            Compression {
                 u,
                 w: (1.0 - u).sqrt(),
             }
         } else {
             let t = 1.0 - t2;
             let w = (0.5 * self.bb * t * clenshaw(&self.late, 8.0 * t * t - 1.0)).clamp(0.0, 1.0);
-            Phase {
+            Compression {
                 u: (1.0 - w) * (1.0 + w),
                 w,
             }
@@ -247,7 +250,7 @@ impl Fits {
             let z = (sigma * clenshaw(&self.early, 2.0 * v / self.v_max - 1.0)).min(1.0);
             z * z.sqrt()
         } else {
-            self.phase(s).u.powf(1.0 - A)
+            self.compression(s).u.powf(1.0 - A)
         }
     }
 }
@@ -277,7 +280,7 @@ impl ForceProfile for Hertz {
             return 1.0;
         }
         let half = |s: f64| {
-            let ph = self.phase(s);
+            let ph = self.compression(s);
             ph.u / (2.0 * (1.0 + ph.w))
         };
         if s <= 0.5 {
@@ -314,7 +317,7 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&Hertz::new(1.0), 1e-9);
+        crate::profile::tests::check_profile(&Hertz::new(1.0).unwrap(), 1e-9);
     }
 
     /// The interpolants against the Newton solution they replace, densely over the rising
@@ -336,8 +339,8 @@ mod tests {
             0.5 - 1e-9,
         ]);
         for s in points {
-            let fast = fits().phase(s);
-            let exact = phase_newton(s, bb);
+            let fast = fits().compression(s);
+            let exact = compression_newton(s, bb);
             let du = (fast.u - exact.u).abs() / exact.u;
             let dw = (fast.w - exact.w).abs() / exact.w.max(1e-300);
             let force = fits().u_three_fifths(s);
@@ -365,13 +368,14 @@ mod tests {
 
     /// Independent check: integrate delta'' = -delta^(3/2) (c = 1, v0 = 1) with classical
     /// RK4 at a small step, and compare the force-time curve and the contact time
-    /// (4/5) B(2/5, 1/2) delta_max / v0 with delta_max = (5/4)^(2/5) (ERRATA.md).
+    /// (4/5) B(2/5, 1/2) delta_max / v0 with delta_max = (5/4)^(2/5): energy conservation
+    /// with c = v0 = 1 gives (2/5) delta_max^(5/2) = 1/2.
     #[test]
     fn matches_the_hertz_ode() {
         let delta_max = 1.25_f64.powf(0.4);
         let tau = 0.8 * beta(0.4, 0.5) * delta_max;
         assert!((0.8 * beta(0.4, 0.5) - 2.943_275_2).abs() < 1e-7);
-        let p = Hertz::new(tau);
+        let p = Hertz::new(tau).unwrap();
         // Impulse P = 2 m v0 with m = 1: f = delta^(3/2).
         let rhs = |y: [f64; 2]| [y[1], -y[0].max(0.0).powf(1.5)];
         let n = 200_000;

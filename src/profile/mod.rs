@@ -8,8 +8,8 @@
 //!
 //! so a profile delivers exactly the impulse P whatever its shape, and the integrator
 //! works in the scaled time s. `Phi` is exact (analytic, or tabulated to round-off): it is
-//! what the exact time-resolved solution needs (ERRATA.md, gap 3: while sliding, the state
-//! at time t is the closed form at impulse p(t)).
+//! what the exact time-resolved solution needs (while sliding, the state at time t is the
+//! closed form at impulse p(t): docs/model.md#the-exact-state-during-the-contact).
 //!
 //! | shape | phi(s) | Phi(s) |
 //! |---|---|---|
@@ -204,6 +204,14 @@ impl Profile {
     }
 }
 
+/// The field a profile's duration is named by in errors (as in the scene file).
+pub const DURATION_FIELD: &str = "contact.profile.duration";
+
+/// Checks a contact duration tau (s): finite and > 0.
+fn valid_duration(duration: f64) -> Result<f64, Error> {
+    positive(DURATION_FIELD, duration, "s")
+}
+
 /// Default exponent of `sine-power` (sin^1.5, the common approximation of a Hertz pulse).
 pub const DEFAULT_SINE_POWER_EXPONENT: f64 = 1.5;
 
@@ -247,28 +255,18 @@ pub enum ProfileSpec {
 
 impl ProfileSpec {
     /// Builds the profile; `base` is the directory relative file names are resolved in.
+    /// Errors name the scene's field (`contact.profile.duration`, `.exponent`, `.file`).
     pub fn build(&self, base: &Path) -> Result<Profile, Error> {
-        const D: &str = "contact.profile.duration";
         Ok(match self {
-            ProfileSpec::HalfSine { duration } => {
-                Profile::HalfSine(HalfSine::new(positive(D, *duration, "s")?))
-            }
-            ProfileSpec::Hertz { duration } => {
-                Profile::Hertz(Hertz::new(positive(D, *duration, "s")?))
-            }
+            ProfileSpec::HalfSine { duration } => Profile::HalfSine(HalfSine::new(*duration)?),
+            ProfileSpec::Hertz { duration } => Profile::Hertz(Hertz::new(*duration)?),
             ProfileSpec::SinePower { duration, exponent } => Profile::SinePower(SinePower::new(
-                positive(D, *duration, "s")?,
+                *duration,
                 exponent.unwrap_or(DEFAULT_SINE_POWER_EXPONENT),
             )?),
-            ProfileSpec::Rectangle { duration } => {
-                Profile::Rectangle(Rectangle::new(positive(D, *duration, "s")?))
-            }
+            ProfileSpec::Rectangle { duration } => Profile::Rectangle(Rectangle::new(*duration)?),
             ProfileSpec::Tabulated { file, duration } => {
-                let duration = match duration {
-                    Some(d) => Some(positive(D, *d, "s")?),
-                    None => None,
-                };
-                Profile::Tabulated(Tabulated::from_csv_file(&base.join(file), duration)?)
+                Profile::Tabulated(Tabulated::from_csv_file(&base.join(file), *duration)?)
             }
         })
     }
@@ -277,6 +275,56 @@ impl ProfileSpec {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+
+    /// Every constructor refuses a duration that is not finite and > 0, naming the field,
+    /// the value and the range, and accepts a positive one.
+    #[test]
+    fn constructors_validate_the_duration() {
+        let table = [(0.0, 1.0), (1.0, 1.0)];
+        let src = Path::new("t.csv");
+        for bad in [0.0, -2.5e-4, f64::NAN, f64::INFINITY] {
+            let results: [Result<(), Error>; 5] = [
+                HalfSine::new(bad).map(drop),
+                Hertz::new(bad).map(drop),
+                Rectangle::new(bad).map(drop),
+                SinePower::new(bad, 1.5).map(drop),
+                Tabulated::new(&table, Some(bad), src).map(drop),
+            ];
+            for r in results {
+                match r {
+                    Err(Error::InvalidParameter {
+                        field,
+                        value,
+                        expected,
+                    }) => {
+                        assert_eq!(field, "contact.profile.duration");
+                        assert_eq!(value, bad.to_string());
+                        let range = if bad.is_finite() {
+                            "> 0 s"
+                        } else {
+                            "a finite number"
+                        };
+                        assert_eq!(expected, range);
+                    }
+                    other => panic!("duration {bad}: {other:?}"),
+                }
+            }
+        }
+        assert_eq!(HalfSine::new(2.5e-4).unwrap().duration(), 2.5e-4);
+        assert_eq!(Hertz::new(2.5e-4).unwrap().duration(), 2.5e-4);
+        assert_eq!(Rectangle::new(2.5e-4).unwrap().duration(), 2.5e-4);
+        assert_eq!(SinePower::new(2.5e-4, 1.5).unwrap().duration(), 2.5e-4);
+        let t = Tabulated::new(&table, Some(2.5e-4), src).unwrap();
+        assert_eq!(t.duration(), 2.5e-4);
+        // The duration is checked before the file is read: no I/O error for a bad one.
+        let missing = Path::new("/nonexistent/profile.csv");
+        let e = Tabulated::from_csv_file(missing, Some(0.0)).unwrap_err();
+        assert!(matches!(e, Error::InvalidParameter { .. }), "{e:?}");
+        assert!(matches!(
+            Tabulated::from_csv_file(missing, None),
+            Err(Error::Io { .. })
+        ));
+    }
 
     /// Composite Gauss-Legendre quadrature of phi over [a, b] (independent of `cumulative`),
     /// split at the profile's breakpoints, with compensated summation.

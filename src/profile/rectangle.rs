@@ -1,6 +1,7 @@
 //! Rectangular pulse: constant force P / tau over the contact.
 
-use super::ForceProfile;
+use super::{valid_duration, ForceProfile};
+use crate::error::Error;
 
 /// Constant force: phi(s) = 1, Phi(s) = s. The force jumps at both ends of the contact,
 /// which lie on the integration interval's ends, so steppers never straddle them.
@@ -10,9 +11,20 @@ pub struct Rectangle {
 }
 
 impl Rectangle {
-    /// A rectangular pulse of `duration` tau (s), validated by the caller.
-    pub fn new(duration: f64) -> Self {
-        Rectangle { duration }
+    /// A rectangular pulse of `duration` tau (s), finite and > 0 (else
+    /// [`Error::InvalidParameter`] naming `contact.profile.duration`).
+    ///
+    /// ```
+    /// use billiard_contact::profile::{ForceProfile, Rectangle};
+    /// let p = Rectangle::new(2e-4)?;
+    /// // constant force P / tau
+    /// assert_eq!(p.force(1e-4, 0.2), 0.2 / 2e-4);
+    /// # Ok::<(), billiard_contact::Error>(())
+    /// ```
+    pub fn new(duration: f64) -> Result<Self, Error> {
+        Ok(Rectangle {
+            duration: valid_duration(duration)?,
+        })
     }
 }
 
@@ -45,6 +57,6 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&Rectangle::new(2.0), 1e-13);
+        crate::profile::tests::check_profile(&Rectangle::new(2.0).unwrap(), 1e-13);
     }
 }

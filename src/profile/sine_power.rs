@@ -1,15 +1,15 @@
 //! Sine-power pulse f(t) = c sin^n(pi t / tau).
 
 use super::beta::{beta, inc_beta};
-use super::ForceProfile;
+use super::{valid_duration, ForceProfile};
 use crate::error::{finite, Error};
 use std::f64::consts::PI;
 
 /// Sine-power pulse, phi(s) = sin^n(pi s) pi / B((n+1)/2, 1/2).
 ///
 /// With u = sin^2(pi s), integral_0^s sin^n(pi s') ds' = B(u; (n+1)/2, 1/2) / (2 pi), so
-/// Phi(s) = I_u((n+1)/2, 1/2) / 2 for s <= 1/2 and 1 - Phi(1 - s) after (ERRATA.md, with
-/// c = pi P / (tau B(5/4, 1/2)) ~= 1.7972104 P / tau for n = 1.5).
+/// Phi(s) = I_u((n+1)/2, 1/2) / 2 for s <= 1/2 and 1 - Phi(1 - s) after (with
+/// c = pi P / (tau B(5/4, 1/2)) ~= 1.7972104 P / tau for n = 1.5; docs/model.md#force-profiles).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SinePower {
     duration: f64,
@@ -23,14 +23,19 @@ pub struct SinePower {
 }
 
 impl SinePower {
-    /// A sin^n pulse of `duration` tau (s); `exponent` n must be finite and in (0, 64].
+    /// A sin^n pulse of `duration` tau (s), finite and > 0; `exponent` n must be finite
+    /// and in (0, 64]. Else [`Error::InvalidParameter`] naming `contact.profile.duration` or
+    /// `contact.profile.exponent`.
     ///
     /// ```
     /// use billiard_contact::profile::{ForceProfile, SinePower};
-    /// let p = SinePower::new(1.0, 1.5).unwrap();
-    /// assert!((p.shape(0.5) - 1.7972104).abs() < 1e-7); // ERRATA.md
+    /// let p = SinePower::new(1.0, 1.5)?;
+    /// // peak pi / B(5/4, 1/2) (docs/model.md#force-profiles)
+    /// assert!((p.shape(0.5) - 1.7972104).abs() < 1e-7);
+    /// # Ok::<(), billiard_contact::Error>(())
     /// ```
     pub fn new(duration: f64, exponent: f64) -> Result<Self, Error> {
+        let duration = valid_duration(duration)?;
         finite("contact.profile.exponent", exponent)?;
         if !(exponent > 0.0 && exponent <= 64.0) {
             return Err(Error::invalid(
@@ -113,7 +118,7 @@ mod tests {
     #[test]
     fn exponent_one_is_the_half_sine() {
         let p = SinePower::new(1.0, 1.0).unwrap();
-        let h = super::super::HalfSine::new(1.0);
+        let h = super::super::HalfSine::new(1.0).unwrap();
         for i in 0..=100 {
             let s = i as f64 / 100.0;
             assert!((p.shape(s) - h.shape(s)).abs() < 1e-15);

@@ -1,6 +1,6 @@
 //! A force profile read from a (time, force) table, linearly interpolated.
 
-use super::ForceProfile;
+use super::{valid_duration, ForceProfile};
 use crate::error::Error;
 use std::path::{Path, PathBuf};
 
@@ -24,15 +24,36 @@ pub struct Tabulated {
 }
 
 impl Tabulated {
-    /// A profile from (time (s), force (N)) points: at least two, time strictly increasing
-    /// from 0, force finite and >= 0, positive area. `duration` (s) stretches the time axis
-    /// (default the table's span). `source` names the table in errors.
+    /// A profile from (time (s), force (N)) points: at least two, time finite and strictly
+    /// increasing from 0 (consecutive times at least 1e-9 of the span apart),
+    /// force finite and >= 0, positive area. `duration` (s), finite and > 0, stretches the
+    /// time axis (default the table's span). `source` names the table in errors.
+    ///
+    /// Errors: [`Error::InvalidParameter`] naming `contact.profile.duration`;
+    /// [`Error::ProfileTable`] at line 0 for the points, naming the point.
+    ///
+    /// ```
+    /// use billiard_contact::profile::{ForceProfile, Tabulated};
+    /// use std::path::Path;
+    /// // a triangle: f = 0 -> 2 -> 0 N over 2 s, stretched to 1 ms
+    /// let p = Tabulated::new(&[(0.0, 0.0), (1.0, 2.0), (2.0, 0.0)], Some(1e-3), Path::new("t"))?;
+    /// assert_eq!(p.cumulative(0.5), 0.5);
+    /// assert!(Tabulated::new(&[(0.0, 1.0), (1.0, -1.0)], None, Path::new("t")).is_err());
+    /// # Ok::<(), billiard_contact::Error>(())
+    /// ```
     pub fn new(points: &[(f64, f64)], duration: Option<f64>, source: &Path) -> Result<Self, Error> {
+        let duration = duration.map(valid_duration).transpose()?;
         let whole = |message: String| Error::ProfileTable {
             path: source.to_path_buf(),
             line: 0,
             message,
         };
+        for (k, &(t, f)) in points.iter().enumerate() {
+            let prev = k.checked_sub(1).map(|j| points[j].0);
+            if let Some(fault) = point_fault(prev, t, f) {
+                return Err(whole(format!("point {k}: {fault}")));
+            }
+        }
         if points.len() < 2 {
             return Err(whole(format!(
                 "{} data row(s): a tabulated profile needs at least two (time, force) points",
@@ -80,7 +101,9 @@ impl Tabulated {
             *c /= total;
         }
         let phi: Vec<f64> = phi.iter().map(|p| p / total).collect();
-        *cum.last_mut().expect("two points at least") = 1.0;
+        if let Some(last) = cum.last_mut() {
+            *last = 1.0;
+        }
         let breaks = s[1..s.len() - 1].to_vec();
         Ok(Tabulated {
             duration: duration.unwrap_or(span),
@@ -91,8 +114,10 @@ impl Tabulated {
         })
     }
 
-    /// Reads a CSV with the header `time,force` (seconds, newtons). Errors name the line.
+    /// Reads a CSV with the header `time,force` (seconds, newtons). Errors name the line;
+    /// `duration` is checked as in [`Tabulated::new`] before the file is read.
     pub fn from_csv_file(path: &Path, duration: Option<f64>) -> Result<Self, Error> {
+        let duration = duration.map(valid_duration).transpose()?;
         let text = std::fs::read_to_string(path).map_err(|e| {
             Error::io_doing(
                 path,
@@ -131,6 +156,27 @@ pub const MIN_TIME_STEP: f64 = 1e-9;
 fn unresolved_step(points: &[(f64, f64)]) -> Option<usize> {
     let span = points.last()?.0;
     (1..points.len()).find(|&k| points[k].0 - points[k - 1].0 < MIN_TIME_STEP * span)
+}
+
+/// What is wrong with the point (time `t` (s), force `f` (N)) of a table, after a point at
+/// time `prev` (None: it is the first), or None.
+fn point_fault(prev: Option<f64>, t: f64, f: f64) -> Option<String> {
+    if !t.is_finite() {
+        return Some(format!("time {t} is not finite"));
+    }
+    if !f.is_finite() {
+        return Some(format!("force {f} is not finite"));
+    }
+    if f < 0.0 {
+        return Some(format!("force {f} N is negative: force must be >= 0"));
+    }
+    match prev {
+        None if t != 0.0 => Some(format!("time {t} s: the table must start at time 0")),
+        Some(t_prev) if t <= t_prev => Some(format!(
+            "time {t} s after {t_prev} s: times must be strictly increasing"
+        )),
+        _ => None,
+    }
 }
 
 /// Parses `time,force` CSV text into points, validating every line.
@@ -189,26 +235,8 @@ pub fn parse_table(text: &str, path: &Path) -> Result<Vec<(f64, f64)>, Error> {
         };
         let t = num(cells[0], "time")?;
         let f = num(cells[1], "force")?;
-        if f < 0.0 {
-            return Err(err(
-                n,
-                format!("force {f} N is negative: force must be >= 0"),
-            ));
-        }
-        match points.last() {
-            None if t != 0.0 => {
-                return Err(err(
-                    n,
-                    format!("time {t} s: the table must start at time 0"),
-                ))
-            }
-            Some(&(t_prev, _)) if t <= t_prev => {
-                return Err(err(
-                    n,
-                    format!("time {t} s after {t_prev} s: times must be strictly increasing"),
-                ))
-            }
-            _ => {}
+        if let Some(fault) = point_fault(points.last().map(|p| p.0), t, f) {
+            return Err(err(n, fault));
         }
         points.push((t, f));
         line_of.push(n);
@@ -349,5 +377,47 @@ mod tests {
         assert!(e.contains("at least two"), "{e}");
         let zero = parse_table("time,force\n0,0\n1,0\n", path).unwrap();
         assert!(Tabulated::new(&zero, None, path).is_err());
+    }
+
+    /// Points given directly get the checks `parse_table` makes, naming the point.
+    #[test]
+    fn new_checks_the_points() {
+        let path = Path::new("p.csv");
+        let cases: [(&[(f64, f64)], &str); 6] = [
+            (
+                &[(0.0, 1.0), (0.0, 2.0)],
+                "point 1: time 0 s after 0 s: times must be strictly increasing",
+            ),
+            (
+                &[(0.0, 1.0), (1.0, -2.0)],
+                "point 1: force -2 N is negative",
+            ),
+            (
+                &[(0.0, 1.0), (1.0, f64::NAN)],
+                "point 1: force NaN is not finite",
+            ),
+            (
+                &[(0.0, 1.0), (f64::INFINITY, 1.0)],
+                "point 1: time inf is not finite",
+            ),
+            (
+                &[(0.5, 1.0), (1.0, 1.0)],
+                "point 0: time 0.5 s: the table must start at time 0",
+            ),
+            (
+                &[(0.0, 1.0), (2.0, 1.0), (1.0, 1.0)],
+                "point 2: time 1 s after 2 s",
+            ),
+        ];
+        for (points, what) in cases {
+            match Tabulated::new(points, None, path) {
+                Err(Error::ProfileTable {
+                    line: 0, message, ..
+                }) => {
+                    assert!(message.starts_with(what), "{points:?}: {message}");
+                }
+                other => panic!("{points:?}: {other:?}"),
+            }
+        }
     }
 }

@@ -36,7 +36,6 @@ mod roll_out;
 mod rolling;
 mod segment;
 
-pub(crate) use cloth::horizontal;
 pub use cloth::{cloth_slip, Table, LEVEL_TOLERANCE};
 pub use flight::{MAX_BOUNCES, SETTLE_SPEED};
 pub use impact::{cloth_impact, ClothImpact};

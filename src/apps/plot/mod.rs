@@ -1,11 +1,17 @@
 //! Figures (SVG and PNG) drawn with `plotters` without system fonts: the DejaVu Sans font is
 //! embedded and registered once under the family name `sans-serif`.
 
+pub mod paths;
+pub mod sweep;
 pub mod work_precision;
 
+use crate::error::Error;
+use crate::formats::atomic_file::AtomicFile;
+use plotters::coord::Shift;
+use plotters::prelude::{BitMapBackend, DrawingArea, IntoDrawingArea, SVGBackend};
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::sync::Once;
-
-pub mod paths;
 
 /// The font family every figure uses.
 pub const FONT: &str = "sans-serif";
@@ -21,6 +27,57 @@ pub fn register_fonts() {
         plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold())
             .unwrap_or_else(|_| panic!("embedded DejaVu Sans Bold is not a valid font"));
     });
+}
+
+/// A figure of `dims` (px) drawn by `draw_svg` as SVG to `svg` and by `draw_png` as PNG to
+/// `png` (the same drawing on the two backends), each file replaced only once complete.
+pub fn write_svg_and_png(
+    dims: (u32, u32),
+    svg: &Path,
+    png: &Path,
+    draw_svg: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>) -> Result<(), String>,
+    draw_png: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<(), Error> {
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, dims).into_drawing_area();
+        draw_svg(&root).map_err(|e| plot_error(svg, e))?;
+    }
+    let mut file = AtomicFile::create(svg)?;
+    file.write_all(text.as_bytes())
+        .map_err(|e| Error::io(svg, e))?;
+    file.commit()?;
+
+    // The bitmap backend picks the format from the extension: a temporary `.png` beside
+    // the target, renamed over it.
+    let dir = match png.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let stem = png
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "figure".into());
+    let temp = dir.join(format!(".{stem}.{}.tmp.png", std::process::id()));
+    let drawn = {
+        let root = BitMapBackend::new(&temp, dims).into_drawing_area();
+        draw_png(&root).map_err(|e| plot_error(png, e))
+    };
+    if let Err(e) = drawn {
+        let _ = std::fs::remove_file(&temp);
+        return Err(e);
+    }
+    std::fs::rename(&temp, png).map_err(|e| {
+        let _ = std::fs::remove_file(&temp);
+        Error::io(png, e)
+    })
+}
+
+fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Plot {
+        path: path.into(),
+        message: format!("drawing the figure: {e}"),
+    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,8 @@
 
 use super::FONT;
 use crate::error::Error;
-use crate::table_phase::{horizontal, BallMotion, RollOut, TableOutcome};
+use crate::model::frame::horizontal;
+use crate::table_phase::{BallMotion, RollOut, TableOutcome};
 use nalgebra::Vector3;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -481,8 +482,8 @@ pub fn png(
 }
 
 fn plot_error(message: String) -> Error {
-    Error::io(
-        "plot",
-        std::io::Error::other(format!("drawing the path figure: {message}")),
-    )
+    Error::Plot {
+        path: "plot".into(),
+        message: format!("drawing the path figure: {message}"),
+    }
 }

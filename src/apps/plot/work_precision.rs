@@ -8,12 +8,10 @@
 use super::FONT;
 use crate::apps::work_precision::{series, Series, StudyRow};
 use crate::error::Error;
-use crate::formats::atomic_file::AtomicFile;
 use plotters::coord::combinators::LogCoord;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Where errors of exactly 0 are drawn (dimensionless, scaled error;
 /// docs/formats.md#work-precision-csv).
@@ -303,50 +301,16 @@ fn shorten(s: &str, n: usize) -> String {
     }
 }
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::io(
-        path,
-        std::io::Error::other(format!("drawing the figure: {e}")),
-    )
-}
-
 /// Writes the diagram as SVG to `svg` and as PNG to `png`, each replacing its file only
 /// once it is complete.
 pub fn write(rows: &[StudyRow], svg: &Path, png: &Path) -> Result<(), Error> {
-    let dims = size(rows);
-    let mut text = String::new();
-    {
-        let root = SVGBackend::with_string(&mut text, dims).into_drawing_area();
-        draw(&root, rows).map_err(|e| plot_error(svg, e))?;
-    }
-    let mut file = AtomicFile::create(svg)?;
-    file.write_all(text.as_bytes())
-        .map_err(|e| Error::io(svg, e))?;
-    file.commit()?;
-
-    // The bitmap backend picks the format from the extension: a temporary `.png` beside
-    // the target, renamed over it.
-    let dir = match png.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let stem = png
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "figure".into());
-    let temp = dir.join(format!(".{stem}.{}.tmp.png", std::process::id()));
-    let drawn = {
-        let root = BitMapBackend::new(&temp, dims).into_drawing_area();
-        draw(&root, rows).map_err(|e| plot_error(png, e))
-    };
-    if let Err(e) = drawn {
-        let _ = std::fs::remove_file(&temp);
-        return Err(e);
-    }
-    std::fs::rename(&temp, png).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        Error::io(png, e)
-    })
+    super::write_svg_and_png(
+        size(rows),
+        svg,
+        png,
+        |root| draw(root, rows).map_err(|e| e.to_string()),
+        |root| draw(root, rows).map_err(|e| e.to_string()),
+    )
 }
 
 #[cfg(test)]

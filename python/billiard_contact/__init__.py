@@ -1,0 +1,35 @@
+"""billiard-contact: the contact phase of billiard-ball collisions with spin and friction.
+
+After C. S. Peskin, *Collision of Billiard Balls in 3D with Spin and Friction* (2020): the
+exact closed form (with sliding that stops during contact) and time-stepping integrators.
+SI units throughout (kg, m, s, m/s, rad/s, N s, J).
+
+- ``run(path, ...)`` / ``run_toml(text, ...)``: a scene, as ``billiard-contact run SCENE
+  --json``; returns the same JSON object as a dict (``report["trace"]`` with ``samples``).
+- ``BallBall(mass=, radius=, alpha=0.4, mu=, restitution=1.0)``: two identical balls;
+  ``model.resolve_lab(pa, va, wa, pb, vb, wb, up=(0, 0, 1))`` resolves one collision or N
+  (arrays of shape (3,) or (N, 3)).
+- ``SpeedDependentFriction(a=, b=, c=)``: mu(S) = a + b exp(-c S).
+- ``billiard_contact.pooltool``: a ball-ball model for pooltool's ``Resolver.ball_ball``.
+
+Bad input raises ``ValueError`` with the command line's one-line message (the field, the
+value, what is accepted); a failed run raises ``RuntimeError``.
+"""
+
+from billiard_contact._core import (
+    TRACE_COLUMNS,
+    BallBall,
+    SpeedDependentFriction,
+    __version__,
+    run,
+    run_toml,
+)
+
+__all__ = [
+    "TRACE_COLUMNS",
+    "BallBall",
+    "SpeedDependentFriction",
+    "__version__",
+    "run",
+    "run_toml",
+]

@@ -1,0 +1,172 @@
+"""Type stubs of the Rust extension billiard_contact._core (SI units throughout)."""
+
+from os import PathLike
+from typing import Any, Literal, Optional, Sequence, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+TRACE_COLUMNS: list[str]
+"""The trace CSV's column names without units, in order: "t" (s), "f" (N), "p" (N s),
+"U", "V", "W" (m/s), "omega_a_x" .. "omega_b_z" (rad/s), "S" (m/s), "theta" (rad),
+"H_sfr" (J)."""
+
+Method = Literal["closed-form", "rk4", "dopri5", "dop853"]
+ArrayLike3 = Union[npt.ArrayLike, Sequence[float]]
+
+def run(
+    path: Union[str, PathLike[str]],
+    method: Optional[Method] = None,
+    rtol: Optional[float] = None,
+    samples: Optional[int] = None,
+    *,
+    atol: Optional[float] = None,
+    steps: Optional[int] = None,
+    trace: bool = False,
+) -> dict[str, Any]:
+    """Runs a scene file (TOML) as ``billiard-contact run SCENE --json`` does.
+
+    Returns the command's JSON object as a dict, with exactly its keys and values
+    (``collision``, ``impulse`` (N s), ``s0`` (m/s), ``theta`` (rad or None), ``s_out``,
+    ``sticks``, ``stick_time`` (s), ``stick_impulse``, ``tangential_impulse``, ``heat``,
+    ``heat_sliding`` (J), ``cm_in``, ``cm_out``, ``lab_out`` (lab scenes),
+    ``throw_angle_deg``, ``check``, ``solver``, ``effects``, ``warnings``, ``name``,
+    ``profile``, ``duration`` (s), ``table`` with the table effect).
+
+    method, rtol, atol, steps override the scene's ``[solver]`` as ``--method``,
+    ``--rtol`` (which sets atol too unless atol is given), ``--atol``, ``--steps`` do.
+    samples=N adds ``report["trace"]``: a dict of numpy arrays keyed by ``TRACE_COLUMNS``,
+    at t = i duration / N (i = 0..N) plus the stop of sliding, in the paper's centre-of-mass
+    frame; ``theta`` is NaN where the CSV cell is empty (S(0) = 0). trace=True (without
+    samples): one row per accepted step.
+
+    Raises ValueError (bad input, the command's one-line message) or RuntimeError (the run
+    failed: the integrator gave up, a non-finite result).
+    """
+
+def run_toml(
+    text: str,
+    base_dir: Union[str, PathLike[str]] = ".",
+    method: Optional[Method] = None,
+    rtol: Optional[float] = None,
+    samples: Optional[int] = None,
+    *,
+    atol: Optional[float] = None,
+    steps: Optional[int] = None,
+    trace: bool = False,
+) -> dict[str, Any]:
+    """As ``run``, for scene text; relative profile files resolve against base_dir."""
+
+class SpeedDependentFriction:
+    """Ball-ball friction mu(S) = a + b exp(-c S), S the sliding speed of the contact
+    points (m/s); a, b dimensionless (>= 0, <= 1e6), c in s/m (>= 0).
+
+    evaluate="contact" (default): mu at the current sliding speed all along the contact.
+    evaluate="initial-slip": mu(S(0)) at the sliding speed before the collision, then used
+    as a constant coefficient (pooltool's convention).
+    """
+
+    def __init__(
+        self, a: float, b: float, c: float, evaluate: Literal["contact", "initial-slip"] = "contact"
+    ) -> None: ...
+    @property
+    def a(self) -> float: ...
+    @property
+    def b(self) -> float: ...
+    @property
+    def c(self) -> float:
+        """Decay rate (s/m)."""
+    @property
+    def evaluate(self) -> Literal["contact", "initial-slip"]: ...
+    def mu(self, s: float) -> float:
+        """mu at sliding speed s (m/s)."""
+
+class LabResult(TypedDict):
+    """Outgoing state of resolve_lab. For N collisions: arrays of shape (N, 3) and (N,);
+    for one: arrays of shape (3,) and numpy scalars (shape ())."""
+
+    va: npt.NDArray[np.float64]
+    """Velocity of A after the collision (m/s)."""
+    wa: npt.NDArray[np.float64]
+    """Spin of A (rad/s)."""
+    vb: npt.NDArray[np.float64]
+    """Velocity of B (m/s)."""
+    wb: npt.NDArray[np.float64]
+    """Spin of B (rad/s)."""
+    impulse: Union[npt.NDArray[np.float64], np.float64]
+    """Normal impulse P (N s); 0 where the balls do not approach."""
+    tangential_impulse: Union[npt.NDArray[np.float64], np.float64]
+    """Friction impulse J >= 0 (N s)."""
+    sticks: Union[npt.NDArray[np.bool_], np.bool_]
+    """Whether sliding stopped during the contact (True also where S(0) = 0)."""
+    throw_angle_deg: Union[npt.NDArray[np.float64], np.float64]
+    """Angle (degrees, counter-clockwise about up) from the horizontal line of centres to
+    B's horizontal velocity change; NaN where the library gives none (B's horizontal
+    velocity change vanishes, or the line of centres is vertical)."""
+
+class BallBall:
+    """Two identical balls and their contact.
+
+    mass (kg), radius (m), alpha (I = alpha m r^2, in [1e-12, 2/3]; 0.4 a solid ball),
+    mu (ball-ball friction: a number >= 0, or SpeedDependentFriction), restitution e in
+    [0, 1] (normal impulse P = (1 + e) m U(0)); profile ("half-sine", "hertz",
+    "sine-power", "rectangle") and duration (s) of the normal force, used by the
+    time-stepping methods (the closed form does not depend on them); friction and stick
+    switch those effects.
+
+    Bad values raise ValueError with the command line's message, e.g.
+    "balls.mass = -1: > 0 kg".
+    """
+
+    def __init__(
+        self,
+        *,
+        mass: float,
+        radius: float,
+        alpha: float = 0.4,
+        mu: Union[float, SpeedDependentFriction],
+        restitution: float = 1.0,
+        profile: Literal["half-sine", "hertz", "sine-power", "rectangle"] = "half-sine",
+        duration: float = 2.5e-4,
+        friction: bool = True,
+        stick: bool = True,
+    ) -> None: ...
+    @property
+    def mass(self) -> float:
+        """Mass (kg)."""
+    @property
+    def radius(self) -> float:
+        """Radius (m)."""
+    @property
+    def alpha(self) -> float:
+        """I = alpha m r^2."""
+    @property
+    def mu(self) -> Union[float, SpeedDependentFriction]: ...
+    @property
+    def restitution(self) -> float: ...
+    def resolve_lab(
+        self,
+        pa: ArrayLike3,
+        va: ArrayLike3,
+        wa: ArrayLike3,
+        pb: ArrayLike3,
+        vb: ArrayLike3,
+        wb: ArrayLike3,
+        up: Optional[ArrayLike3] = None,
+        method: Optional[Method] = None,
+        rtol: Optional[float] = None,
+    ) -> LabResult:
+        """Resolves collisions given in the lab frame.
+
+        pa, va, wa, pb, vb, wb: positions (m), velocities (m/s), spins (rad/s) of balls A
+        and B, each of shape (3,) or (N, 3), any memory order (lists work too; a (3,) input
+        is used for every row). up: away from the table, default (0, 0, 1). The centres must
+        touch: |pb - pa| = 2 radius within a relative 1e-9.
+
+        method None is the closed form; "rk4", "dopri5", "dop853" integrate (rtol, default
+        1e-10, sets atol too). N >= 2048 rows run on all cores without the GIL.
+
+        Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number").
+        """

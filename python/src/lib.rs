@@ -1,0 +1,21 @@
+//! The Python extension `billiard_contact._core` (PyO3): scenes as the command line runs
+//! them, and batches of lab-frame collisions from numpy arrays.
+
+mod errors;
+mod frame;
+mod lab;
+mod run;
+mod settings;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<lab::BallBall>()?;
+    m.add_class::<lab::SpeedDependentFriction>()?;
+    m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;
+    m.add("TRACE_COLUMNS", run::TRACE_COLUMNS.to_vec())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

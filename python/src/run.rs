@@ -1,0 +1,199 @@
+//! `run` and `run_toml`: a scene, as `billiard-contact run SCENE --json`.
+
+use crate::errors::{to_py, unwrap_scene_message};
+use crate::settings;
+use billiard_contact::{run_scene, Error, Report, Sampling, Scene, TraceRow, TraceSink};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+
+/// The trace CSV's columns without their units, in its order.
+pub const TRACE_COLUMNS: [&str; 15] = [
+    "t",
+    "f",
+    "p",
+    "U",
+    "V",
+    "W",
+    "omega_a_x",
+    "omega_a_y",
+    "omega_a_z",
+    "omega_b_x",
+    "omega_b_y",
+    "omega_b_z",
+    "S",
+    "theta",
+    "H_sfr",
+];
+
+/// Trace rows kept as columns (theta NaN where the CSV cell is empty).
+#[derive(Default)]
+struct Columns {
+    data: [Vec<f64>; 15],
+}
+
+impl TraceSink for Columns {
+    fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
+        let s = &r.state;
+        let values = [
+            r.t,
+            r.force,
+            r.impulse,
+            s.u_cm.x,
+            s.u_cm.y,
+            s.u_cm.z,
+            s.omega_a.x,
+            s.omega_a.y,
+            s.omega_a.z,
+            s.omega_b.x,
+            s.omega_b.y,
+            s.omega_b.z,
+            r.slip_speed,
+            r.theta.unwrap_or(f64::NAN),
+            r.heat_sliding,
+        ];
+        for (k, (col, v)) in self.data.iter_mut().zip(values).enumerate() {
+            if k != 13 && !v.is_finite() {
+                return Err(Error::NonFinite {
+                    field: format!("trace column {} at t = {}", TRACE_COLUMNS[k], r.t),
+                    value: v,
+                });
+            }
+            col.push(v);
+        }
+        Ok(())
+    }
+}
+
+enum Source {
+    File(PathBuf),
+    Text { text: String, base: PathBuf },
+}
+
+struct Options {
+    method: Option<String>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    steps: Option<i64>,
+    samples: Option<i64>,
+    trace: bool,
+}
+
+/// The report's JSON and the trace columns (with samples or trace=True).
+fn run_json(source: Source, o: &Options) -> Result<(String, Option<Columns>), Error> {
+    let scene = match source {
+        Source::File(p) => Scene::load(&p)?,
+        Source::Text { text, base } => {
+            Scene::parse(&text, &base, None).map_err(unwrap_scene_message)?
+        }
+    };
+    let steps = match o.steps {
+        None => None,
+        Some(s) => {
+            Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e9]"))?)
+        }
+    };
+    let settings = settings::for_run(&scene, o.method.as_deref(), o.rtol, o.atol, steps)?;
+    let sampling = match o.samples {
+        None => Sampling::Steps,
+        Some(n) if n >= 1 => Sampling::Uniform(n as u64),
+        Some(n) => return Err(Error::invalid("samples", n, "at least 1")),
+    };
+    let want_trace = o.samples.is_some() || o.trace;
+    let mut columns = Columns::default();
+    let outcome = run_scene(
+        &scene,
+        &settings,
+        want_trace.then_some((&mut columns as &mut dyn TraceSink, sampling)),
+    )?;
+    let json = Report::new(&scene, &outcome).to_json()?;
+    Ok((json, want_trace.then_some(columns)))
+}
+
+fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'py, PyAny>> {
+    let (json, columns) = py.detach(|| run_json(source, &o)).map_err(to_py)?;
+    let report = py
+        .import("json")?
+        .call_method1("loads", (json,))?
+        .cast_into::<PyDict>()?;
+    if let Some(c) = columns {
+        let trace = PyDict::new(py);
+        for (name, col) in TRACE_COLUMNS.iter().zip(c.data) {
+            trace.set_item(name, PyArray1::from_vec(py, col))?;
+        }
+        report.set_item("trace", trace)?;
+    }
+    Ok(report.into_any())
+}
+
+/// Runs a scene file (TOML) as `billiard-contact run SCENE --json` does and returns its
+/// report: a dict with exactly the command's JSON keys and values.
+///
+/// method ("closed-form", "rk4", "dopri5", "dop853"), rtol, atol and steps override the
+/// scene's [solver] as the command's options do (a new rtol sets atol too unless atol is
+/// given). samples=N adds report["trace"]: numpy arrays keyed by the trace CSV's column
+/// names without units ("t", "f", "p", "U", "V", "W", "omega_a_x" .. "omega_b_z", "S",
+/// "theta", "H_sfr"; SI units, the centre-of-mass frame), at t = i duration / N plus the
+/// stop of sliding; trace=True gives one row per accepted step instead. theta is NaN where
+/// the CSV cell is empty (S(0) = 0).
+///
+/// Bad input raises ValueError with the command's one-line message; a failed run
+/// RuntimeError.
+#[pyfunction]
+#[pyo3(signature = (path, method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn run<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    method: Option<String>,
+    rtol: Option<f64>,
+    samples: Option<i64>,
+    atol: Option<f64>,
+    steps: Option<i64>,
+    trace: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let o = Options {
+        method,
+        rtol,
+        atol,
+        steps,
+        samples,
+        trace,
+    };
+    run_py(py, Source::File(path), o)
+}
+
+/// Runs a scene given as TOML text; relative profile files resolve against base_dir.
+/// Otherwise as `run`.
+#[pyfunction]
+#[pyo3(signature = (text, base_dir = PathBuf::from("."), method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn run_toml<'py>(
+    py: Python<'py>,
+    text: String,
+    base_dir: PathBuf,
+    method: Option<String>,
+    rtol: Option<f64>,
+    samples: Option<i64>,
+    atol: Option<f64>,
+    steps: Option<i64>,
+    trace: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let o = Options {
+        method,
+        rtol,
+        atol,
+        steps,
+        samples,
+        trace,
+    };
+    run_py(
+        py,
+        Source::Text {
+            text,
+            base: base_dir,
+        },
+        o,
+    )
+}

@@ -1,0 +1,45 @@
+//! Solver settings: how the bindings build them from Python keywords, with the library's own
+//! override rule (the one `billiard-contact run` applies).
+
+use billiard_contact::formats::scene::SolverOverrides;
+use billiard_contact::{Error, Method, Scene, SolverSettings};
+
+/// A method name as the command line takes it (`closed-form`, `rk4`, `dopri5`, `dop853`).
+pub fn method(name: &str) -> Result<Method, Error> {
+    name.parse::<Method>()
+}
+
+/// The scene's settings with the overrides of `billiard-contact run`: `--method`, `--rtol`
+/// (which carries atol with it unless atol is given), `--atol`, `--steps`.
+pub fn for_run(
+    scene: &Scene,
+    method_name: Option<&str>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    steps: Option<u32>,
+) -> Result<SolverSettings, Error> {
+    SolverOverrides {
+        method: method_name.map(method).transpose()?,
+        rtol,
+        atol,
+        steps,
+    }
+    .apply(&scene.solver)
+}
+
+/// Settings for a batch: the closed form unless a method is named; `rtol` (default the
+/// library's, 1e-10) sets atol too, as `billiard-contact batch --rtol` does.
+pub fn for_batch(method_name: Option<&str>, rtol: Option<f64>) -> Result<SolverSettings, Error> {
+    SolverOverrides {
+        method: Some(
+            method_name
+                .map(method)
+                .transpose()?
+                .unwrap_or(Method::ClosedForm),
+        ),
+        rtol,
+        atol: None,
+        steps: None,
+    }
+    .apply(&SolverSettings::default())
+}

@@ -1,0 +1,162 @@
+"""Bad input raises ValueError with the command's one-line message, naming the field
+(and the row, for arrays of states); nothing panics across the boundary."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import billiard_contact as bc
+from conftest import SCENES, cli_error
+
+M, R = 0.170097, 0.028575
+DEFAULT = (SCENES[0].parent / "default.toml").read_text()
+
+
+def scene_with(tmp_path, old: str, new: str):
+    assert old in DEFAULT
+    p = tmp_path / "bad.toml"
+    p.write_text(DEFAULT.replace(old, new))
+    return p
+
+
+@pytest.mark.parametrize(
+    "kwargs,old,new,field",
+    [
+        (dict(mass=-1.0), "mass = 0.17", "mass = -1.0", "balls.mass"),
+        (dict(radius=0.0), "radius = 0.028575", "radius = 0.0", "balls.radius"),
+        (dict(alpha=0.7), "alpha = 0.4", "alpha = 0.7", "balls.alpha"),
+        (dict(mu=-0.1), "mu = 0.06", "mu = -0.1", "contact.mu"),
+        (dict(mu=2e6), "mu = 0.06", "mu = 2e6", "contact.mu"),
+        (dict(restitution=1.5), "restitution = 1.0", "restitution = 1.5", "contact.restitution"),
+        (dict(mass=math.nan), "mass = 0.17", "mass = nan", "balls.mass"),
+        (dict(radius=math.inf), "radius = 0.028575", "radius = inf", "balls.radius"),
+        (dict(duration=-1e-4), "duration = 2.5e-4", "duration = -1e-4", "duration"),
+    ],
+)
+def test_model_parameters_give_the_cli_message(cli, tmp_path, kwargs, old, new, field):
+    params = dict(mass=0.17, radius=0.028575, alpha=0.4, mu=0.06, restitution=1.0)
+    params.update(kwargs)
+    with pytest.raises(ValueError) as e:
+        bc.BallBall(**params)
+    expected = cli_error(cli, "run", str(scene_with(tmp_path, old, new)))
+    assert str(e.value) == expected
+    assert field in str(e.value)
+
+
+@pytest.mark.parametrize(
+    "abc,field",
+    [((-1.0, 0.1, 1.0), "contact.mu.a"), ((0.01, math.nan, 1.0), "contact.mu.b"), ((0.01, 0.1, -2.0), "contact.mu.c")],
+)
+def test_speed_dependent_friction_gives_the_cli_message(cli, tmp_path, abc, field):
+    a, b, c = abc
+    with pytest.raises(ValueError) as e:
+        bc.SpeedDependentFriction(a=a, b=b, c=c)
+    toml = lambda x: "nan" if math.isnan(x) else repr(x)
+    bad = scene_with(
+        tmp_path, "mu = 0.06",
+        f'mu = {{ model = "speed-dependent", a = {toml(a)}, b = {toml(b)}, c = {toml(c)} }}',
+    )
+    assert str(e.value) == cli_error(cli, "run", str(bad))
+    assert str(e.value).startswith(field)
+
+
+def test_evaluate_names_the_choices():
+    with pytest.raises(ValueError, match=r'^evaluate = "start": "contact" .* or "initial-slip"'):
+        bc.SpeedDependentFriction(a=0.01, b=0.1, c=1.0, evaluate="start")
+
+
+def test_wrong_types_raise_type_error():
+    with pytest.raises(TypeError, match="mu"):
+        bc.BallBall(mass=M, radius=R, mu="0.06")
+    with pytest.raises(TypeError):
+        bc.BallBall(mass="heavy", radius=R, mu=0.06)
+
+
+def test_run_errors_give_the_cli_message(cli, tmp_path):
+    bad = scene_with(tmp_path, "restitution", "restitutoin")
+    with pytest.raises(ValueError) as e:
+        bc.run(str(bad))
+    assert str(e.value) == cli_error(cli, "run", str(bad))
+    assert "did you mean `restitution`" in str(e.value)
+    default = str(SCENES[0].parent / "default.toml")
+    with pytest.raises(ValueError) as e:
+        bc.run(default, method="rk5")
+    assert str(e.value) == cli_error(cli, "run", default, "--method", "rk5")
+    with pytest.raises(ValueError) as e:
+        bc.run(default, rtol=1.0)
+    assert str(e.value) == cli_error(cli, "run", default, "--rtol", "1.0")
+    missing = str(tmp_path / "missing.toml")
+    with pytest.raises(ValueError) as e:
+        bc.run(missing)
+    assert str(e.value) == cli_error(cli, "run", missing)
+    with pytest.raises(ValueError, match=r"^samples = 0: at least 1$"):
+        bc.run(default, samples=0)
+
+
+def test_run_toml_names_the_text_and_line():
+    with pytest.raises(ValueError) as e:
+        bc.run_toml(DEFAULT.replace("restitution", "restitutoin"))
+    msg = str(e.value)
+    assert msg.startswith("<toml text>: line ") and "contact.restitutoin: unknown key" in msg
+
+
+def states(n):
+    pa = np.tile([0.0, 0.0, R], (n, 1))
+    pb = np.tile([2 * R, 0.0, R], (n, 1))
+    va = np.tile([1.0, 0.2, 0.0], (n, 1))
+    z = np.zeros((n, 3))
+    return [pa, va, z.copy(), pb, z.copy(), z.copy()]
+
+
+@pytest.mark.parametrize(
+    "arg,row,col,value,message",
+    [
+        (1, 7, 1, math.nan, r"^row 7: va\[1\] = NaN: a finite number$"),
+        (5, 0, 2, math.inf, r"^row 0: wb\[2\] = inf: a finite number$"),
+        (3, 4999, 0, 3 * R, r"^row 4999: pb = \[0\.085725, 0, 0\.028575\] \(\|pb - pa\| = 0\.085725 m\): the balls must touch: \|pb - pa\| = 2r = 0\.05715 m within a relative 1e-9$"),
+    ],
+)
+def test_bad_rows_are_named(arg, row, col, value, message):
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    a = states(5000)  # above the size resolved without the GIL on all cores
+    a[arg][row, col] = value
+    with pytest.raises(ValueError, match=message):
+        model.resolve_lab(*a)
+    few = [x[: row + 1] if len(x) > row else x for x in a]
+    with pytest.raises(ValueError, match=message):
+        model.resolve_lab(*few)
+
+
+def test_the_first_bad_row_is_named():
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    a = states(10_000)
+    for row in (9_000, 6_000, 3_001):
+        a[1][row, 0] = math.nan
+    with pytest.raises(ValueError, match=r"^row 3001: va\[0\] = NaN"):
+        model.resolve_lab(*a)
+
+
+def test_one_collision_is_not_called_a_row():
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    with pytest.raises(ValueError, match=r"^up = \[0, 0, 0\]: a non-zero direction$"):
+        model.resolve_lab([0, 0, R], [1, 0, 0], [0, 0, 0], [2 * R, 0, R], [0, 0, 0], [0, 0, 0], up=[0, 0, 0])
+
+
+def test_bad_shapes_and_methods():
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    a = states(4)
+    with pytest.raises(ValueError, match=r"^wa has shape \(4, 2\): expected \(3,\) or \(N, 3\)$"):
+        model.resolve_lab(a[0], a[1], np.zeros((4, 2)), a[3], a[4], a[5])
+    with pytest.raises(ValueError, match=r"^pb has 5 rows but pa has 4"):
+        model.resolve_lab(a[0], a[1], a[2], states(5)[3], a[4], a[5])
+    with pytest.raises(ValueError, match=r"^vb has shape \(\): expected"):
+        model.resolve_lab(a[0], a[1], a[2], a[3], 0.0, a[5])
+    with pytest.raises(ValueError, match=r'^solver\.method = "euler": one of closed-form, rk4, dopri5, dop853$'):
+        model.resolve_lab(*a, method="euler")
+    with pytest.raises(ValueError, match=r"^solver\.rtol = 0: in \[1e-15, 0\.1\]"):
+        model.resolve_lab(*a, method="dop853", rtol=0.0)
+    with pytest.raises(ValueError):
+        model.resolve_lab(a[0], a[1], a[2], a[3], a[4], [[1, 2, "x"]] * 4)

@@ -1,0 +1,154 @@
+//! What a run records besides the state: trace rows, the first error, and the measures of
+//! the accepted steps (theta drift, slip consistency).
+
+use super::rhs::SlidingState;
+use super::settings::Sampling;
+use super::units::Units;
+use crate::error::Error;
+use crate::formats::trace::TraceSink;
+use crate::model::state::slip_angle;
+use crate::profile::ForceProfile;
+use nalgebra::{SVector, Vector2};
+
+/// Mutable bookkeeping of a run.
+pub(super) struct Recorder<'a> {
+    sink: Option<&'a mut dyn TraceSink>,
+    /// A row per accepted step (else only at the sample times and events).
+    steps_mode: bool,
+    /// Scaled time of the last row written (-1 before the first).
+    last_row_time: f64,
+    /// The first error met while observing (a non-finite state, a failed write).
+    error: Option<Error>,
+    /// Largest |slip x e0| / v_ref over accepted steps while sliding.
+    pub(super) theta_drift: f64,
+    /// Largest disagreement of the carried slip with the recomputed one (scaled).
+    pub(super) slip_consistency: f64,
+    /// The slip angle the trace rows carry (rad).
+    theta_last: Option<f64>,
+}
+
+impl<'a> Recorder<'a> {
+    /// A recorder writing to `sink` (if any) with `sampling`; `theta` is the initial slip
+    /// angle (rad).
+    pub(super) fn new(
+        trace: Option<(&'a mut dyn TraceSink, Sampling)>,
+        theta: Option<f64>,
+    ) -> Self {
+        let (sink, sampling) = match trace {
+            Some((s, m)) => (Some(s), m),
+            None => (None, Sampling::Steps),
+        };
+        Recorder {
+            sink,
+            steps_mode: sampling == Sampling::Steps,
+            last_row_time: -1.0,
+            error: None,
+            theta_drift: 0.0,
+            slip_consistency: 0.0,
+            theta_last: theta,
+        }
+    }
+
+    /// Records a non-finite accepted state as the run's error; true when it was one (the
+    /// observer then stops the solver).
+    pub(super) fn flag_non_finite<const N: usize>(&mut self, v: &SVector<f64, N>) -> bool {
+        match v.iter().copied().find(|x| !x.is_finite()) {
+            None => false,
+            Some(bad) => {
+                self.error = Some(Error::NonFinite {
+                    field: "state".to_string(),
+                    value: bad,
+                });
+                true
+            }
+        }
+    }
+
+    /// Whether an error was recorded.
+    pub(super) fn has_error(&self) -> bool {
+        self.error.is_some()
+    }
+
+    /// The recorded error, if any, as an `Err` (and forgotten).
+    pub(super) fn take_error(&mut self) -> Result<(), Error> {
+        match self.error.take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// Writes the row of `y` at `time` (s; default from its scaled time), unless a row at
+    /// or after its scaled time was written already or an error was recorded.
+    pub(super) fn emit<P: ForceProfile + ?Sized>(
+        &mut self,
+        units: &Units<'_, P>,
+        y: &SlidingState,
+        time: Option<f64>,
+    ) {
+        if self.error.is_some() || y.time() <= self.last_row_time {
+            return;
+        }
+        if let Some(sink) = self.sink.as_deref_mut() {
+            let row = units.row(y, time, self.theta_last);
+            if let Err(e) = sink.row(&row) {
+                self.error = Some(e);
+            }
+        }
+        self.last_row_time = y.time();
+    }
+
+    /// Whether the trace takes a row per accepted step.
+    pub(super) fn takes_steps(&self) -> bool {
+        self.steps_mode
+    }
+
+    /// Writes the row of an accepted step when the trace takes one per step.
+    pub(super) fn emit_step<P: ForceProfile + ?Sized>(
+        &mut self,
+        units: &Units<'_, P>,
+        y: &SlidingState,
+    ) {
+        if self.steps_mode {
+            self.emit(units, y, None);
+        }
+    }
+
+    /// Measures an accepted step while sliding: the drift of the slip off e0, the
+    /// consistency of the carried slip with `slip0` plus the changes, and (for a trace) the
+    /// slip angle, kept from the last step whose slip is above `slip_floor`: near the stop
+    /// the slip's direction is round-off.
+    pub(super) fn measure_sliding(
+        &mut self,
+        st: &SlidingState,
+        e0: Vector2<f64>,
+        slip0: &Vector2<f64>,
+        slip_floor: f64,
+    ) {
+        let slip = st.slip();
+        self.theta_drift = self.theta_drift.max((slip.x * e0.y - slip.y * e0.x).abs());
+        self.slip_consistency = self.slip_consistency.max(consistency(st, slip0));
+        if self.sink.is_some() && slip.norm() > slip_floor {
+            self.theta_last = Some(slip_angle(slip));
+        }
+    }
+
+    /// Measures an accepted step after the stop with friction frozen along e0 (for a trace
+    /// only): past the stop the signed slip S < 0 runs along -e0, and theta is the angle of
+    /// slip / S, measured once the slip is clear of round-off (`slip_floor`) again (an angle
+    /// kept from near the stop is noise).
+    pub(super) fn measure_frozen(&mut self, st: &SlidingState, e0: Vector2<f64>, slip_floor: f64) {
+        let slip = st.slip();
+        if self.sink.is_some() && slip.norm() > slip_floor {
+            let along = if slip.dot(&e0) < 0.0 { -slip } else { slip };
+            self.theta_last = Some(slip_angle(along));
+        }
+    }
+}
+
+/// |carried slip - (2 dV + dOmega_z, 2 dW - dOmega_y) - slip0|, scaled.
+fn consistency(st: &SlidingState, slip0: &Vector2<f64>) -> f64 {
+    let [_, dv, dw] = st.delta_u();
+    let [doy, doz] = st.delta_omega_yz();
+    let recomputed = slip0 + Vector2::new(2.0 * dv + doz, 2.0 * dw - doy);
+    (st.slip() - recomputed).amax()
+}

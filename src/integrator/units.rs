@@ -1,0 +1,81 @@
+//! From the integrator's scaled variables (docs/model.md#time-stepping) back to physical
+//! states and trace rows.
+
+use super::rhs::SlidingState;
+use crate::formats::trace::TraceRow;
+use crate::model::collision::Collision;
+use crate::model::state::CmState;
+use crate::profile::ForceProfile;
+use nalgebra::{Vector2, Vector3};
+
+/// Converts scaled states to physical ones.
+pub(super) struct Units<'a, P: ForceProfile + ?Sized> {
+    c: &'a Collision,
+    profile: &'a P,
+    /// v_ref (m/s).
+    v: f64,
+    /// v_ref / r (rad/s).
+    w: f64,
+    /// m v_ref^2 (J).
+    e: f64,
+    /// Initial sliding direction e0 (unit; zero without sliding): the sign of the slip
+    /// speed in a trace row.
+    e0: Vector2<f64>,
+}
+
+impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
+    /// The units of collision `c` with force profile `profile`.
+    pub(super) fn new(c: &'a Collision, profile: &'a P) -> Self {
+        let sc = c.scales;
+        Units {
+            c,
+            profile,
+            v: sc.speed,
+            w: sc.spin,
+            e: sc.energy,
+            e0: c.direction.unwrap_or_else(Vector2::zeros),
+        }
+    }
+
+    /// The centre-of-mass state of scaled state `y`.
+    pub(super) fn state(&self, y: &SlidingState) -> CmState {
+        let mut s = self.c.incoming;
+        let [du, dv, dw] = y.delta_u();
+        let [doy, doz] = y.delta_omega_yz();
+        s.u_cm += Vector3::new(du, dv, dw) * self.v;
+        // Eq 11: both balls' spins change by half the change of Omega.
+        let half = Vector3::new(0.0, doy, doz) * (0.5 * self.w);
+        s.omega_a += half;
+        s.omega_b += half;
+        s
+    }
+
+    /// Sliding heat H_sfr (J) of scaled state `y`.
+    pub(super) fn heat(&self, y: &SlidingState) -> f64 {
+        y.heat() * self.e
+    }
+
+    /// Signed slip speed along e0 (m/s) of scaled state `y`.
+    pub(super) fn slip_along_e0(&self, y: &SlidingState) -> f64 {
+        y.slip().dot(&self.e0) * self.v
+    }
+
+    /// The trace row of `y` at `time` (s; default the scaled time times the duration), with
+    /// slip angle `theta` (rad).
+    pub(super) fn row(&self, y: &SlidingState, time: Option<f64>, theta: Option<f64>) -> TraceRow {
+        let s = y.time();
+        let tau = self.profile.duration();
+        let p = self.c.impulse;
+        let slip = y.slip();
+        let sign = if slip.dot(&self.e0) < 0.0 { -1.0 } else { 1.0 };
+        TraceRow {
+            t: time.unwrap_or(s * tau),
+            force: p / tau * self.profile.shape(s),
+            impulse: p * self.profile.cumulative(s),
+            state: self.state(y),
+            slip_speed: sign * slip.x.hypot(slip.y) * self.v,
+            theta,
+            heat_sliding: self.heat(y),
+        }
+    }
+}
