@@ -9,7 +9,7 @@ use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
 use criterion::{black_box, criterion_group, Criterion};
 
 /// The loosest rtol = 10^-k (k = 3..13) at which `method` reaches `target`.
-fn loosest(
+pub fn loosest(
     c: &billiard_contact::Collision,
     p: &Profile,
     method: Method,
@@ -58,7 +58,7 @@ fn bench(cr: &mut Criterion) {
 
 #[path = "closed_form.rs"]
 #[allow(dead_code)]
-mod closed_form;
+pub mod closed_form;
 
 /// Criterion's wall-clock numbers, then the target case's CPU time per contact (the
 /// machine is shared: CPU time separates compute from waiting).

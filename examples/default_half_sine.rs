@@ -20,7 +20,7 @@ use std::process::ExitCode;
 /// v_ref / r): smooth inside the contact: dop853 at the default rtol 1e-10 lands near 1e-11.
 const TOLERANCE: f64 = 1e-9;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
         Profile::HalfSine(HalfSine::new(duration)?),

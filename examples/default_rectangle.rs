@@ -21,7 +21,7 @@ use std::process::ExitCode;
 /// so every method is exact up to round-off.
 const TOLERANCE: f64 = 1e-13;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
         Profile::Rectangle(Rectangle::new(duration)?),

@@ -23,7 +23,7 @@ use std::process::ExitCode;
 /// default rtol 1e-10).
 const TOLERANCE: f64 = 1e-8;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     common::run_default_with(
         Profile::SinePower(SinePower::new(duration, 1.5)?),

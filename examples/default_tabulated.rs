@@ -23,7 +23,7 @@ use std::process::ExitCode;
 /// the integrator steps to, so the result is exact up to round-off.
 const TOLERANCE: f64 = 1e-13;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let duration = Scene::default_scene().profile.duration();
     let table = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/profiles/measured_pulse.csv");
     common::run_default_with(

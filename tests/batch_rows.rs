@@ -3,10 +3,13 @@
 //! design (memory bounded by the chunk, order kept, errors naming the line).
 
 use billiard_contact::batch::{resolve_slice, run_csv, BatchInput, BatchSetup};
-use billiard_contact::run_scene;
-use billiard_contact::{ClosedForm, CmState, Collision, Method, SolverSettings};
+use billiard_contact::{CmState, Method, SolverSettings};
+
+mod common;
 use billiard_contact::{Incoming, Scene};
+use common::{half_sine_time, resolve, theta_cm, Balls, Law, Pair, Rule};
 use nalgebra::Vector3;
+use std::f64::consts::PI;
 use std::io::Read;
 use std::path::Path;
 
@@ -76,16 +79,13 @@ fn num(r: &csv::StringRecord, i: usize) -> f64 {
     r[i].parse().unwrap()
 }
 
-/// Rounding allowed between the batch kernel and `ClosedForm` (multiplication by a
-/// reciprocal against division: a few ulps of the scale).
-const ULPS: f64 = 8.0;
-
-/// Closed-form rows equal the library's closed form to a few ulps (the batch kernel
-/// multiplies by precomputed reciprocals where `ClosedForm` divides), in input order, with
-/// the id carried and the unit suffix of the header ignored; chunks of 7 rows on two
-/// threads change nothing.
+/// Closed-form rows against the first-principles resolution of tests/common (contact-point
+/// velocities, Coulomb friction, r x F torques; the stop on the half-sine at
+/// (2/pi) asin(sqrt(p_stick / P))), every output column, in input order, with the id
+/// carried and the unit suffix of the header ignored; chunks of 7 rows on two threads
+/// change nothing.
 #[test]
-fn closed_form_rows_match_the_closed_form() {
+fn closed_form_rows_match_first_principles() {
     let st = states(500);
     let text = cm_csv(&st);
     let s = setup(Method::ClosedForm);
@@ -95,51 +95,101 @@ fn closed_form_rows_match_the_closed_form() {
         .unwrap();
     let (rows, h) = pool.install(|| run(&s, &text, 7));
     assert_eq!(rows.len(), st.len());
-    let (mut sticks, mut separate) = (0, 0);
+    // The default scene: pool balls, mu 0.06, e = 1, half-sine of 2.5e-4 s.
+    let b = Balls {
+        m: 0.17,
+        r: 0.028575,
+        alpha: 0.4,
+    };
+    let law = Law::new(0.06, Rule::Restitution(1.0));
+    let tau = 2.5e-4;
+    let (mut sticks, mut separate, mut worst) = (0, 0, 0.0f64);
     for (i, (r, state)) in rows.iter().zip(&st).enumerate() {
         assert_eq!(&r[col(&h, "line")], (i + 2).to_string().as_str());
         assert_eq!(&r[col(&h, "id")], format!("r{i}").as_str());
-        let c = Collision::new(s.ball, s.contact, s.effects, *state).unwrap();
-        let cf = ClosedForm::new(&c);
-        let out = [
-            cf.result.out.u_cm,
-            cf.result.out.omega_a,
-            cf.result.out.omega_b,
+        let pair = Pair::cm(state.u_cm, state.omega_a, state.omega_b);
+        let want = resolve(&b, &law, &pair);
+        let v = pair.v_ref(b.r);
+        // (column, expected, scale)
+        let mut cells = vec![
+            ("impulse", want.impulse, b.m * v),
+            ("s0", want.s0, v),
+            ("tangential_impulse", want.tangential, b.m * v),
+            ("s_out", want.s_out, v),
+            ("heat", want.heat, b.m * v * v),
+            ("heat_sliding", want.heat_sliding, b.m * v * v),
         ];
-        let scale = [c.scales.speed, c.scales.spin, c.scales.spin];
-        for (k, name) in ["u_", "omega_a_", "omega_b_"].iter().enumerate() {
-            for (j, axis) in ["x", "y", "z"].iter().enumerate() {
-                let got = num(r, col(&h, &format!("{name}{axis}")));
-                assert!(
-                    (got - out[k][j]).abs() <= ULPS * f64::EPSILON * scale[k],
-                    "row {i} {name}{axis}: {got} vs {}",
-                    out[k][j]
-                );
+        let out = [0.5 * (want.out.va - want.out.vb), want.out.wa, want.out.wb];
+        let names = ["u_", "omega_a_", "omega_b_"];
+        let axes = ["x", "y", "z"];
+        let mut names_xyz = Vec::new();
+        for (k, name) in names.iter().enumerate() {
+            for (j, axis) in axes.iter().enumerate() {
+                names_xyz.push((
+                    format!("{name}{axis}"),
+                    out[k][j],
+                    if k == 0 { v } else { v / b.r },
+                ));
             }
         }
-        assert_eq!(num(r, col(&h, "impulse")), c.impulse);
-        let heat = num(r, col(&h, "heat"));
-        assert!((heat - cf.result.heat).abs() <= ULPS * f64::EPSILON * c.scales.energy);
-        assert_eq!(&r[col(&h, "sticks")], cf.result.sticks.to_string().as_str());
-        sticks += usize::from(cf.result.sticks);
-        separate += usize::from(!c.collides());
-        if !c.collides() {
+        for (name, x, scale) in &names_xyz {
+            cells.push((name.as_str(), *x, *scale));
+        }
+        for (name, x, scale) in cells {
+            let got = num(r, col(&h, name));
+            let d = (got - x).abs() / scale;
+            worst = worst.max(d);
+            assert!(d <= ROW_TOL, "row {i} {name}: {got} vs {x}");
+        }
+        assert_eq!(
+            &r[col(&h, "collision")],
+            want.collision.to_string().as_str()
+        );
+        assert_eq!(&r[col(&h, "sticks")], want.sticks.to_string().as_str());
+        match theta_cm(&pair, b.r) {
+            Some(t) => assert!((num(r, col(&h, "theta")) - t).abs() <= 4.0 * f64::EPSILON * PI),
+            None => assert_eq!(&r[col(&h, "theta")], ""),
+        }
+        if want.sticks && want.s0 > 0.0 {
+            let ps = want.p_stick.unwrap();
+            let got = num(r, col(&h, "stick_impulse"));
+            assert!(
+                (got - ps).abs() <= ROW_TOL * want.impulse,
+                "row {i}: {got} vs {ps}"
+            );
+            let t = tau * half_sine_time(ps / want.impulse);
+            let got = num(r, col(&h, "stick_time"));
+            assert!(
+                (got - t).abs() <= ROW_TOL * tau,
+                "row {i}: stick_time {got} vs {t}"
+            );
+        }
+        sticks += usize::from(want.sticks);
+        separate += usize::from(!want.collision);
+        if !want.collision {
             assert_eq!(&r[col(&h, "stick_time")], "");
             assert_eq!(&r[col(&h, "stick_impulse")], "");
         }
     }
+    eprintln!("worst scaled difference from first principles: {worst:e}");
     assert!(
         sticks > 10 && separate > 10 && sticks + separate < 490,
         "{sticks} {separate}"
     );
 }
 
+/// Closed-form rows against first principles, scaled by m v_ref, v_ref, m v_ref^2:
+/// observed worst 5.8e-16 over the 500 rows.
+const ROW_TOL: f64 = 6e-15;
+
 /// The paper's special case (eqs 59-72): a ball rolling with (u, v) into a ball at rest,
 /// CM frame: U = (u/2, v/2, 0), Omega^A = (-v/r, u/r, 0). Expected: eqs 66-68.
 #[test]
 fn paper_special_case_row() {
     let s = setup(Method::ClosedForm);
-    let (m, r, mu) = (s.ball.mass(), s.ball.radius(), 0.06);
+    // mu 0.1 as a row override (the scene has 0.06): still sliding throughout (eq 57:
+    // u / sqrt(u^2 + v^2) = 0.894 < 1 / (7 mu) = 1.43).
+    let (m, r, mu) = (s.ball.mass(), s.ball.radius(), 0.1);
     assert_eq!(s.ball.mass(), 0.17);
     let (u, v) = (1.0, 0.5);
     let text = format!(
@@ -158,9 +208,10 @@ fn paper_special_case_row() {
     assert!((num(row, col(&h, "impulse")) - 2.0 * m * u / 2.0).abs() < 1e-15);
 }
 
-/// A lab row of the default scene gives the scene runner's lab outcome.
+/// A lab row of the default scene against first principles in the lab frame (any frame:
+/// tests/common), with the throw angle of docs/model.md#throw-angle.
 #[test]
-fn lab_rows_match_the_scene_runner() {
+fn lab_rows_match_first_principles() {
     let scene = Scene::default_scene();
     let Incoming::Lab(lab) = scene.incoming else {
         panic!("lab scene")
@@ -180,30 +231,55 @@ fn lab_rows_match_the_scene_runner() {
     .collect();
     text += &cells.join(",");
     text.push('\n');
-    for method in [Method::ClosedForm, Method::Dop853] {
+    // First principles in the lab frame: n from A's centre to B's.
+    let pair = Pair {
+        n: (lab.b.position - lab.a.position).normalize(),
+        va: lab.a.velocity,
+        wa: lab.a.spin,
+        vb: lab.b.velocity,
+        wb: lab.b.spin,
+    };
+    let b = Balls {
+        m: 0.17,
+        r: 0.028575,
+        alpha: 0.4,
+    };
+    let want = resolve(&b, &Law::new(0.06, Rule::Restitution(1.0)), &pair).out;
+    let v = pair.v_ref(b.r);
+    // docs/model.md#throw-angle: from the line of centres (+x) to B's velocity change,
+    // counter-clockwise about up = +z.
+    let dvb = want.vb - pair.vb;
+    let throw_want = dvb.y.atan2(dvb.x).to_degrees();
+    for (method, tol) in [(Method::ClosedForm, ROW_TOL), (Method::Dop853, DOP853_TOL)] {
         let s = setup(method);
         let (rows, h) = run(&s, &text, 4);
-        let so = run_scene(&scene, &s.settings, None).unwrap();
-        let (a, b) = so.lab_out.unwrap();
-        let want = [a.velocity, a.spin, b.velocity, b.spin];
+        let expect = [want.va, want.wa, want.vb, want.wb];
         for (k, name) in ["a_v", "a_w", "b_v", "b_w"].iter().enumerate() {
+            let scale = if k % 2 == 0 { v } else { v / b.r };
             for (j, axis) in ["x", "y", "z"].iter().enumerate() {
                 let got = num(&rows[0], col(&h, &format!("{name}{axis}")));
                 assert!(
-                    (got - want[k][j]).abs() <= 1e-12 * (1.0 + want[k][j].abs()),
+                    (got - expect[k][j]).abs() <= tol * scale,
                     "{method} {name}{axis}: {got} vs {}",
-                    want[k][j]
+                    expect[k][j]
                 );
             }
         }
         let throw = num(&rows[0], col(&h, "throw_angle_deg"));
-        assert!((throw - so.throw_angle_deg.unwrap()).abs() < 1e-9);
+        // d(throw) ~ |d(dv)| / |dv| rad.
+        assert!(
+            (throw - throw_want).abs() <= 1e3 * tol,
+            "{method} throw {throw} vs {throw_want}"
+        );
         if method == Method::Dop853 {
-            assert!(num(&rows[0], col(&h, "closed_form_error")) < 1e-9);
+            assert!(num(&rows[0], col(&h, "closed_form_error")) <= DOP853_TOL);
             assert!(num(&rows[0], col(&h, "rhs_evaluations")) > 0.0);
         }
     }
 }
+
+/// dop853 at rtol = atol = 1e-11 against the exact state (scaled): observed MEASURED2.
+const DOP853_TOL: f64 = 3e-10;
 
 /// dop853 rows (rtol 1e-11) agree with the closed form through the in-memory path, sticking
 /// and sliding rows alike within 3e-10 (sticking rows once reached a few 1e-9: a stage of the

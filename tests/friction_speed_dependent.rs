@@ -12,6 +12,9 @@
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
+#[path = "common/hard.rs"]
+mod common;
+
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::Effects;
@@ -90,6 +93,24 @@ fn k() -> f64 {
 }
 
 /// The closed form of G against the independent quadrature.
+/// The slide potential the other tests use as a reference (tests/common/hard.rs, written
+/// from its derivation) against the quadrature here, with its inverse and its limits.
+#[test]
+fn reference_slide_potential_matches_quadrature() {
+    for s in [1e-9, 1e-3, 0.1, 1.0, 5.0] {
+        let g = common::slide_potential(A, B, C, s);
+        let q = g_quad(s);
+        assert!((g - q).abs() <= 1e-14 * q, "S = {s}: {g:e} vs {q:e}");
+        let back = common::slip_of_potential(A, B, C, g);
+        assert!((back - s).abs() <= 1e-14 * s, "S = {s}: inverse {back:e}");
+    }
+    // c = 0: constant mu = a + b; a = 0: (e^(cS) - 1) / (b c).
+    assert!((common::slide_potential(A, B, 0.0, 2.0) - 2.0 / (A + B)).abs() <= 1e-15 * 20.0);
+    let g = common::slide_potential(0.0, B, C, 2.0);
+    assert!((g - (C * 2.0).exp_m1() / (B * C)).abs() <= 1e-14 * g);
+    assert!((common::slip_of_potential(0.0, B, C, g) - 2.0).abs() <= 1e-14);
+}
+
 #[test]
 fn closed_form_of_the_slide_potential_matches_quadrature() {
     let f = Friction::speed_dependent(A, B, C).unwrap();

@@ -3,7 +3,7 @@
 //! Notation: lab frame, up n = +z, cloth at z = 0, m = 0.17 kg, r = 0.028575 m, solid ball
 //! alpha = 2/5, slip of the contact point u = v_h - r (w x n).
 
-mod common;
+mod scenes;
 
 use billiard_contact::run_scene;
 use billiard_contact::table_phase::{
@@ -11,8 +11,8 @@ use billiard_contact::table_phase::{
 };
 use billiard_contact::Ball;
 use billiard_contact::LabBall;
-use common::{cue, lab_scene, M, R};
 use nalgebra::Vector3;
+use scenes::{cue, lab_scene, M, R};
 
 /// Relative tolerance of closed-form arithmetic (a few dozen operations).
 const EXACT: f64 = 1e-13;

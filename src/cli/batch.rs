@@ -59,9 +59,7 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
     if let Some(n) = args.threads {
         pool = pool.num_threads(n);
     }
-    let pool = pool
-        .build()
-        .map_err(|e| Error::io("thread pool", std::io::Error::other(e.to_string())))?;
+    let pool = pool.build()?;
     let bar = progress_bar(size, "{elapsed:>4} [{bar:40}] {bytes}/{total_bytes} {msg}");
     let start = std::time::Instant::now();
     let out = AtomicFile::create(&args.out)?;

@@ -212,7 +212,9 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
         // at S = 0 inside that step, costing rejected steps and slow event location. At the
         // located stop the two agree. Below the round-off floor the slip's direction is
         // noise and e0, the exact direction, is used. Frozen (stick = false) is physical
-        // beyond the stop: mu of the sliding speed |S|.
+        // beyond the stop: mu of the sliding speed |S|. A signed slip past the stop takes
+        // `mu_continued`, which stays bounded: the analytic continuation a + b e^(c |S|)
+        // overflowed in the stages of a coarse rk4 step that overshot the stop.
         let (e, s_mu) = match self.direction {
             Direction::CurrentSlip if speed > self.slip_floor => {
                 if slip.dot(&self.e0) < 0.0 {
@@ -224,7 +226,7 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
             Direction::CurrentSlip => (self.e0, slip.dot(&self.e0)),
             Direction::Frozen => (self.e0, speed),
         };
-        let fr = self.friction.mu(s_mu * self.speed_scale) * n;
+        let fr = self.friction.mu_continued(s_mu * self.speed_scale) * n;
         let spin = 2.0 * fr * self.inv_alpha;
         let slip_rate = 2.0 * fr * (1.0 + self.inv_alpha);
         *dy = SVector::from([

@@ -191,34 +191,44 @@ impl SolverSettings {
 }
 
 fn check_rtol(rtol: f64) -> Result<f64, Error> {
-    if rtol.is_finite() && RTOL_RANGE.contains(&rtol) {
-        Ok(rtol)
-    } else {
-        Err(Error::invalid(
-            "solver.rtol",
-            rtol,
-            "in [1e-15, 0.1] (double precision ends near 1e-15)",
-        ))
-    }
+    accepted(
+        rtol.is_finite() && RTOL_RANGE.contains(&rtol),
+        "solver.rtol",
+        rtol,
+        "in [1e-15, 0.1] (double precision ends near 1e-15)",
+    )
 }
 
 fn check_atol(atol: f64) -> Result<f64, Error> {
-    if atol.is_finite() && atol > 0.0 && atol <= ATOL_MAX {
-        Ok(atol)
-    } else {
-        Err(Error::invalid(
-            "solver.atol",
-            atol,
-            "in (0, 0.1], on the scaled variables (speeds over v_ref)",
-        ))
-    }
+    accepted(
+        atol.is_finite() && atol > 0.0 && atol <= ATOL_MAX,
+        "solver.atol",
+        atol,
+        "in (0, 0.1], on the scaled variables (speeds over v_ref)",
+    )
 }
 
 fn check_steps(steps: u32) -> Result<u32, Error> {
-    if STEPS_RANGE.contains(&steps) {
-        Ok(steps)
+    accepted(
+        STEPS_RANGE.contains(&steps),
+        "solver.steps",
+        steps,
+        "in [1, 1e9]",
+    )
+}
+
+/// `value` when it is `ok`, else [`Error::InvalidParameter`] naming `field` and what is
+/// `expected`.
+fn accepted<T: std::fmt::Display>(
+    ok: bool,
+    field: &str,
+    value: T,
+    expected: &str,
+) -> Result<T, Error> {
+    if ok {
+        Ok(value)
     } else {
-        Err(Error::invalid("solver.steps", steps, "in [1, 1e9]"))
+        Err(Error::invalid(field, value, expected))
     }
 }
 

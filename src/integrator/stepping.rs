@@ -57,15 +57,16 @@ const DOP853_CONTROL: StepControl = StepControl {
 /// Output interval of the dense output: unused, the output is sparse (accepted steps only).
 const NO_DENSE_OUTPUT: f64 = 0.0;
 
-/// A span at most this many ulps of its start is nothing to integrate. Dopri5 and Dop853
-/// give up with a step-size underflow when 0.1 h <= eps |x|, i.e. h <= 10 eps |x|: below
-/// that the state moves by at most a rounding error.
+/// A span [a, b] with b - a at most this many times eps |a| is nothing to integrate: it is
+/// below the step-size floor of Dopri5 and Dop853 (they give up with a step-size underflow
+/// when 0.1 h <= eps |x|, i.e. h <= 10 eps |x|), and the state moves by at most a rounding
+/// error.
 const NEGLIGIBLE_SPAN_ULPS: f64 = 16.0;
 
 /// Relative size (against the scaled time) of a span the adaptive methods cannot step: it
 /// is taken in one classical RK4 step, exact to O(span^5) on a smooth segment (a stick event
-/// or a sample a few ulps from a breakpoint). It is 1e5 times the adaptive methods' floor
-/// of 10 eps |x|, so that the step they would need is well above it.
+/// or a sample a few ulps from a breakpoint). It is about 450 times the adaptive methods'
+/// floor of 10 eps |x|, so that every step they are given is well above that floor.
 const ROUND_OFF_SPAN: f64 = 1e-12;
 
 /// Slack subtracted before rounding a segment's share of the rk4 steps up: a share that is

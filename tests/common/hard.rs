@@ -42,6 +42,34 @@ pub struct Exact {
     pub e: [f64; 2],
     /// p_stick (N s), infinite without friction.
     pub p_stick: f64,
+    /// (a, b, c) of a speed-dependent mu(S) = a + b exp(-c S) (c in s/m); `None`: constant
+    /// `mu`. With it, `mu` is mu(0) = a + b.
+    pub speed_law: Option<(f64, f64, f64)>,
+}
+
+/// The slide potential G(S) = integral_0^S dS' / mu(S') of mu(S) = a + b exp(-c S), derived
+/// here: 1/mu = e^(cS) / (a e^(cS) + b), so G = ln(1 + a (e^(cS) - 1) / (a + b)) / (a c),
+/// written with ln_1p / expm1 so that a -> 0 (G = (e^(cS) - 1) / ((a + b) c)) and c -> 0
+/// (G = S / (a + b)) keep their digits. Checked against quadrature in
+/// tests/friction_speed_dependent.rs.
+pub fn slide_potential(a: f64, b: f64, c: f64, s: f64) -> f64 {
+    let cs = c * s;
+    let em1_over_c = if cs == 0.0 { s } else { cs.exp_m1() / c };
+    let x = a * c * em1_over_c / (a + b);
+    let ln1p_over_x = if x == 0.0 { 1.0 } else { x.ln_1p() / x };
+    ln1p_over_x * em1_over_c / (a + b)
+}
+
+/// The slip S with G(S) = g (the inverse of [`slide_potential`]):
+/// S = ln(1 + (a + b) (e^(a c g) - 1) / a) / c, with the same limits.
+pub fn slip_of_potential(a: f64, b: f64, c: f64, g: f64) -> f64 {
+    let z = a * c * g;
+    let em1_over_z = if z == 0.0 { 1.0 } else { z.exp_m1() / z };
+    // y / c with y = (a + b) (e^z - 1) / a.
+    let y_over_c = em1_over_z * g * (a + b);
+    let y = y_over_c * c;
+    let ln1p_over_y = if y == 0.0 { 1.0 } else { y.ln_1p() / y };
+    ln1p_over_y * y_over_c
 }
 
 /// The state and sliding after a normal impulse p.
@@ -92,7 +120,29 @@ impl Exact {
             s0,
             e,
             p_stick,
+            speed_law: None,
         }
+    }
+
+    /// The same with mu(S) = a + b exp(-c S): dS/dp = -k mu(S) (eqs 25-33 along e0) gives
+    /// G(S(0)) - G(S(p)) = k p, so sliding stops at p_stick = G(S(0)) / k, and the
+    /// tangential impulse is J = (S(0) - S(p)) / k; the heat of eq 49 is
+    /// integral S dJ = J S(0) - k J^2 / 2, the same expression in J as for constant mu.
+    pub fn speed_dependent(
+        m: f64,
+        r: f64,
+        alpha: f64,
+        (a, b, c): (f64, f64, f64),
+        e_rest: f64,
+        impulse: Option<f64>,
+        incoming: CmState,
+    ) -> Self {
+        let mut x = Exact::new(m, r, alpha, a + b, e_rest, impulse, incoming);
+        x.speed_law = Some((a, b, c));
+        if x.s0 > 0.0 && a + b > 0.0 {
+            x.p_stick = slide_potential(a, b, c, x.s0) / x.k();
+        }
+        x
     }
 
     pub fn k(&self) -> f64 {
@@ -106,10 +156,14 @@ impl Exact {
     /// The exact state after normal impulse `p`.
     pub fn at(&self, p: f64) -> ExactAt {
         let (m, r, alpha) = (self.m, self.r, self.alpha);
-        let j = if self.mu > 0.0 && self.s0 > 0.0 {
-            self.mu * p.min(self.p_stick)
-        } else {
-            0.0
+        let j = match self.speed_law {
+            _ if self.mu <= 0.0 || self.s0 == 0.0 => 0.0,
+            None => self.mu * p.min(self.p_stick),
+            Some(_) if p >= self.p_stick => self.s0 / self.k(),
+            Some((a, b, c)) => {
+                let g = slide_potential(a, b, c, self.s0) - self.k() * p;
+                (self.s0 - slip_of_potential(a, b, c, g)) / self.k()
+            }
         };
         let mut s = self.incoming;
         s.u_cm.x -= p / m;
@@ -160,6 +214,46 @@ impl Exact {
             .max((got.omega_a - want.omega_a).amax() / w)
             .max((got.omega_b - want.omega_b).amax() / w)
     }
+}
+
+#[path = "mod.rs"]
+mod first_principles;
+
+/// Phi(s) of the Hertz pulse: the inverse of tests/common's `hertz_time`, the quadrature of
+/// the energy integral of delta'' = -delta^(3/2) (not the library's `Hertz`), by the
+/// Illinois variant of regula falsi (a dozen evaluations where bisection takes 50).
+pub fn hertz_phi(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    let g = |q: f64| first_principles::hertz_time(q) - s;
+    let (mut a, mut b, mut ga, mut gb) = (0.0, 1.0, -s, 1.0 - s);
+    if ga == 0.0 {
+        return 0.0;
+    }
+    if gb == 0.0 {
+        return 1.0;
+    }
+    let mut side = 0;
+    for _ in 0..100 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        let gc = g(c);
+        if gc == 0.0 || (b - a).abs() <= 4.0 * f64::EPSILON {
+            return c;
+        }
+        if (gc < 0.0) == (ga < 0.0) {
+            (a, ga) = (c, gc);
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        } else {
+            (b, gb) = (c, gc);
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    0.5 * (a + b)
 }
 
 /// Phi(s) of the half-sine: sin^2(pi s / 2).
@@ -414,9 +508,9 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
 }
 
-#[path = "quadrature.rs"]
-mod quadrature;
-pub use quadrature::gauss_legendre;
+// The one copy of the nodes: through tests/common/mod.rs (loading quadrature.rs twice is
+// a duplicate module).
+pub use first_principles::gauss_legendre;
 
 /// Composite Gauss-Legendre quadrature of `f` over [a, b].
 pub fn quad(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {

@@ -9,10 +9,6 @@
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
-pub mod scenes;
-#[allow(unused_imports)]
-pub use scenes::*;
-
 // ---------------------------------------------------------------------------------------
 // The collision from first principles
 // ---------------------------------------------------------------------------------------
@@ -385,7 +381,8 @@ fn hertz_f_split(x: f64, one_minus_x: f64) -> f64 {
             24,
         )
     };
-    let whole = near_zero(0.64) + near_top(0.6);
+    static WHOLE: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    let whole = *WHOLE.get_or_init(|| near_zero(0.64) + near_top(0.6));
     if x <= 0.64 {
         near_zero(x)
     } else {
@@ -395,7 +392,8 @@ fn hertz_f_split(x: f64, one_minus_x: f64) -> f64 {
 
 /// F(1) = (2/5) B(2/5, 1/2): the half contact time over delta_max.
 pub fn hertz_half() -> f64 {
-    hertz_f(1.0)
+    static HALF: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    *HALF.get_or_init(|| hertz_f(1.0))
 }
 
 /// Hertz pulse: the scaled time s = t/tau at which p = q P. For q <= 1/2, delta' = w = 1 - 2q,

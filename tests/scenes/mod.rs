@@ -1,4 +1,7 @@
-//! Scene builders (lab scenes on a level table) shared by the integration tests.
+//! Scene builders (lab scenes on a level table) shared by the integration tests. They build
+//! inputs through the library's `Scene::parse`, so they live apart from the independent
+//! references in tests/common.
+#![allow(dead_code)]
 
 use billiard_contact::Scene;
 use std::path::Path;
