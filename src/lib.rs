@@ -15,8 +15,8 @@
 //! **One collision in memory**: build a [`Collision`] from the balls ([`Ball`]), the contact
 //! ([`Contact`]: friction and impulse rule), the [`Effects`] to simulate and the incoming
 //! centre-of-mass state ([`CmState`]), then [`solve`] it with a force [`profile`] and
-//! [`SolverSettings`]. The [`Outcome`] holds the outgoing state, the impulse, the stick event
-//! and the checks.
+//! [`SolverSettings`]. The [`Outcome`] holds the [`ContactResult`] (outgoing state, impulse,
+//! sliding, heat), the stick time and the checks.
 //!
 //! ```
 //! use billiard_contact::nalgebra::Vector3;
@@ -103,7 +103,8 @@ pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::material::{HertzContact, Material};
 pub use model::params::{
-    Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID,
+    MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

@@ -156,9 +156,9 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
     }
     let b = setup.ball;
     let ball = Ball::new(
-        o.mass.unwrap_or(b.mass),
-        o.radius.unwrap_or(b.radius),
-        o.alpha.unwrap_or(b.alpha),
+        o.mass.unwrap_or(b.mass()),
+        o.radius.unwrap_or(b.radius()),
+        o.alpha.unwrap_or(b.alpha()),
     )?;
     let friction = match o.mu {
         Some(mu) => Friction::constant(mu)?,
@@ -218,7 +218,7 @@ fn resolve_with(
     input: &BatchInput,
 ) -> Result<BatchOutput, Error> {
     let (ball, contact) = params_of(setup, &input.overrides)?;
-    let (cm, lab) = input.incoming.to_cm(ball.radius)?;
+    let (cm, lab) = input.incoming.to_cm(ball.radius())?;
     let profile = &setup.profile;
     let time_scale = row_duration(setup, &input.overrides, &ball, &cm)?;
     let mut out = if setup.settings.method() == Method::ClosedForm {

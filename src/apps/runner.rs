@@ -40,7 +40,7 @@ pub fn run_scene(
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
             let (a, b) = frame.to_lab(&out);
-            let m = scene.ball.mass;
+            let m = scene.ball.mass();
             let dp = (m * (a.velocity + b.velocity) - m * (lab.a.velocity + lab.b.velocity)).amax();
             let err = if dp == 0.0 {
                 0.0

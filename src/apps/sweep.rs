@@ -252,7 +252,7 @@ pub struct Shot {
 impl Shot {
     /// The lab scene of this shot for balls `ball` (module documentation).
     pub fn lab_scene(&self, ball: &Ball) -> LabScene {
-        let r = ball.radius;
+        let r = ball.radius();
         let v = self.speed;
         let (sin, cos) = self.cut_deg.to_radians().sin_cos();
         let a = Vector3::new(0.0, 0.0, r);
@@ -489,12 +489,12 @@ mod tests {
         };
         let lab = shot.lab_scene(&ball);
         let d = lab.b.position - lab.a.position;
-        assert!((d.norm() - 2.0 * ball.radius).abs() < 1e-15);
+        assert!((d.norm() - 2.0 * ball.radius()).abs() < 1e-15);
         assert!((d.x / d.norm() + 0.5).abs() < 1e-15);
         // Rolling: v = omega x (r up) at the contact with the cloth is matched, v = -omega_x r.
-        assert!((lab.a.spin.x * ball.radius + 2.0).abs() < 1e-13);
+        assert!((lab.a.spin.x * ball.radius() + 2.0).abs() < 1e-13);
         // Negative cut: inside English is clockwise seen from above.
-        assert!((lab.a.spin.z * ball.radius + 1.0).abs() < 1e-13);
+        assert!((lab.a.spin.z * ball.radius() + 1.0).abs() < 1e-13);
     }
 
     #[test]

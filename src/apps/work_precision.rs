@@ -31,7 +31,8 @@ use crate::formats::number::shortest;
 use crate::formats::scene::{Scene, SolverOverrides};
 use crate::integrator::{Method, SolverSettings, Stats};
 use crate::profile::{
-    parse_table, ForceProfile, HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated,
+    parse_table, ForceProfile, HalfSine, Hertz, Profile, ProfileKind, Rectangle, SinePower,
+    Tabulated,
 };
 use std::hint::black_box;
 use std::io::{Read, Write};
@@ -71,71 +72,35 @@ pub const STICKING_SCENE: &str = include_str!("../../data/scenes/stun_cut_sticks
 /// (`data/profiles/measured_pulse.csv`, stretched to the scene's duration).
 pub const MEASURED_PULSE: &str = include_str!("../../data/profiles/measured_pulse.csv");
 
-/// The profiles of the study.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ProfileKind {
-    /// `half-sine`.
-    HalfSine,
-    /// `hertz`.
-    Hertz,
-    /// `sine-power` with exponent 1.5.
-    SinePower,
-    /// `rectangle`.
-    Rectangle,
-    /// `tabulated` (the scene's points, or [`MEASURED_PULSE`]).
-    Tabulated,
-}
-
-impl ProfileKind {
-    /// All profiles, in the order of the figure's panels.
-    pub const ALL: [ProfileKind; 5] = [
-        ProfileKind::HalfSine,
-        ProfileKind::Hertz,
-        ProfileKind::SinePower,
-        ProfileKind::Rectangle,
-        ProfileKind::Tabulated,
-    ];
-
-    /// The name in scene files and in the CSV.
-    pub fn name(&self) -> &'static str {
-        match self {
-            ProfileKind::HalfSine => "half-sine",
-            ProfileKind::Hertz => "hertz",
-            ProfileKind::SinePower => "sine-power",
-            ProfileKind::Rectangle => "rectangle",
-            ProfileKind::Tabulated => "tabulated",
-        }
-    }
-
-    /// The profile of this kind with the duration of `scene`'s profile; the scene's own
-    /// profile when it is of this kind (its points, its exponent).
-    pub fn build(&self, scene: &Scene) -> Result<Profile, Error> {
-        let own = &scene.profile;
-        if own.name() == self.name() {
-            if let Profile::SinePower(p) = own {
-                if p.exponent() == crate::profile::DEFAULT_SINE_POWER_EXPONENT {
-                    return Ok(own.clone());
-                }
-            } else {
+/// The profile of kind `kind` run by the study of `scene`: with the duration of the scene's
+/// profile; the scene's own profile when it is of this kind (its points, its exponent 1.5);
+/// `tabulated` without the scene's points uses [`MEASURED_PULSE`], `sine-power` exponent 1.5.
+pub fn study_profile(kind: ProfileKind, scene: &Scene) -> Result<Profile, Error> {
+    let own = &scene.profile;
+    if own.kind() == kind {
+        if let Profile::SinePower(p) = own {
+            if p.exponent() == crate::profile::DEFAULT_SINE_POWER_EXPONENT {
                 return Ok(own.clone());
             }
+        } else {
+            return Ok(own.clone());
         }
-        let tau = own.duration();
-        Ok(match self {
-            ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(tau)?),
-            ProfileKind::Hertz => Profile::Hertz(Hertz::new(tau)?),
-            ProfileKind::SinePower => Profile::SinePower(SinePower::new(
-                tau,
-                crate::profile::DEFAULT_SINE_POWER_EXPONENT,
-            )?),
-            ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(tau)?),
-            ProfileKind::Tabulated => {
-                let source = Path::new("data/profiles/measured_pulse.csv");
-                let points = parse_table(MEASURED_PULSE, source)?;
-                Profile::Tabulated(Tabulated::new(&points, Some(tau), source)?)
-            }
-        })
     }
+    let tau = own.duration();
+    Ok(match kind {
+        ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(tau)?),
+        ProfileKind::Hertz => Profile::Hertz(Hertz::new(tau)?),
+        ProfileKind::SinePower => Profile::SinePower(SinePower::new(
+            tau,
+            crate::profile::DEFAULT_SINE_POWER_EXPONENT,
+        )?),
+        ProfileKind::Rectangle => Profile::Rectangle(Rectangle::new(tau)?),
+        ProfileKind::Tabulated => {
+            let source = Path::new("data/profiles/measured_pulse.csv");
+            let points = parse_table(MEASURED_PULSE, source)?;
+            Profile::Tabulated(Tabulated::new(&points, Some(tau), source)?)
+        }
+    })
 }
 
 /// What the study runs.
@@ -317,7 +282,7 @@ pub fn plan(scenes: &[Scene], options: &StudyOptions) -> Result<Vec<Job>, Error>
     let mut jobs = Vec::new();
     for (i, scene) in scenes.iter().enumerate() {
         for kind in &options.profiles {
-            let profile = kind.build(scene)?;
+            let profile = study_profile(*kind, scene)?;
             for setting in settings_for(&profile, options) {
                 jobs.push(Job {
                     scene: i,

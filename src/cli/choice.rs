@@ -2,7 +2,7 @@
 //! library's own lists ([`Method::ALL`], [`ProfileKind::ALL`]) and names, so that each name
 //! is defined once and clap lists the accepted values in the help and in its errors.
 
-use billiard_contact::work_precision::ProfileKind;
+use billiard_contact::profile::ProfileKind;
 use billiard_contact::Method;
 use clap::builder::{EnumValueParser, PossibleValue, TypedValueParser};
 use clap::ValueEnum;

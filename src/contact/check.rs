@@ -48,7 +48,7 @@ pub fn checks(
 ) -> Checks {
     let sc = c.scales;
     let ratio = |d: f64, r: f64| if d == 0.0 { 0.0 } else { d / r };
-    let m = c.ball.mass;
+    let m = c.ball.mass();
     let e = c.direction.unwrap_or_default();
     let applied = -Vector3::new(c.impulse, j * e.x, j * e.y);
     let momentum = (m * (out.u_cm - c.incoming.u_cm) - applied).amax();

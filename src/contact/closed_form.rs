@@ -22,7 +22,7 @@ use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::model::params::{Ball, Contact, Friction, FrictionLaw, ImpulseRule};
 use crate::model::state::{planar_length, slip_angle, CmState};
 use nalgebra::Vector2;
 
@@ -70,7 +70,7 @@ impl ClosedForm {
     #[inline]
     pub fn new(c: &Collision) -> Self {
         let ball = c.ball;
-        let m = ball.mass;
+        let m = ball.mass();
         let law = match (c.collides(), c.active_friction()) {
             (true, Some(f)) => Some(SlidingLaw::new(
                 f,
@@ -97,7 +97,7 @@ impl ClosedForm {
             incoming: c.incoming,
             direction: c.direction.unwrap_or_else(Vector2::zeros),
             mass: m,
-            spin_per_impulse: 1.0 / (ball.alpha * m * ball.radius),
+            spin_per_impulse: 1.0 / (ball.alpha() * m * ball.radius()),
             u0: c.incoming.u_cm.x,
         };
         if !c.collides() {
@@ -224,12 +224,12 @@ impl ClosedFormBatch {
             effects,
             k: ball.slip_rate_per_friction_impulse(),
             inv_k: 1.0 / ball.slip_rate_per_friction_impulse(),
-            inv_k_mu: match f {
-                Friction::Constant(mu) => 1.0 / (ball.slip_rate_per_friction_impulse() * mu),
-                Friction::SpeedDependent { .. } => f64::INFINITY,
+            inv_k_mu: match f.law() {
+                FrictionLaw::Constant(mu) => 1.0 / (ball.slip_rate_per_friction_impulse() * mu),
+                FrictionLaw::SpeedDependent { .. } => f64::INFINITY,
             },
-            inv_m: 1.0 / ball.mass,
-            spin_per_impulse: 1.0 / (ball.alpha * ball.mass * ball.radius),
+            inv_m: 1.0 / ball.mass(),
+            spin_per_impulse: 1.0 / (ball.alpha() * ball.mass() * ball.radius()),
         }
     }
 
@@ -239,13 +239,13 @@ impl ClosedFormBatch {
         if !s.is_finite() {
             return Err(self.invalid(s));
         }
-        let m = self.ball.mass;
+        let m = self.ball.mass();
         let u0 = s.u_cm.x;
         let p = self.rule.impulse(m, u0)?;
-        if let (Some(Friction::Constant(mu)), true) = (self.friction, p > 0.0) {
+        if let (Some(FrictionLaw::Constant(mu)), true) = (self.friction.map(|f| f.law()), p > 0.0) {
             return Ok(self.resolve_constant_mu(s, mu, p));
         }
-        let slip = s.slip(self.ball.radius);
+        let slip = s.slip(self.ball.radius());
         let s0 = planar_length(slip);
         let theta = (s0 > 0.0).then(|| slip_angle(slip));
         let law = match self.friction {
@@ -298,7 +298,7 @@ impl ClosedFormBatch {
     /// reciprocals of m, k and k mu precomputed (multiplications instead of divisions).
     #[inline(always)]
     fn resolve_constant_mu(&self, s: &CmState, mu: f64, p: f64) -> ContactResult {
-        let slip = s.slip(self.ball.radius);
+        let slip = s.slip(self.ball.radius());
         let s0 = planar_length(slip);
         let (theta, e, p_stick) = if s0 > 0.0 {
             (

@@ -23,7 +23,7 @@
 //! With the effect `stick = false` friction keeps acting along the initial direction
 //! (the paper's formulas literally) and the signed slip goes negative, with mu(|S|).
 
-use crate::model::params::Friction;
+use crate::model::params::{Friction, FrictionLaw};
 
 /// The state of sliding after a normal impulse p.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,8 +84,8 @@ impl SlidingLaw {
             };
         }
         let past = p >= self.p_stick;
-        let (j, slip) = match self.friction {
-            Friction::Constant(mu) => {
+        let (j, slip) = match self.friction.law() {
+            FrictionLaw::Constant(mu) => {
                 if past && self.stick {
                     (s0 / k, 0.0)
                 } else {
@@ -93,7 +93,8 @@ impl SlidingLaw {
                     (mu * p, s0 - k * mu * p)
                 }
             }
-            f @ Friction::SpeedDependent { .. } => {
+            FrictionLaw::SpeedDependent { .. } => {
+                let f = self.friction;
                 let g0 = f.slide_potential(s0);
                 if past && self.stick {
                     (s0 / k, 0.0)
@@ -137,9 +138,9 @@ impl Friction {
     /// accept stay there and do the same work as before.
     #[inline]
     pub fn mu_continued(&self, s: f64) -> f64 {
-        match *self {
-            Friction::Constant(mu) => mu,
-            Friction::SpeedDependent { a, b, c, .. } => {
+        match self.law() {
+            FrictionLaw::Constant(mu) => mu,
+            FrictionLaw::SpeedDependent { a, b, c, .. } => {
                 let x = -c * s;
                 if x <= 1.0 {
                     a + b * x.exp()
@@ -161,9 +162,9 @@ impl Friction {
     /// cS > 700 (e^(cS) overflows) as (cS + ln(a / (a + b)) + ln(1 + b e^(-cS) / a)) / (a c).
     #[inline]
     pub fn slide_potential(&self, s: f64) -> f64 {
-        match *self {
-            Friction::Constant(mu) => s / mu,
-            Friction::SpeedDependent { a, b, c, .. } => {
+        match self.law() {
+            FrictionLaw::Constant(mu) => s / mu,
+            FrictionLaw::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     return s / (a + b);
                 }
@@ -195,9 +196,9 @@ impl Friction {
     /// S = a g + ln(1 + b y) / c with y = (1 - e^(-a c g)) / a evaluated without dividing
     /// by a small a.
     pub fn slide_speed(&self, g: f64) -> f64 {
-        match *self {
-            Friction::Constant(mu) => mu * g,
-            Friction::SpeedDependent { a, b, c, .. } => {
+        match self.law() {
+            FrictionLaw::Constant(mu) => mu * g,
+            FrictionLaw::SpeedDependent { a, b, c, .. } => {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {
@@ -236,12 +237,11 @@ fn ln_1p_product(x: f64, y: f64, z: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::params::Evaluate;
 
     #[test]
     fn constant_mu_is_eq_48_and_49() {
         let (mu, s0, k) = (0.06, 1.3, 2.0 * 3.5 / 0.17);
-        let law = SlidingLaw::new(Friction::Constant(mu), s0, k, true);
+        let law = SlidingLaw::new(Friction::constant(mu).unwrap(), s0, k, true);
         let p_stick = s0 / (k * mu);
         assert!((law.stick_impulse().unwrap() - p_stick).abs() < 1e-15 * p_stick);
         let p = 0.4 * p_stick;
@@ -253,7 +253,8 @@ mod tests {
         let after = law.at(2.0 * p_stick);
         assert_eq!(after.slip, 0.0);
         assert!((after.tangential_impulse - s0 / k).abs() < 1e-16);
-        let literal = SlidingLaw::new(Friction::Constant(mu), s0, k, false).at(2.0 * p_stick);
+        let literal =
+            SlidingLaw::new(Friction::constant(mu).unwrap(), s0, k, false).at(2.0 * p_stick);
         assert!((literal.slip + s0).abs() < 1e-14);
     }
 
@@ -281,15 +282,10 @@ mod tests {
             let m = f.mu_continued(s);
             assert!(m.is_finite() && m <= cap && m > a + b, "s = {s:e}: {m}");
         }
-        let huge = Friction::SpeedDependent {
-            a,
-            b,
-            c: f64::MAX,
-            evaluate: crate::model::params::Evaluate::AlongContact,
-        };
+        let huge = Friction::speed_dependent(a, b, f64::MAX).unwrap();
         assert!(huge.mu_continued(-1.0) <= cap);
         assert_eq!(huge.mu_continued(1.0), a);
-        assert_eq!(Friction::Constant(0.3).mu_continued(-1e300), 0.3);
+        assert_eq!(Friction::constant(0.3).unwrap().mu_continued(-1e300), 0.3);
     }
 
     /// The speed-dependent law against a fine RK4 integration of dS/dp = -k mu(S).
@@ -330,19 +326,9 @@ mod tests {
     /// found a = 5e-324 giving NaN), and round-trip for ordinary and extreme arguments.
     #[test]
     fn small_a_tends_to_the_pure_exponential_law() {
-        let zero = Friction::SpeedDependent {
-            a: 0.0,
-            b: 0.108,
-            c: 1.088,
-            evaluate: Evaluate::AlongContact,
-        };
+        let zero = Friction::speed_dependent(0.0, 0.108, 1.088).unwrap();
         for a in [5e-324, 1e-300, 1e-20, 1e-12] {
-            let f = Friction::SpeedDependent {
-                a,
-                b: 0.108,
-                c: 1.088,
-                evaluate: Evaluate::AlongContact,
-            };
+            let f = Friction::speed_dependent(a, 0.108, 1.088).unwrap();
             for s in [1e-12, 0.3, 2.0, 50.0] {
                 let (g, g0) = (f.slide_potential(s), zero.slide_potential(s));
                 assert!(g.is_finite(), "a = {a:e}, S = {s}: G = {g}");
@@ -360,24 +346,14 @@ mod tests {
             }
         }
         // Extreme c and S (fuzz harness): finite, and the law sensible.
-        let huge_c = Friction::SpeedDependent {
-            a: 9.951e-3,
-            b: 0.108,
-            c: f64::MAX,
-            evaluate: Evaluate::AlongContact,
-        };
+        let huge_c = Friction::speed_dependent(9.951e-3, 0.108, f64::MAX).unwrap();
         let g = huge_c.slide_potential(2.0);
         assert!(
             (g - 2.0 / 9.951e-3).abs() <= 1e-12 * g,
             "mu = a for S > 0: {g}"
         );
         assert!((huge_c.slide_speed(g) - 2.0).abs() <= 1e-12);
-        let pure = Friction::SpeedDependent {
-            a: 0.0,
-            b: 0.108,
-            c: 1.088,
-            evaluate: Evaluate::AlongContact,
-        };
+        let pure = Friction::speed_dependent(0.0, 0.108, 1.088).unwrap();
         assert_eq!(pure.slide_potential(1e15), f64::INFINITY);
         let law = SlidingLaw::new(pure, 3.7e14, 40.0, true);
         assert_eq!(law.stick_impulse(), None);
@@ -385,12 +361,7 @@ mod tests {
         assert_eq!((sl.slip, sl.tangential_impulse), (3.7e14, 0.0));
         assert!(pure.slide_speed(1e300).is_finite());
         // Large c S (e^(cS) overflows): finite and round-trips.
-        let f = Friction::SpeedDependent {
-            a: 0.01,
-            b: 0.1,
-            c: 100.0,
-            evaluate: Evaluate::AlongContact,
-        };
+        let f = Friction::speed_dependent(0.01, 0.1, 100.0).unwrap();
         for s in [5.0, 8.0, 20.0] {
             let g = f.slide_potential(s);
             assert!(g.is_finite());
@@ -408,17 +379,12 @@ mod tests {
     #[test]
     fn b_zero_reduces_to_constant_mu() {
         let sd = SlidingLaw::new(
-            Friction::SpeedDependent {
-                a: 0.07,
-                b: 0.0,
-                c: 3.0,
-                evaluate: Evaluate::AlongContact,
-            },
+            Friction::speed_dependent(0.07, 0.0, 3.0).unwrap(),
             1.0,
             30.0,
             true,
         );
-        let cm = SlidingLaw::new(Friction::Constant(0.07), 1.0, 30.0, true);
+        let cm = SlidingLaw::new(Friction::constant(0.07).unwrap(), 1.0, 30.0, true);
         for p in [0.0, 0.1, 0.3, 0.47, 0.6] {
             let (x, y) = (sd.at(p), cm.at(p));
             assert!((x.slip - y.slip).abs() < 1e-15);

@@ -121,7 +121,7 @@ fn time_step<P: ForceProfile + ?Sized>(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<(), Error> {
     let run = integrate(c, profile, settings, trace)?;
-    let m = c.ball.mass;
+    let m = c.ball.mass();
     let e = c.direction.unwrap_or_else(Vector2::zeros);
     let du = run.out.u_cm - c.incoming.u_cm;
     let j = -m * (du.y * e.x + du.z * e.y);

@@ -15,7 +15,7 @@ use crate::error::Error;
 use crate::formats::scene::Scene;
 use crate::integrator::{SolverSettings, Stats};
 use crate::model::material::HertzContact;
-use crate::model::params::{Evaluate, Friction};
+use crate::model::params::{Evaluate, Friction, FrictionLaw};
 use crate::model::state::{CmState, LabMotion};
 use crate::profile::ForceProfile;
 use crate::table_phase::{RollOut, TableOutcome};
@@ -115,8 +115,8 @@ impl HeldFrictionJson {
     /// The description of `friction` for a contact sliding from `s0` (m/s); `None` unless it
     /// is speed-dependent and evaluated at the initial slip.
     pub fn new(friction: &Friction, s0: f64) -> Option<Self> {
-        match friction {
-            Friction::SpeedDependent {
+        match friction.law() {
+            FrictionLaw::SpeedDependent {
                 evaluate: Evaluate::Initial,
                 ..
             } => Some(HeldFrictionJson {

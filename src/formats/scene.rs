@@ -421,7 +421,7 @@ impl Scene {
         let friction = raw.contact.mu.build()?;
         let impulse =
             ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
-                .unwrap_or(ImpulseRule::Restitution(1.0));
+                .unwrap_or(ImpulseRule::ELASTIC);
         check_duration_source(&raw.contact.profile, material.as_ref())?;
         // Without the material the profile is built here, before the incoming state (whose
         // errors come second); with it, once the approach speed is known.
@@ -439,7 +439,7 @@ impl Scene {
         let profile = match (given, &material) {
             (Some(p), _) => p,
             (None, Some(mat)) => {
-                let (cm, _) = incoming.to_cm(ball.radius)?;
+                let (cm, _) = incoming.to_cm(ball.radius())?;
                 let c = Collision::new(ball, contact, effects, cm)?;
                 let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
                 raw.contact.profile.build_with(base, Some(hertz.duration))?
@@ -490,7 +490,7 @@ impl Scene {
             lab.up,
             lab.a.position,
             lab.b.position,
-            self.ball.radius,
+            self.ball.radius(),
         )
         .map(Some)
     }
@@ -498,7 +498,7 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
-        let (cm, lab) = self.incoming.to_cm(self.ball.radius)?;
+        let (cm, lab) = self.incoming.to_cm(self.ball.radius())?;
         Ok((
             Collision::new(self.ball, self.contact, self.effects, cm)?,
             lab,
@@ -708,6 +708,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::FrictionLaw;
 
     #[test]
     fn default_scene_parses() {
@@ -736,17 +737,17 @@ mod tests {
     fn typed_mu_takes_a_number_or_the_speed_dependent_model() {
         assert_eq!(
             with_mu("0.25").unwrap().contact.friction,
-            Friction::Constant(0.25)
+            Friction::constant(0.25).unwrap()
         );
         // A TOML integer is a number too.
         assert_eq!(
             with_mu("0").unwrap().contact.friction,
-            Friction::Constant(0.0)
+            Friction::constant(0.0).unwrap()
         );
         let s = with_mu("{ model = \"speed-dependent\", a = 0.01, b = 0.1, c = 1 }").unwrap();
         assert_eq!(
-            s.contact.friction,
-            Friction::SpeedDependent {
+            s.contact.friction.law(),
+            FrictionLaw::SpeedDependent {
                 a: 0.01,
                 b: 0.1,
                 c: 1.0,

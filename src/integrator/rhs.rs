@@ -289,7 +289,7 @@ mod tests {
             profile: &profile,
             time_map: TimeMap::Identity,
             impulse: 1.3,
-            friction: Friction::Constant(0.2),
+            friction: Friction::constant(0.2).unwrap(),
             speed_scale: 1.0,
             inv_alpha: 2.5,
             e0: Vector2::new(0.6, 0.8),

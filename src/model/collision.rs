@@ -72,11 +72,11 @@ impl Collision {
             return Err(non_finite_component(&incoming));
         }
         let u0 = incoming.u_cm.x;
-        let impulse = contact.impulse.impulse(ball.mass, u0)?;
-        let slip = incoming.slip(ball.radius);
+        let impulse = contact.impulse.impulse(ball.mass(), u0)?;
+        let slip = incoming.slip(ball.radius());
         let s0 = planar_length(slip);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
-        let r = ball.radius;
+        let r = ball.radius();
         // One square root for the three norms (sqrt is monotone, so the maximum is the
         // same); |U(0)| <= |U| needs no term of its own. Where the squares overflow (above
         // ~1e154) the norms are taken with hypot instead.
@@ -95,7 +95,7 @@ impl Collision {
                 .max(r * norm(&incoming.omega_a))
                 .max(r * norm(&incoming.omega_b));
         }
-        let m = ball.mass;
+        let m = ball.mass();
         // Every scale the checks and the integrator divide by must be finite and, for balls
         // in motion, normal (the fuzz harness found r = 1e308 with m v r = inf, and r = 1e-300
         // with v / r overflowing, both giving NaN checks).
@@ -153,7 +153,7 @@ impl Collision {
 
     /// Sliding direction theta (rad) in (-pi, pi]; `None` when S(0) = 0.
     pub fn theta(&self) -> Option<f64> {
-        self.incoming.theta(self.ball.radius)
+        self.incoming.theta(self.ball.radius())
     }
 }
 

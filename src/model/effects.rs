@@ -132,9 +132,9 @@ mod tests {
         let catalogued: Vec<&str> = CATALOGUE.iter().map(|e| e.name).collect();
         assert_eq!(names, catalogued);
         assert_eq!(
-            all.simulated(&Friction::Constant(0.0)),
+            all.simulated(&Friction::constant(0.0).unwrap()),
             vec!["normal-impulse", "table"]
         );
-        assert_eq!(all.simulated(&Friction::Constant(0.06)), names);
+        assert_eq!(all.simulated(&Friction::constant(0.06).unwrap()), names);
     }
 }

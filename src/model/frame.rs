@@ -30,15 +30,13 @@ pub struct LabScene {
     pub up: Vector3<f64>,
 }
 
-/// The change of frame between a lab scene and the paper's centre-of-mass frame.
+/// The change of frame between a lab scene and the paper's centre-of-mass frame, made by
+/// [`Frame::new`] (an orthonormal, right-handed basis) or [`Frame::paper`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
-    /// Columns e_x, e_y, e_z of the centre-of-mass basis, in lab coordinates.
-    pub basis: Matrix3<f64>,
-    /// Velocity of the centre of mass (m/s), lab frame.
-    pub v_cm: Vector3<f64>,
-    /// Unit `up` (lab coordinates).
-    pub up: Vector3<f64>,
+    basis: Matrix3<f64>,
+    v_cm: Vector3<f64>,
+    up: Vector3<f64>,
 }
 
 impl Frame {
@@ -94,6 +92,21 @@ impl Frame {
             v_cm: 0.5 * (scene.a.velocity + scene.b.velocity),
             up,
         })
+    }
+
+    /// Columns e_x, e_y, e_z of the centre-of-mass basis, in lab coordinates.
+    pub fn basis(&self) -> &Matrix3<f64> {
+        &self.basis
+    }
+
+    /// Velocity of the centre of mass (m/s), lab frame.
+    pub fn v_cm(&self) -> &Vector3<f64> {
+        &self.v_cm
+    }
+
+    /// Unit `up` (lab coordinates).
+    pub fn up(&self) -> &Vector3<f64> {
+        &self.up
     }
 
     /// The centre-of-mass state of a lab scene.

@@ -134,8 +134,8 @@ impl HertzContact {
         let (ball_a, mat_a) = a;
         let (ball_b, mat_b) = b;
         let effective_modulus = 1.0 / (mat_a.compliance() + mat_b.compliance());
-        let effective_radius = 1.0 / (1.0 / ball_a.radius + 1.0 / ball_b.radius);
-        let reduced_mass = ball_a.mass * ball_b.mass / (ball_a.mass + ball_b.mass);
+        let effective_radius = 1.0 / (1.0 / ball_a.radius() + 1.0 / ball_b.radius());
+        let reduced_mass = ball_a.mass() * ball_b.mass() / (ball_a.mass() + ball_b.mass());
         let stiffness = 4.0 / 3.0 * effective_modulus * effective_radius.sqrt();
         let v = approach_speed;
         let max_compression = (5.0 * reduced_mass * v * v / (4.0 * stiffness)).powf(0.4);

@@ -19,15 +19,13 @@ pub const MU_MAX: f64 = 1e6;
 /// Moment-of-inertia factor of a solid uniform ball, I = (2/5) m r^2.
 pub const ALPHA_SOLID: f64 = 0.4;
 
-/// Two identical balls: mass m, radius r, moment of inertia alpha m r^2.
+/// Two identical balls: mass m, radius r, moment of inertia alpha m r^2; validated on
+/// construction ([`Ball::new`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Ball {
-    /// Mass m (kg), > 0.
-    pub mass: f64,
-    /// Radius r (m), > 0.
-    pub radius: f64,
-    /// Moment-of-inertia factor alpha (dimensionless), in (0, 2/3].
-    pub alpha: f64,
+    mass: f64,
+    radius: f64,
+    alpha: f64,
 }
 
 impl Ball {
@@ -84,6 +82,24 @@ impl Ball {
         })
     }
 
+    /// Mass m (kg), > 0.
+    #[inline]
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// Radius r (m), > 0.
+    #[inline]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Moment-of-inertia factor alpha (dimensionless), in [1e-12, 2/3].
+    #[inline]
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+
     /// Moment of inertia alpha m r^2 (kg m^2).
     pub fn inertia(&self) -> f64 {
         self.alpha * self.mass * self.radius * self.radius
@@ -96,10 +112,19 @@ impl Ball {
     }
 }
 
-/// Coefficient of sliding friction between the balls.
+/// Coefficient of sliding friction between the balls, validated on construction
+/// ([`Friction::constant`], [`Friction::speed_dependent`]); [`Friction::law`] gives the law
+/// and its parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(transparent)]
+pub struct Friction {
+    law: FrictionLaw,
+}
+
+/// The law of a [`Friction`], with its parameters.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
-pub enum Friction {
+pub enum FrictionLaw {
     /// Coulomb friction with a constant coefficient mu >= 0.
     Constant(f64),
     /// mu(S) = a + b exp(-c S), S the sliding speed in m/s (the fit used in the
@@ -156,7 +181,9 @@ impl Friction {
                 format!("mu <= {MU_MAX:e} (ball-ball friction is below 1)"),
             ));
         }
-        Ok(Friction::Constant(mu))
+        Ok(Friction {
+            law: FrictionLaw::Constant(mu),
+        })
     }
 
     /// Speed-dependent friction mu(S) = a + b exp(-c S), validated (all finite, >= 0; a
@@ -177,12 +204,20 @@ impl Friction {
                 return Err(Error::invalid(name, v, format!("<= {MU_MAX:e}")));
             }
         }
-        Ok(Friction::SpeedDependent {
-            a,
-            b,
-            c,
-            evaluate: Evaluate::AlongContact,
+        Ok(Friction {
+            law: FrictionLaw::SpeedDependent {
+                a,
+                b,
+                c,
+                evaluate: Evaluate::AlongContact,
+            },
         })
+    }
+
+    /// The law and its parameters.
+    #[inline]
+    pub fn law(&self) -> FrictionLaw {
+        self.law
     }
 
     /// The same law evaluated as `evaluate` says (constant friction is unchanged).
@@ -191,15 +226,15 @@ impl Friction {
     /// use billiard_contact::{Evaluate, Friction};
     /// let f = Friction::speed_dependent(9.951e-3, 0.108, 1.088).unwrap();
     /// let held = f.evaluated(Evaluate::Initial);
-    /// assert_eq!(held.acting_from(2.0), Friction::Constant(f.mu(2.0)));
+    /// assert_eq!(held.acting_from(2.0), Friction::constant(f.mu(2.0)).unwrap());
     /// assert_eq!(f.acting_from(2.0), f);
     /// ```
     pub fn evaluated(self, evaluate: Evaluate) -> Self {
-        match self {
-            Friction::SpeedDependent { a, b, c, .. } => {
-                Friction::SpeedDependent { a, b, c, evaluate }
-            }
-            f @ Friction::Constant(_) => f,
+        match self.law {
+            FrictionLaw::SpeedDependent { a, b, c, .. } => Friction {
+                law: FrictionLaw::SpeedDependent { a, b, c, evaluate },
+            },
+            FrictionLaw::Constant(_) => self,
         }
     }
 
@@ -209,36 +244,46 @@ impl Friction {
     /// friction from here.
     #[inline]
     pub fn acting_from(self, s0: f64) -> Self {
-        match self {
-            Friction::SpeedDependent {
+        match self.law {
+            // mu(S(0)) of a valid law is finite and >= 0.
+            FrictionLaw::SpeedDependent {
                 evaluate: Evaluate::Initial,
                 ..
-            } => Friction::Constant(self.mu(s0)),
-            f => f,
+            } => Friction {
+                law: FrictionLaw::Constant(self.mu(s0)),
+            },
+            _ => self,
         }
     }
 
     /// The coefficient at sliding speed `s` (m/s).
     #[inline]
     pub fn mu(&self, s: f64) -> f64 {
-        match *self {
-            Friction::Constant(mu) => mu,
-            Friction::SpeedDependent { a, b, c, .. } => a + b * (-c * s).exp(),
+        match self.law {
+            FrictionLaw::Constant(mu) => mu,
+            FrictionLaw::SpeedDependent { a, b, c, .. } => a + b * (-c * s).exp(),
         }
     }
 
     /// True when no friction can act at any speed.
     pub fn is_zero(&self) -> bool {
-        match *self {
-            Friction::Constant(mu) => mu == 0.0,
-            Friction::SpeedDependent { a, b, .. } => a == 0.0 && b == 0.0,
+        match self.law {
+            FrictionLaw::Constant(mu) => mu == 0.0,
+            FrictionLaw::SpeedDependent { a, b, .. } => a == 0.0 && b == 0.0,
         }
     }
 }
 
-/// How the impulse P of the collision is set.
+/// How the impulse P of the collision is set, validated on construction
+/// ([`ImpulseRule::restitution`], [`ImpulseRule::explicit`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub enum ImpulseRule {
+#[serde(transparent)]
+pub struct ImpulseRule {
+    rule: Rule,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+enum Rule {
     /// P = (1 + e) m U(0), e in [0, 1] (eq 52 for e = 1, the family of eq 56 below).
     Restitution(f64),
     /// An explicit impulse P (N s) with m U(0) <= P <= 2 m U(0) (eq 56).
@@ -246,6 +291,28 @@ pub enum ImpulseRule {
 }
 
 impl ImpulseRule {
+    /// Restitution 1, P = 2 m U(0) (eq 52): only sliding friction dissipates. The scene's
+    /// default.
+    pub const ELASTIC: ImpulseRule = ImpulseRule {
+        rule: Rule::Restitution(1.0),
+    };
+
+    /// The restitution e of a restitution rule; `None` for an explicit impulse.
+    pub fn restitution_coefficient(&self) -> Option<f64> {
+        match self.rule {
+            Rule::Restitution(e) => Some(e),
+            Rule::Explicit(_) => None,
+        }
+    }
+
+    /// The impulse P (N s) of an explicit rule; `None` for a restitution rule.
+    pub fn explicit_impulse(&self) -> Option<f64> {
+        match self.rule {
+            Rule::Explicit(p) => Some(p),
+            Rule::Restitution(_) => None,
+        }
+    }
+
     /// A validated restitution rule (e finite, in [0, 1]).
     pub fn restitution(e: f64) -> Result<Self, Error> {
         finite("contact.restitution", e)?;
@@ -256,14 +323,18 @@ impl ImpulseRule {
                 "in [0, 1] (0: perfectly inelastic, 1: only sliding friction dissipates)",
             ));
         }
-        Ok(ImpulseRule::Restitution(e))
+        Ok(ImpulseRule {
+            rule: Rule::Restitution(e),
+        })
     }
 
     /// A validated explicit impulse (finite, > 0); its range against m U(0) is
     /// checked by [`ImpulseRule::impulse`].
     pub fn explicit(p: f64) -> Result<Self, Error> {
         positive("contact.impulse", p, "N s")?;
-        Ok(ImpulseRule::Explicit(p))
+        Ok(ImpulseRule {
+            rule: Rule::Explicit(p),
+        })
     }
 
     /// The rule of a restitution `e` or an explicit impulse `p` (N s), validated; `None`
@@ -304,9 +375,9 @@ impl ImpulseRule {
     /// relative slack of 1e-12 for round-off in the caller's arithmetic.
     #[inline]
     pub fn impulse(&self, mass: f64, u0: f64) -> Result<f64, Error> {
-        match *self {
-            ImpulseRule::Restitution(e) => Ok(if u0 > 0.0 { (1.0 + e) * mass * u0 } else { 0.0 }),
-            ImpulseRule::Explicit(p) => {
+        match self.rule {
+            Rule::Restitution(e) => Ok(if u0 > 0.0 { (1.0 + e) * mass * u0 } else { 0.0 }),
+            Rule::Explicit(p) => {
                 let (lo, hi) = (mass * u0, 2.0 * mass * u0);
                 let slack = 1e-12 * hi;
                 if u0 <= 0.0 || p < lo - slack || p > hi + slack {

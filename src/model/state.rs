@@ -63,14 +63,14 @@ impl CmState {
     /// Kinetic energy of both balls (J), eq 37.
     pub fn kinetic_energy(&self, ball: &Ball) -> f64 {
         let i = ball.inertia();
-        ball.mass * self.u_cm.norm_squared()
+        ball.mass() * self.u_cm.norm_squared()
             + 0.5 * i * (self.omega_a.norm_squared() + self.omega_b.norm_squared())
     }
 
     /// Angular momentum about the centre of mass (kg m^2/s), eq 36.
     pub fn angular_momentum(&self, ball: &Ball) -> Vector3<f64> {
-        let r = ball.radius;
-        let m = ball.mass;
+        let r = ball.radius();
+        let m = ball.mass();
         let ex = Vector3::x();
         ball.inertia() * (self.omega_a + self.omega_b)
             + (-r * ex).cross(&(m * self.u_cm))

@@ -172,14 +172,56 @@ impl ForceProfile for Profile {
 }
 
 impl Profile {
+    /// The profile's kind.
+    pub fn kind(&self) -> ProfileKind {
+        match self {
+            Profile::HalfSine(_) => ProfileKind::HalfSine,
+            Profile::Hertz(_) => ProfileKind::Hertz,
+            Profile::SinePower(_) => ProfileKind::SinePower,
+            Profile::Rectangle(_) => ProfileKind::Rectangle,
+            Profile::Tabulated(_) => ProfileKind::Tabulated,
+        }
+    }
+
     /// The profile's name as written in scene files.
     pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+}
+
+/// The kinds of built-in profiles, by the names scene files give them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ProfileKind {
+    /// `half-sine`.
+    HalfSine,
+    /// `hertz`.
+    Hertz,
+    /// `sine-power`.
+    SinePower,
+    /// `rectangle`.
+    Rectangle,
+    /// `tabulated`.
+    Tabulated,
+}
+
+impl ProfileKind {
+    /// All kinds, in the order of the work-precision figure's panels.
+    pub const ALL: [ProfileKind; 5] = [
+        ProfileKind::HalfSine,
+        ProfileKind::Hertz,
+        ProfileKind::SinePower,
+        ProfileKind::Rectangle,
+        ProfileKind::Tabulated,
+    ];
+
+    /// The name in scene files, reports and CSVs.
+    pub fn name(&self) -> &'static str {
         match self {
-            Profile::HalfSine(_) => "half-sine",
-            Profile::Hertz(_) => "hertz",
-            Profile::SinePower(_) => "sine-power",
-            Profile::Rectangle(_) => "rectangle",
-            Profile::Tabulated(_) => "tabulated",
+            ProfileKind::HalfSine => "half-sine",
+            ProfileKind::Hertz => "hertz",
+            ProfileKind::SinePower => "sine-power",
+            ProfileKind::Rectangle => "rectangle",
+            ProfileKind::Tabulated => "tabulated",
         }
     }
 }

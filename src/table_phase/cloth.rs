@@ -80,7 +80,7 @@ impl Table {
     /// Gravitational potential energy (J) of a ball centred at `position` (m, lab), zero on
     /// the cloth: m g (x.n - height - r).
     pub fn potential_energy(&self, ball: &Ball, position: &Vector3<f64>) -> f64 {
-        ball.mass * self.params.g() * (position.dot(&self.up) - self.height - ball.radius)
+        ball.mass() * self.params.g() * (position.dot(&self.up) - self.height - ball.radius())
     }
 }
 
@@ -125,5 +125,5 @@ pub fn cloth_slip(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
-    horizontal(velocity, up) - ball.radius * spin.cross(up)
+    horizontal(velocity, up) - ball.radius() * spin.cross(up)
 }

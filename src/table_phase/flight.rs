@@ -49,7 +49,7 @@ impl Track<'_> {
                 self.fly();
             } else {
                 // Settled: the residual vertical speed (< SETTLE_SPEED) is absorbed by the cloth.
-                self.impulse -= self.n * (self.ball.mass * vn);
+                self.impulse -= self.n * (self.ball.mass() * vn);
                 self.state.velocity -= self.n * vn;
                 return Ok(bounces);
             }
@@ -93,7 +93,7 @@ impl Track<'_> {
             spin_accel: Vector3::zeros(),
             spin_decay_rate: 0.0,
         });
-        let cloth_level = self.table.height + self.ball.radius;
+        let cloth_level = self.table.height + self.ball.radius();
         land.position += n * (cloth_level - land.position.dot(&n));
         land.velocity += n * (-vn - land.velocity.dot(&n));
         self.state = land;

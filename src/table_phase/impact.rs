@@ -49,7 +49,7 @@ pub fn cloth_impact(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> ClothImpact {
-    let m = ball.mass;
+    let m = ball.mass();
     let vn = velocity.dot(up);
     let normal = if vn < 0.0 {
         (1.0 + params.restitution()) * m * -vn
@@ -58,7 +58,7 @@ pub fn cloth_impact(
     };
     let u = cloth_slip(ball, up, velocity, spin);
     let s = u.norm();
-    let stop = m * s / (1.0 + 1.0 / ball.alpha);
+    let stop = m * s / (1.0 + 1.0 / ball.alpha());
     let coulomb = params.mu() * normal;
     let (jt, sticks) = if s == 0.0 {
         (0.0, normal > 0.0)
@@ -72,7 +72,7 @@ pub fn cloth_impact(
     if jt > 0.0 {
         let dir = u / s;
         v -= dir * (jt / m);
-        w += up.cross(&dir) * (ball.radius * jt / ball.inertia());
+        w += up.cross(&dir) * (ball.radius() * jt / ball.inertia());
     }
     if sticks && s > 0.0 {
         // The slip is zero up to rounding: make it exactly rolling (w.n is unchanged).

@@ -15,7 +15,7 @@ const ENERGY_POINTS: u32 = 16;
 /// Kinetic energy (J) of one ball with `velocity` (m/s) and `spin` (rad/s):
 /// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2.
 pub fn kinetic_energy(ball: &Ball, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> f64 {
-    0.5 * ball.mass * velocity.norm_squared() + 0.5 * ball.inertia() * spin.norm_squared()
+    0.5 * ball.mass() * velocity.norm_squared() + 0.5 * ball.inertia() * spin.norm_squared()
 }
 
 /// Self-checks of a table phase, scaled like the contact's checks
@@ -108,7 +108,7 @@ impl TableOutcome {
 
     fn checks(&self, ball: &Ball, speed_scale: f64) -> TableChecks {
         let n = self.table.up;
-        let m = ball.mass;
+        let m = ball.mass();
         let g = self.table.params.g();
         let mut increase: f64 = 0.0;
         let mut momentum: f64 = 0.0;

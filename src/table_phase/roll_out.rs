@@ -150,7 +150,7 @@ impl<'a> Track<'a> {
             table,
             n: table.up,
             g,
-            decay_rate: table.params.spin_decay() * g / (ball.alpha * ball.radius),
+            decay_rate: table.params.spin_decay() * g / (ball.alpha() * ball.radius()),
             state: *start,
             t: 0.0,
             segments: Vec::new(),
@@ -170,7 +170,7 @@ impl<'a> Track<'a> {
     /// The last, open-ended segment (rolling on, or at rest) and the cloth's normal
     /// support m g n over the time spent on the cloth.
     fn finish(&mut self) {
-        let (n, m, g) = (self.n, self.ball.mass, self.g);
+        let (n, m, g) = (self.n, self.ball.mass(), self.g);
         let end_time = self.t;
         self.segments.push(Segment {
             phase: if self.state.velocity == Vector3::zeros() {

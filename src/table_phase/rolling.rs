@@ -52,8 +52,8 @@ pub fn rolling_velocity(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
-    let a = ball.alpha;
-    (horizontal(velocity, up) + a * ball.radius * spin.cross(up)) / (1.0 + a)
+    let a = ball.alpha();
+    (horizontal(velocity, up) + a * ball.radius() * spin.cross(up)) / (1.0 + a)
 }
 
 /// The spin (rad/s) that rolls with `velocity` (m/s): horizontal part n x v_h / r, vertical
@@ -64,7 +64,7 @@ pub(super) fn roll_spin(
     velocity: &Vector3<f64>,
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
-    up.cross(&horizontal(velocity, up)) / ball.radius + up * spin.dot(up)
+    up.cross(&horizontal(velocity, up)) / ball.radius() + up * spin.dot(up)
 }
 
 impl Track<'_> {
@@ -79,20 +79,20 @@ impl Track<'_> {
             return 0.0;
         }
         let dir = u / s;
-        let slide_time = s / (mu * g * (1.0 + 1.0 / ball.alpha));
+        let slide_time = s / (mu * g * (1.0 + 1.0 / ball.alpha()));
         let mut end = self.run(Segment {
             phase: BallMotion::Sliding,
             t0: self.t,
             t1: self.t + slide_time,
             start: self.state,
             accel: -dir * (mu * g),
-            spin_accel: n.cross(&dir) * (mu * g / (ball.alpha * ball.radius)),
+            spin_accel: n.cross(&dir) * (mu * g / (ball.alpha() * ball.radius())),
             spin_decay_rate: self.decay_rate,
         });
         // The slip is zero up to rounding: make it exactly rolling.
         end.spin = roll_spin(ball, &n, &end.velocity, &end.spin);
         self.state = end;
-        self.impulse += -dir * (mu * ball.mass * g * slide_time);
+        self.impulse += -dir * (mu * ball.mass() * g * slide_time);
         slide_time
     }
 
@@ -115,13 +115,13 @@ impl Track<'_> {
             t1: self.t + dt,
             start: self.state,
             accel,
-            spin_accel: n.cross(&accel) / ball.radius,
+            spin_accel: n.cross(&accel) / ball.radius(),
             spin_decay_rate: self.decay_rate,
         });
         end.velocity = Vector3::zeros();
         end.spin = n * end.spin.dot(&n);
         self.state = end;
-        self.impulse += accel * (ball.mass * dt);
+        self.impulse += accel * (ball.mass() * dt);
         Some((self.t, end.position))
     }
 }

@@ -6,7 +6,7 @@ use super::FONT;
 use crate::apps::sweep::{curves, SweepRow};
 use crate::error::Error;
 use crate::formats::scene::Scene;
-use crate::model::params::Friction;
+use crate::model::params::FrictionLaw;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -24,9 +24,9 @@ type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorTy
 /// The figure's title for `scene`: its friction model with how it is evaluated, and its
 /// restitution rule.
 pub fn title(scene: &Scene) -> String {
-    let friction = match scene.contact.friction {
-        Friction::Constant(mu) => format!("constant mu = {mu}"),
-        Friction::SpeedDependent { a, b, c, evaluate } => format!(
+    let friction = match scene.contact.friction.law() {
+        FrictionLaw::Constant(mu) => format!("constant mu = {mu}"),
+        FrictionLaw::SpeedDependent { a, b, c, evaluate } => format!(
             "mu(S) = {a} + {b} exp(-{c} S), evaluate = {}",
             evaluate.name()
         ),
