@@ -101,7 +101,7 @@ pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::params::{
-    Ball, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
+    Ball, BallPair, Contact, Friction, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID, MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

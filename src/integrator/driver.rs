@@ -277,10 +277,13 @@ impl<P: ForceProfile + ?Sized> Units<'_, P> {
         let [du, dv, dw] = y.delta_u();
         let [doy, doz] = y.delta_omega_yz();
         s.u_cm += Vector3::new(du, dv, dw) * self.v;
-        // Eq 11: both balls' spins change by half the change of Omega.
-        let half = Vector3::new(0.0, doy, doz) * (0.5 * self.w);
-        s.omega_a += half;
-        s.omega_b += half;
+        // Eq 11: both balls' spins change by half the change of Omega; for unequal balls
+        // A takes the share i_A / (i_A + i_B) of the change of r_A Omega^A + r_B Omega^B,
+        // B the rest over r_B (both 1/2 for identical balls).
+        let [ia, ib] = self.c.balls.scaled_inverse_alphas();
+        let change = Vector3::new(0.0, doy, doz);
+        s.omega_a += change * (ia / (ia + ib) * self.w);
+        s.omega_b += change * (ib / (ia + ib) * (self.w / self.c.balls.radius_ratio()));
         s
     }
 
@@ -387,7 +390,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
     };
     let pi = c.impulse / sc.impulse;
     let e0 = c.direction.unwrap_or_else(Vector2::zeros);
-    let slip0 = c.incoming.slip(c.ball.radius) / sc.speed;
+    let slip0 = c.incoming.slip_of(&c.balls) / sc.speed;
     // The event function at or below which the slip counts as stopped: its round-off level,
     // a relative 1e-14 of S(0) (an impulse error of at most 1e-14 p_stick).
     let stop_floor = 1e-14 * slip0.norm();
@@ -396,7 +399,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         impulse: pi,
         friction: c.contact.friction,
         speed_scale: sc.speed,
-        inv_alpha: 1.0 / c.ball.alpha,
+        inv_alpha: c.balls.scaled_inverse_alphas(),
         e0,
         direction,
         slip_floor: SLIP_ROUND_OFF * slip0.norm(),
