@@ -95,7 +95,7 @@ fn bench(c: &mut Criterion) {
             .sample_size(30);
         group.bench_function("table phase (both balls, with checks)", |bch| {
             bch.iter(|| {
-                TableOutcome::new(&ball, table, black_box(&a), black_box(&b), incoming, scale)
+                TableOutcome::new(&ball.into(), table, black_box(&a), black_box(&b), incoming, scale)
                     .unwrap()
             })
         });

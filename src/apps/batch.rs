@@ -44,7 +44,7 @@ use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::LabScene;
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::profile::{ForceProfile, Profile};
 use nalgebra::Vector3;
@@ -58,7 +58,9 @@ pub const DEFAULT_CHUNK_ROWS: usize = 16_384;
 /// What every row shares: the scene's parameters and the method.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BatchSetup {
-    /// The balls.
+    /// The balls (every row's, see [`Overrides`]).
+    pub balls: BallPair,
+    /// Ball A (both balls when they are identical).
     pub ball: Ball,
     /// Friction and impulse rule.
     pub contact: Contact,
@@ -74,7 +76,8 @@ impl BatchSetup {
     /// The parameters of `scene`, solved with `settings`.
     pub fn from_scene(scene: &Scene, settings: SolverSettings) -> Self {
         BatchSetup {
-            ball: scene.ball,
+            balls: scene.balls,
+            ball: scene.balls.a,
             contact: scene.contact,
             effects: scene.effects,
             profile: scene.profile.clone(),
@@ -83,7 +86,9 @@ impl BatchSetup {
     }
 }
 
-/// Per-row overrides of the setup (`None`: the setup's value).
+/// Per-row overrides of the setup (`None`: the setup's value). `mass`, `radius` and `alpha`
+/// change both balls of a setup of identical balls; a setup of unequal balls refuses them
+/// (which ball they would change is ambiguous).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Overrides {
     /// Mass (kg).
@@ -143,16 +148,28 @@ pub struct BatchOutput {
 }
 
 /// The ball and contact of a row: the setup's, or with the row's overrides.
-fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error> {
+fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(BallPair, Contact), Error> {
     if o.is_empty() {
-        return Ok((setup.ball, setup.contact));
+        return Ok((setup.balls, setup.contact));
     }
-    let b = setup.ball;
-    let ball = Ball::new(
-        o.mass.unwrap_or(b.mass),
-        o.radius.unwrap_or(b.radius),
-        o.alpha.unwrap_or(b.alpha),
-    )?;
+    let b = setup.balls.a;
+    let ball_keys = [("mass", o.mass), ("radius", o.radius), ("alpha", o.alpha)];
+    let balls = match ball_keys.iter().find_map(|(k, v)| v.map(|v| (k, v))) {
+        None => setup.balls,
+        Some((key, value)) if !setup.balls.is_identical() => {
+            return Err(Error::invalid(
+                *key,
+                value,
+                "no mass, radius or alpha column with a scene of unequal balls ([balls.a] and \
+                 [balls.b] apply to every row)",
+            ))
+        }
+        Some(_) => BallPair::identical(Ball::new(
+            o.mass.unwrap_or(b.mass),
+            o.radius.unwrap_or(b.radius),
+            o.alpha.unwrap_or(b.alpha),
+        )?),
+    };
     let friction = match o.mu {
         Some(mu) => Friction::constant(mu)?,
         None => setup.contact.friction,
@@ -162,7 +179,7 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
     if let Some(d) = o.duration {
         crate::model::params::positive("duration", d, "s")?;
     }
-    Ok((ball, Contact { friction, impulse }))
+    Ok((balls, Contact { friction, impulse }))
 }
 
 /// Resolves one collision with the setup's method. The closed form
@@ -175,7 +192,7 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 /// The closed-form kernel of the setup's own parameters, when the method is the closed form.
 fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
     (setup.settings.method == Method::ClosedForm)
-        .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
+        .then(|| ClosedFormBatch::new(setup.balls, setup.contact, setup.effects))
 }
 
 fn resolve_with(
@@ -183,8 +200,8 @@ fn resolve_with(
     shared: Option<&ClosedFormBatch>,
     input: &BatchInput,
 ) -> Result<BatchOutput, Error> {
-    let (ball, contact) = params_of(setup, &input.overrides)?;
-    let (cm, lab) = input.incoming.to_cm(ball.radius)?;
+    let (balls, contact) = params_of(setup, &input.overrides)?;
+    let (cm, lab) = input.incoming.to_cm(&balls)?;
     let profile = &setup.profile;
     let time_scale = input.overrides.duration.unwrap_or(profile.duration());
     let mut out = if setup.settings.method == Method::ClosedForm {
@@ -192,7 +209,7 @@ fn resolve_with(
         let kernel = match shared {
             Some(k) if input.overrides.is_empty() => k,
             _ => {
-                own = ClosedFormBatch::new(ball, contact, setup.effects);
+                own = ClosedFormBatch::new(balls, contact, setup.effects);
                 &own
             }
         };
@@ -209,7 +226,7 @@ fn resolve_with(
             rhs_evaluations: 0,
         }
     } else {
-        let c = Collision::new(ball, contact, setup.effects, cm)?;
+        let c = Collision::new(balls, contact, setup.effects, cm)?;
         let o = solve(&c, profile, &setup.settings, None)?;
         BatchOutput {
             result: o.result,
@@ -268,7 +285,7 @@ pub fn closed_form_into(
             "one result per state",
         ));
     }
-    let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
+    let kernel = ClosedFormBatch::new(setup.balls, setup.contact, setup.effects);
     for (s, o) in states.iter().zip(out.iter_mut()) {
         *o = kernel.resolve(s)?;
     }

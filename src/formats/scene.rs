@@ -44,7 +44,7 @@ use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings};
@@ -77,13 +77,13 @@ pub struct LabFrame<'a> {
 }
 
 impl Incoming {
-    /// The paper's centre-of-mass state of balls of radius `radius` (m); for lab input also
-    /// the lab scene with its frame (the balls must touch, see [`Frame::new`]).
-    pub fn to_cm(&self, radius: f64) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
+    /// The paper's centre-of-mass state of the balls `balls`; for lab input also the lab
+    /// scene with its frame (the balls must touch, see [`Frame::of_pair`]).
+    pub fn to_cm(&self, balls: &BallPair) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
         Ok(match self {
             Incoming::Cm(cm) => (*cm, None),
             Incoming::Lab(lab) => {
-                let frame = Frame::new(lab, radius)?;
+                let frame = Frame::of_pair(lab, balls)?;
                 (frame.to_cm(lab), Some(LabFrame { frame, lab }))
             }
         })
@@ -95,7 +95,9 @@ impl Incoming {
 pub struct Scene {
     /// Name shown in reports.
     pub name: String,
-    /// The balls.
+    /// The balls: `[balls]` (identical) or `[balls.a]` and `[balls.b]`.
+    pub balls: BallPair,
+    /// Ball A (both balls when they are identical).
     pub ball: Ball,
     /// Friction and impulse rule.
     pub contact: Contact,
@@ -203,9 +205,57 @@ impl RawTable {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawBalls {
+    mass: Option<f64>,
+    radius: Option<f64>,
+    alpha: Option<f64>,
+    a: Option<RawBall>,
+    b: Option<RawBall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBall {
     mass: f64,
     radius: f64,
     alpha: Option<f64>,
+}
+
+impl RawBalls {
+    /// `[balls]` with mass, radius (and alpha): two identical balls; `[balls.a]` and
+    /// `[balls.b]`: balls of their own; never both forms.
+    fn build(&self) -> Result<BallPair, Error> {
+        let shared = self.mass.is_some() || self.radius.is_some() || self.alpha.is_some();
+        let own = |section: &str, b: &RawBall| {
+            Ball::in_section(section, b.mass, b.radius, b.alpha.unwrap_or(ALPHA_SOLID))
+        };
+        match (&self.a, &self.b) {
+            (Some(a), Some(b)) if !shared => Ok(BallPair::new(own("balls.a", a)?, own("balls.b", b)?)),
+            (None, None) => {
+                let missing = |key: &str| {
+                    Error::invalid(
+                        format!("balls.{key}"),
+                        "missing",
+                        "[balls] with mass and radius (two identical balls), or [balls.a] and \
+                         [balls.b]",
+                    )
+                };
+                let mass = self.mass.ok_or_else(|| missing("mass"))?;
+                let radius = self.radius.ok_or_else(|| missing("radius"))?;
+                let ball = Ball::new(mass, radius, self.alpha.unwrap_or(ALPHA_SOLID))?;
+                Ok(BallPair::identical(ball))
+            }
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "balls.mass/radius/alpha",
+                "given together with [balls.a] and [balls.b]",
+                "one form: [balls] keys for two identical balls, or [balls.a] and [balls.b]",
+            )),
+            (Some(_), None) | (None, Some(_)) => Err(Error::invalid(
+                if self.a.is_some() { "balls.b" } else { "balls.a" },
+                "missing",
+                "[balls.a] and [balls.b] together (or [balls] keys for identical balls)",
+            )),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -393,11 +443,7 @@ impl Scene {
                 path: shown.clone(),
                 message: explain_toml_error(text, &e),
             })?;
-        let ball = Ball::new(
-            raw.balls.mass,
-            raw.balls.radius,
-            raw.balls.alpha.unwrap_or(ALPHA_SOLID),
-        )?;
+        let balls = raw.balls.build()?;
         let friction = raw.contact.mu.build()?;
         let impulse =
             ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
@@ -415,7 +461,8 @@ impl Scene {
                     .map(|s| s.to_string_lossy().into_owned())
                     .unwrap_or_else(|| "scene".into())
             }),
-            ball,
+            balls,
+            ball: balls.a,
             contact: Contact { friction, impulse },
             profile,
             incoming,
@@ -449,9 +496,8 @@ impl Scene {
         Table::new(
             self.table.unwrap_or_default(),
             lab.up,
-            lab.a.position,
-            lab.b.position,
-            self.ball.radius,
+            [lab.a.position, lab.b.position],
+            [self.balls.a.radius, self.balls.b.radius],
         )
         .map(Some)
     }
@@ -459,9 +505,9 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
-        let (cm, lab) = self.incoming.to_cm(self.ball.radius)?;
+        let (cm, lab) = self.incoming.to_cm(&self.balls)?;
         Ok((
-            Collision::new(self.ball, self.contact, self.effects, cm)?,
+            Collision::new(self.balls, self.contact, self.effects, cm)?,
             lab,
         ))
     }

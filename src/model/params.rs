@@ -209,9 +209,9 @@ impl BallPair {
     /// the centre-of-mass velocity is w_A v_A + w_B v_B, and A moves with 2 w_B u, B with
     /// -2 w_A u in the centre-of-mass frame.
     #[inline]
-    pub fn mass_weights(&self) -> (f64, f64) {
+    pub fn mass_weights(&self) -> [f64; 2] {
         let total = self.a.mass + self.b.mass;
-        (self.a.mass / total, self.b.mass / total)
+        [self.a.mass / total, self.b.mass / total]
     }
 
     /// The balls' masses and radii, for error messages.
