@@ -95,8 +95,15 @@ fn bench(c: &mut Criterion) {
             .sample_size(30);
         group.bench_function("table phase (both balls, with checks)", |bch| {
             bch.iter(|| {
-                TableOutcome::new(&ball.into(), table, black_box(&a), black_box(&b), incoming, scale)
-                    .unwrap()
+                TableOutcome::new(
+                    &ball.into(),
+                    table,
+                    black_box(&a),
+                    black_box(&b),
+                    incoming,
+                    scale,
+                )
+                .unwrap()
             })
         });
         group.bench_function("run_scene, table off", |bch| {

@@ -229,7 +229,9 @@ impl RawBalls {
             Ball::in_section(section, b.mass, b.radius, b.alpha.unwrap_or(ALPHA_SOLID))
         };
         match (&self.a, &self.b) {
-            (Some(a), Some(b)) if !shared => Ok(BallPair::new(own("balls.a", a)?, own("balls.b", b)?)),
+            (Some(a), Some(b)) if !shared => {
+                Ok(BallPair::new(own("balls.a", a)?, own("balls.b", b)?))
+            }
             (None, None) => {
                 let missing = |key: &str| {
                     Error::invalid(
@@ -250,7 +252,11 @@ impl RawBalls {
                 "one form: [balls] keys for two identical balls, or [balls.a] and [balls.b]",
             )),
             (Some(_), None) | (None, Some(_)) => Err(Error::invalid(
-                if self.a.is_some() { "balls.b" } else { "balls.a" },
+                if self.a.is_some() {
+                    "balls.b"
+                } else {
+                    "balls.a"
+                },
                 "missing",
                 "[balls.a] and [balls.b] together (or [balls] keys for identical balls)",
             )),

@@ -89,7 +89,11 @@ impl Frame {
                 format!(
                     "the balls must touch: |p_B - p_A| = {} = {contact} m within a relative \
                      {TOUCH_TOLERANCE:e}",
-                    if balls.a.radius == balls.b.radius { "2r" } else { "r_A + r_B" }
+                    if balls.a.radius == balls.b.radius {
+                        "2r"
+                    } else {
+                        "r_A + r_B"
+                    }
                 ),
             ));
         }

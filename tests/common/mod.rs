@@ -10,6 +10,7 @@ use nalgebra::Vector3;
 use std::f64::consts::PI;
 
 pub mod scenes;
+pub mod unequal;
 #[allow(unused_imports)]
 pub use scenes::*;
 
