@@ -259,7 +259,8 @@ fn resolve_with(
 /// let out = resolve_slice(&setup, &[BatchInput::cm(head_on)]);
 /// let o = out[0].as_ref().unwrap();
 /// assert_eq!(o.result.out.u_cm.x, -1.0); // eq 24, P = 2 m U(0)
-/// // S(0) = 0: the surfaces never slide (CONTRACTS.md: sticks at t = 0, theta undefined).
+/// // S(0) = 0: the surfaces never slide (docs/model.md#no-initial-sliding: sticks at
+/// // t = 0, theta undefined).
 /// assert!(o.result.sticks && o.result.theta.is_none() && o.stick_time == Some(0.0));
 /// ```
 pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<BatchOutput, Error>> {
@@ -271,8 +272,8 @@ pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<Ba
 }
 
 /// Closed form of centre-of-mass states sharing the setup's ball and contact, one core, into
-/// `out` (same length as `states`): the fast path the 50 ns target is measured on
-/// (outgoing state, impulse, S(0), theta, stick flag and p_stick; CONTRACTS.md).
+/// `out` (same length as `states`): the fast path the 50 ns target is measured on (the
+/// outgoing state, impulse, S(0), theta, stick flag and p_stick; `benches/closed_form.rs`).
 pub fn closed_form_into(
     setup: &BatchSetup,
     states: &[CmState],
@@ -627,6 +628,35 @@ fn format_row(
     Ok(())
 }
 
+/// Reads up to `chunk_rows` records into the reused buffers `records`, with their input
+/// lines in `lines`; returns how many it read (fewer at the end of the input). `bad` makes
+/// the error of a line.
+fn read_chunk<R: Read>(
+    rd: &mut csv::Reader<R>,
+    records: &mut Vec<csv::StringRecord>,
+    lines: &mut Vec<u64>,
+    chunk_rows: usize,
+    bad: &impl Fn(u64, String) -> Error,
+) -> Result<usize, Error> {
+    let mut n = 0;
+    while n < chunk_rows {
+        if records.len() <= n {
+            records.push(csv::StringRecord::new());
+            lines.push(0);
+        }
+        let more = rd.read_record(&mut records[n]).map_err(|e| {
+            let line = e.position().map(|p| p.line()).unwrap_or(0);
+            bad(line, e.to_string())
+        })?;
+        if !more {
+            break;
+        }
+        lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
+        n += 1;
+    }
+    Ok(n)
+}
+
 /// Streams a batch: reads CSV rows from `input` (`input_name` in errors), resolves them
 /// `chunk_rows` at a time in parallel (rayon's current pool), writes the results to `output`
 /// in input order, and calls `progress(rows_done, bytes_read)` after each chunk. Memory holds
@@ -665,22 +695,7 @@ pub fn run_csv<R: Read, W: Write>(
     let mut lines: Vec<u64> = Vec::with_capacity(chunk_rows);
     let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(chunk_rows);
     loop {
-        let mut n = 0;
-        while n < chunk_rows {
-            if records.len() <= n {
-                records.push(csv::StringRecord::new());
-                lines.push(0);
-            }
-            let more = rd.read_record(&mut records[n]).map_err(|e| {
-                let line = e.position().map(|p| p.line()).unwrap_or(0);
-                bad(line, e.to_string())
-            })?;
-            if !more {
-                break;
-            }
-            lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
-            n += 1;
-        }
+        let n = read_chunk(&mut rd, &mut records, &mut lines, chunk_rows, &bad)?;
         if n == 0 {
             break;
         }

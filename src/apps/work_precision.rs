@@ -5,20 +5,21 @@
 //! ladder of tolerances with atol = rtol on the scaled variables), one run measures
 //!
 //! - `error`: the largest scaled deviation of the outgoing state from the closed form
-//!   ([`crate::contact::check::Checks::closed_form_error`], CONTRACTS.md scales);
+//!   ([`crate::contact::check::Checks::closed_form_error`], with the scales of
+//!   docs/model.md#scales-and-scaled-errors);
 //! - `stick_time_error`: |t_stick - t_stick exact| / duration where sliding stops (`None`
 //!   otherwise; a stop the integrator missed counts as a stop at the end of the contact);
 //! - the work done ([`Stats`]);
 //! - `seconds_per_contact`: the median, over timed samples after a warm-up, of the wall time
 //!   of one [`solve`] (the whole call: closed form, integration and checks), in this process.
 //!
-//! Profiles with breakpoints (the knots of a table) are run again with
+//! Profiles with breakpoints (the knots of a tabulated profile) are run again with
 //! [`SolverSettings::breakpoints`] off, so the study shows what stepping exactly to them
 //! saves. By default the study also runs a companion scene in which sliding stops during
 //! the contact (`data/scenes/stun_cut_sticks.toml`), which exercises the stick event.
 //!
-//! [`write_csv`] writes the rows with the columns of [`COLUMNS`] first (the contract of
-//! issue 3) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
+//! [`write_csv`] writes the rows with the columns of [`COLUMNS`] first (the format of
+//! docs/formats.md#work-precision-csv) and [`EXTRA_COLUMNS`] after; [`read_csv`] reads such a file back, including rows
 //! appended by the peers' script (`benches/peers/scipy_contact.py`), for the figure.
 
 use crate::contact::outcome::{solve, Outcome};
@@ -34,7 +35,7 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-/// The columns every study CSV starts with, in this order (issue 3).
+/// The columns every study CSV starts with, in this order (docs/formats.md#work-precision-csv).
 pub const COLUMNS: [&str; 9] = [
     "profile",
     "method",
@@ -62,7 +63,7 @@ pub const EXTRA_COLUMNS: [&str; 6] = [
 /// The built-in companion scene in which sliding stops during contact.
 pub const STICKING_SCENE: &str = include_str!("../../data/scenes/stun_cut_sticks.toml");
 
-/// The table the `tabulated` profile uses unless the scene has its own
+/// The (time, force) points the `tabulated` profile uses unless the scene has its own
 /// (`data/profiles/measured_pulse.csv`, stretched to the scene's duration).
 pub const MEASURED_PULSE: &str = include_str!("../../data/profiles/measured_pulse.csv");
 
@@ -77,7 +78,7 @@ pub enum ProfileKind {
     SinePower,
     /// `rectangle`.
     Rectangle,
-    /// `tabulated` (the scene's table, or [`MEASURED_PULSE`]).
+    /// `tabulated` (the scene's points, or [`MEASURED_PULSE`]).
     Tabulated,
 }
 
@@ -103,7 +104,7 @@ impl ProfileKind {
     }
 
     /// The profile of this kind with the duration of `scene`'s profile; the scene's own
-    /// profile when it is of this kind (its table, its exponent).
+    /// profile when it is of this kind (its points, its exponent).
     pub fn build(&self, scene: &Scene) -> Result<Profile, Error> {
         let own = &scene.profile;
         if own.name() == self.name() {
@@ -747,7 +748,7 @@ mod tests {
         );
     }
 
-    /// Two scenes, two profiles; the table's knots give rows without breakpoints, with more
+    /// Two scenes, two profiles; the tabulated profile's knots give rows without breakpoints, with more
     /// evaluations at the same rk4 step count (RK4 stepping across a kink is order 2).
     #[test]
     fn plan_and_breakpoint_rows() {

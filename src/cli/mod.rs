@@ -60,3 +60,51 @@ pub fn progress_bar(len: u64, template: &str) -> indicatif::ProgressBar {
     bar.set_style(style.progress_chars("=> "));
     bar
 }
+
+#[cfg(test)]
+mod tests {
+    use super::choice::MethodChoice;
+    use super::*;
+    use clap::builder::EnumValueParser;
+
+    fn error_of(args: &[&str]) -> clap::Error {
+        clap::Command::new("t")
+            .arg(
+                clap::Arg::new("method")
+                    .long("method")
+                    .value_name("M")
+                    .value_parser(EnumValueParser::<MethodChoice>::new()),
+            )
+            .arg(
+                clap::Arg::new("rtol")
+                    .long("rtol")
+                    .value_parser(clap::value_parser!(f64)),
+            )
+            .try_get_matches_from(args)
+            .unwrap_err()
+    }
+
+    #[test]
+    fn a_bad_choice_names_the_option_the_value_and_the_choices() {
+        assert_eq!(
+            one_line(&error_of(&["t", "--method", "euler"])),
+            "error: --method = \"euler\": one of closed-form, rk4, dopri5, dop853 (see --help)"
+        );
+        let near = one_line(&error_of(&["t", "--method", "dop85"]));
+        assert!(
+            near.ends_with("(did you mean `dop853`?) (see --help)"),
+            "{near}"
+        );
+        assert_eq!(
+            one_line(&error_of(&["t", "--method"])),
+            "error: --method needs a value: one of closed-form, rk4, dopri5, dop853 (see --help)"
+        );
+        // Other errors: clap's first line.
+        let other = one_line(&error_of(&["t", "--rtol", "abc"]));
+        assert!(
+            other.starts_with("error: invalid value 'abc' for '--rtol"),
+            "{other}"
+        );
+        assert!(!other.contains('\n'), "{other}");
+    }
+}

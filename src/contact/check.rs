@@ -1,5 +1,6 @@
 //! Verification of a run: conservation laws, the energy balance of eq 50, and the distance
-//! to the closed form, all scaled by the collision's reference scales (CONTRACTS.md).
+//! to the closed form, all scaled by the collision's reference scales
+//! (docs/model.md#scales-and-scaled-errors).
 
 use crate::contact::closed_form::ClosedForm;
 use crate::model::collision::Collision;

@@ -1,5 +1,6 @@
 //! The exact solution: eqs 24-35 with the impulse of eq 52 / 56, extended by the stick rule
-//! and the S(0) = 0 case (ERRATA.md, gaps 1-3).
+//! and the S(0) = 0 case (docs/model.md#when-sliding-stops-during-contact,
+//! docs/model.md#no-initial-sliding).
 //!
 //! With J the tangential impulse ([`crate::contact::friction`]; J = mu min(P, p_stick) for
 //! constant mu) and e = (0, cos theta, sin theta):
@@ -13,8 +14,8 @@
 //! H = H_sfr + 2 U(0) P - P^2 / m                 (50)
 //! ```
 //!
-//! While sliding, the state at time t is this solution at P = p(t) (ERRATA.md, gap 3);
-//! [`ClosedForm::at_impulse`] gives it.
+//! While sliding, the state at time t is this solution at P = p(t)
+//! (docs/model.md#the-exact-state-during-the-contact); [`ClosedForm::at_impulse`] gives it.
 //!
 //! For balls of different mass, radius or alpha (docs/unequal-balls.md) m is the pair mass
 //! M = 2 m_A m_B / (m_A + m_B), the slip rate k is K = 1/m_A + 1/m_B + r_A^2/I_A + r_B^2/I_B,
@@ -370,6 +371,54 @@ mod tests {
     use crate::model::params::Ball;
     use nalgebra::Vector3;
 
+    /// State number `i` of a varied sweep: approaching and separating, cut angles, spins;
+    /// every 50th without slip at all.
+    fn sweep_state(i: usize) -> CmState {
+        let a = i as f64 * 0.37;
+        let mut st = CmState::new(
+            Vector3::new(1.5 * a.sin(), 0.5 * (0.7 * a).cos(), 0.1 * a.cos()),
+            Vector3::new(5.0 * a.cos(), 30.0 * (1.1 * a).sin(), -7.0 * a.sin()),
+            Vector3::new(0.0, 2.0 * a.sin(), 0.0),
+        );
+        if i % 50 == 0 {
+            st.u_cm.y = 0.0;
+            st.u_cm.z = 0.0;
+            st.omega_a = Vector3::zeros();
+            st.omega_b = Vector3::zeros();
+        }
+        st
+    }
+
+    /// The batch kernel's result `r` of collision `c` against ClosedForm::new: a few ulps
+    /// of the scales (the kernel multiplies by precomputed reciprocals where ClosedForm
+    /// divides); impulse, S(0), theta and the stick flag exactly.
+    fn assert_agrees(r: &ContactResult, c: &Collision, i: usize) {
+        let cf = ClosedForm::new(c).result;
+        let sc = c.scales;
+        let near = |a: f64, b: f64, scale: f64| (a - b).abs() <= 8.0 * f64::EPSILON * scale;
+        let near3 =
+            |a: Vector3<f64>, b: Vector3<f64>, scale: f64| (0..3).all(|k| near(a[k], b[k], scale));
+        assert!(near3(r.out.u_cm, cf.out.u_cm, sc.speed), "{i}");
+        assert!(near3(r.out.omega_a, cf.out.omega_a, sc.spin), "{i}");
+        assert!(near3(r.out.omega_b, cf.out.omega_b, sc.spin), "{i}");
+        assert_eq!(r.impulse, c.impulse);
+        assert_eq!(r.s0, c.s0);
+        assert_eq!(r.theta, c.theta());
+        assert_eq!(r.sticks, cf.sticks);
+        match (r.stick_impulse, cf.stick_impulse) {
+            (Some(a), Some(b)) => assert!(near(a, b, b), "{i}"),
+            (a, b) => assert_eq!(a, b, "{i}"),
+        }
+        assert!(near(
+            r.tangential_impulse,
+            cf.tangential_impulse,
+            sc.impulse
+        ));
+        assert!(near(r.s_out, cf.s_out, sc.speed));
+        assert!(near(r.heat_sliding, cf.heat_sliding, sc.energy));
+        assert!(near(r.heat, cf.heat, sc.energy));
+    }
+
     /// The batch kernel gives ClosedForm::new's numbers to a few ulps, over states that
     /// slide through, stick, start without slip and separate, for constant and
     /// speed-dependent friction, with and without the stick rule, and friction off.
@@ -406,50 +455,10 @@ mod tests {
                     };
                     let batch = ClosedFormBatch::new(ball, contact, fx);
                     for i in 0..400 {
-                        let a = i as f64 * 0.37;
-                        let mut st = CmState::new(
-                            Vector3::new(1.5 * a.sin(), 0.5 * (0.7 * a).cos(), 0.1 * a.cos()),
-                            Vector3::new(5.0 * a.cos(), 30.0 * (1.1 * a).sin(), -7.0 * a.sin()),
-                            Vector3::new(0.0, 2.0 * a.sin(), 0.0),
-                        );
-                        if i % 50 == 0 {
-                            // no slip at all
-                            st.u_cm.y = 0.0;
-                            st.u_cm.z = 0.0;
-                            st.omega_a = Vector3::zeros();
-                            st.omega_b = Vector3::zeros();
-                        }
+                        let st = sweep_state(i);
                         let c = Collision::new(ball, contact, fx, st).unwrap();
-                        let cf = ClosedForm::new(&c);
                         let r = batch.resolve(&st).unwrap();
-                        // A few ulps of the scales: the batch kernel multiplies by
-                        // precomputed reciprocals where ClosedForm divides.
-                        let sc = c.scales;
-                        let near = |a: f64, b: f64, scale: f64| {
-                            (a - b).abs() <= 8.0 * f64::EPSILON * scale
-                        };
-                        let near3 = |a: Vector3<f64>, b: Vector3<f64>, scale: f64| {
-                            (0..3).all(|k| near(a[k], b[k], scale))
-                        };
-                        assert!(near3(r.out.u_cm, cf.result.out.u_cm, sc.speed), "{i}");
-                        assert!(near3(r.out.omega_a, cf.result.out.omega_a, sc.spin), "{i}");
-                        assert!(near3(r.out.omega_b, cf.result.out.omega_b, sc.spin), "{i}");
-                        assert_eq!(r.impulse, c.impulse);
-                        assert_eq!(r.s0, c.s0);
-                        assert_eq!(r.theta, c.theta());
-                        assert_eq!(r.sticks, cf.result.sticks);
-                        match (r.stick_impulse, cf.result.stick_impulse) {
-                            (Some(a), Some(b)) => assert!(near(a, b, b), "{i}"),
-                            (a, b) => assert_eq!(a, b, "{i}"),
-                        }
-                        assert!(near(
-                            r.tangential_impulse,
-                            cf.result.tangential_impulse,
-                            sc.impulse
-                        ));
-                        assert!(near(r.s_out, cf.result.s_out, sc.speed));
-                        assert!(near(r.heat_sliding, cf.result.heat_sliding, sc.energy));
-                        assert!(near(r.heat, cf.result.heat, sc.energy));
+                        assert_agrees(&r, &c, i);
                         seen_stick += usize::from(r.sticks);
                     }
                 }

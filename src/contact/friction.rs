@@ -17,8 +17,9 @@
 //! G(S)      = (e^(c S) - 1) / (b c),   G^-1(g) = ln(1 + b c g) / c      (a = 0)
 //! ```
 //!
-//! Once S reaches 0 the surfaces stick (ERRATA.md, gap 2): in this geometry zero
-//! tangential force keeps the slip at zero, so the rest of the impulse is purely normal.
+//! Once S reaches 0 the surfaces stick (docs/model.md#when-sliding-stops-during-contact):
+//! in this geometry zero tangential force keeps the slip at zero, so the rest of the
+//! impulse is purely normal.
 //! With the effect `stick = false` friction keeps acting along the initial direction
 //! (the paper's formulas literally) and the signed slip goes negative, with mu(|S|).
 

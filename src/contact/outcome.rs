@@ -54,7 +54,6 @@ pub fn solve<P: ForceProfile + ?Sized>(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<Outcome, Error> {
     let exact = ClosedForm::new(c);
-    let mut warnings = Vec::new();
     let mut outcome = Outcome {
         method: settings.method,
         result: exact.result,
@@ -84,7 +83,7 @@ pub fn solve<P: ForceProfile + ?Sized>(
         .map(|s| profile.duration() * s);
     if exact.violates_eq57() {
         let p_stick = exact_result.stick_impulse.unwrap_or(f64::INFINITY);
-        warnings.push(format!(
+        outcome.warnings.push(format!(
             "eq 57 fails: sliding would stop at p = {p_stick:e} N s < P = {:e} N s; with stick = \
              false friction kept acting and the slip reversed (S_out = {:e} m/s)",
             c.impulse, exact_result.s_out
@@ -107,33 +106,43 @@ pub fn solve<P: ForceProfile + ?Sized>(
                 closed_form_trace(c, &exact, profile, sink, n)?;
             }
         }
-        _ => {
-            let run = integrate(c, profile, settings, trace)?;
-            let m = c.balls.pair_mass();
-            let e = c.direction.unwrap_or_else(Vector2::zeros);
-            let du = run.out.u_cm - c.incoming.u_cm;
-            let j = -m * (du.y * e.x + du.z * e.y);
-            let r = &mut outcome.result;
-            r.s_out = run.s_out;
-            r.sticks = run.sticks;
-            if c.effects.stick {
-                outcome.stick_time = run.stick_time;
-                if run.sticks {
-                    r.stick_impulse = run.stick_impulse;
-                }
-            }
-            r.tangential_impulse = j.max(0.0);
-            r.heat_sliding = run.heat_sliding;
-            r.heat = c.incoming.kinetic_energy(&c.balls) - run.out.kinetic_energy(&c.balls);
-            r.out = run.out;
-            outcome.stats = run.stats;
-            outcome.check = checks(c, &exact, &run.out, j, run.heat_sliding);
-            outcome.check.theta_drift = run.theta_drift;
-            outcome.check.slip_consistency = run.slip_consistency;
+        _ => time_step(&mut outcome, c, profile, settings, trace)?,
+    }
+    Ok(outcome)
+}
+
+/// The time-stepping part of [`solve`]: integrates the collision and puts the run's result,
+/// work and checks into `outcome` (which holds the closed form's).
+fn time_step<P: ForceProfile + ?Sized>(
+    outcome: &mut Outcome,
+    c: &Collision,
+    profile: &P,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<(), Error> {
+    let run = integrate(c, profile, settings, trace)?;
+    let m = c.balls.pair_mass();
+    let e = c.direction.unwrap_or_else(Vector2::zeros);
+    let du = run.out.u_cm - c.incoming.u_cm;
+    let j = -m * (du.y * e.x + du.z * e.y);
+    let r = &mut outcome.result;
+    r.s_out = run.s_out;
+    r.sticks = run.sticks;
+    if c.effects.stick {
+        outcome.stick_time = run.stick_time;
+        if run.sticks {
+            r.stick_impulse = run.stick_impulse;
         }
     }
-    outcome.warnings = warnings;
-    Ok(outcome)
+    r.tangential_impulse = j.max(0.0);
+    r.heat_sliding = run.heat_sliding;
+    r.heat = c.incoming.kinetic_energy(&c.balls) - run.out.kinetic_energy(&c.balls);
+    r.out = run.out;
+    outcome.stats = run.stats;
+    outcome.check = checks(c, &outcome.exact, &run.out, j, run.heat_sliding);
+    outcome.check.theta_drift = run.theta_drift;
+    outcome.check.slip_consistency = run.slip_consistency;
+    Ok(())
 }
 
 /// The exact trace: the closed form at p(t) for t = i tau / n, i = 0..=n, plus the stop of

@@ -45,3 +45,65 @@ impl ContactResult {
             .then(|| profile.time_at_cumulative(self.stick_impulse.unwrap_or(0.0) / self.impulse))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// A pulse whose impulse grows like s^2: Phi(s) = s^2, so the impulse reaches q P at
+    /// s = sqrt(q).
+    struct Quadratic;
+
+    impl ForceProfile for Quadratic {
+        fn duration(&self) -> f64 {
+            1e-4
+        }
+        fn shape(&self, s: f64) -> f64 {
+            if (0.0..=1.0).contains(&s) {
+                2.0 * s
+            } else {
+                0.0
+            }
+        }
+        fn cumulative(&self, s: f64) -> f64 {
+            s.clamp(0.0, 1.0).powi(2)
+        }
+    }
+
+    fn result(impulse: f64, sticks: bool, stick_impulse: Option<f64>) -> ContactResult {
+        let still = CmState::new(Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
+        ContactResult {
+            impulse,
+            s0: 0.1,
+            theta: Some(0.0),
+            s_out: 0.0,
+            sticks,
+            stick_impulse,
+            tangential_impulse: 0.0,
+            heat: 0.0,
+            heat_sliding: 0.0,
+            out: still,
+        }
+    }
+
+    #[test]
+    fn stick_fraction_inverts_the_cumulative_impulse() {
+        // p_stick / P = 0.5 / 2 = 1/4 of the impulse, reached at s = sqrt(1/4) = 1/2.
+        let s = result(2.0, true, Some(0.5))
+            .stick_fraction(&Quadratic)
+            .unwrap();
+        assert!((s - 0.5).abs() < 1e-12, "{s}");
+        // Sliding through (p_stick beyond P), or no collision: no stop.
+        assert_eq!(
+            result(2.0, false, Some(3.0)).stick_fraction(&Quadratic),
+            None
+        );
+        assert_eq!(
+            result(0.0, true, Some(0.0)).stick_fraction(&Quadratic),
+            None
+        );
+        assert!(result(2.0, false, None).collided());
+        assert!(!result(0.0, false, None).collided());
+    }
+}

@@ -10,6 +10,7 @@
 
 use crate::apps::runner::SceneOutcome;
 use crate::contact::check::Checks;
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::Scene;
 use crate::integrator::{SolverSettings, Stats};
@@ -399,34 +400,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         );
         return s;
     }
-    let _ = writeln!(s, "  impulse P         {:.9e} N s", r.impulse);
-    let theta = r
-        .theta
-        .map(|t| format!("{:.6} deg", t.to_degrees()))
-        .unwrap_or_else(|| "undefined (no slip)".into());
-    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
-    match (r.sticks, o.stick_time) {
-        (true, Some(t)) => {
-            let _ = writeln!(
-                s,
-                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
-                r.stick_impulse.unwrap_or(0.0)
-            );
-        }
-        _ => {
-            let _ = writeln!(
-                s,
-                "  sliding           throughout, S_out = {:.9} m/s",
-                r.s_out
-            );
-        }
-    }
-    let _ = writeln!(s, "  tangential J      {:.9e} N s", r.tangential_impulse);
-    let _ = writeln!(
-        s,
-        "  heat H            {:.9e} J (sliding {:.9e} J)",
-        r.heat, r.heat_sliding
-    );
+    s.push_str(&contact_summary(r, o.stick_time));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     let _ = writeln!(s, "  centre-of-mass frame, out:");
     let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
@@ -459,6 +433,41 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     for w in &o.warnings {
         let _ = writeln!(s, "  warning: {w}");
     }
+    s
+}
+
+/// The contact of a collision, human-readable: impulse, sliding, heat.
+fn contact_summary(r: &ContactResult, stick_time: Option<f64>) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "  impulse P         {:.9e} N s", r.impulse);
+    let theta = r
+        .theta
+        .map(|t| format!("{:.6} deg", t.to_degrees()))
+        .unwrap_or_else(|| "undefined (no slip)".into());
+    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
+    match (r.sticks, stick_time) {
+        (true, Some(t)) => {
+            let _ = writeln!(
+                s,
+                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
+                r.stick_impulse.unwrap_or(0.0)
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                s,
+                "  sliding           throughout, S_out = {:.9} m/s",
+                r.s_out
+            );
+        }
+    }
+    let _ = writeln!(s, "  tangential J      {:.9e} N s", r.tangential_impulse);
+    let _ = writeln!(
+        s,
+        "  heat H            {:.9e} J (sliding {:.9e} J)",
+        r.heat, r.heat_sliding
+    );
     s
 }
 

@@ -1,6 +1,6 @@
 //! Trace rows of a run and their CSV form.
 //!
-//! Columns (header cells `name (unit)`, CONTRACTS.md): `t (s)`, `f (N)`, `p (N s)`,
+//! Columns (header cells `name (unit)`, docs/formats.md#trace-csv): `t (s)`, `f (N)`, `p (N s)`,
 //! `U (m/s)`, `V (m/s)`, `W (m/s)`, `omega_a_x (rad/s)` .. `omega_b_z (rad/s)`, `S (m/s)`,
 //! `theta (rad)`, `H_sfr (J)`. The state is the paper's centre-of-mass frame. After
 //! sticking, S is 0 and theta is the last sliding value; theta is empty when S(0) = 0.

@@ -7,8 +7,9 @@ use crate::model::params::{Ball, BallPair, Contact, Friction};
 use crate::model::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
-/// Natural scales of a collision (CONTRACTS.md): errors are reported relative to them and
-/// the integrator works in the variables they make dimensionless.
+/// Natural scales of a collision (docs/model.md#scales-and-scaled-errors): errors are
+/// reported relative to them and the integrator works in the variables they make
+/// dimensionless.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
     /// Reference speed v_ref = max(|U(0)|, S(0), |U(0)| (vector), r_A |Omega^A(0)|,

@@ -111,7 +111,8 @@ impl CmState {
 
 /// |v| of a plane vector (the slip): sqrt(x^2 + y^2) where the squares can neither
 /// overflow nor lose precision to underflow, `hypot` (slower by about 20 ns) elsewhere, so
-/// that a tiny S(0) keeps its full relative precision (CONTRACTS.md: no threshold on S(0)).
+/// that a tiny S(0) keeps its full relative precision (there is no threshold on S(0):
+/// docs/model.md#no-initial-sliding).
 #[inline]
 pub fn planar_length(v: Vector2<f64>) -> f64 {
     let m = v.x.abs().max(v.y.abs());
