@@ -95,10 +95,9 @@ impl Incoming {
 pub struct Scene {
     /// Name shown in reports.
     pub name: String,
-    /// The balls: `[balls]` (identical) or `[balls.a]` and `[balls.b]`.
+    /// The balls: `[balls]` (identical; `Ball::into()` makes the pair) or `[balls.a]` and
+    /// `[balls.b]`.
     pub balls: BallPair,
-    /// Ball A (both balls when they are identical).
-    pub ball: Ball,
     /// Friction and impulse rule.
     pub contact: Contact,
     /// Normal-force profile.
@@ -468,7 +467,6 @@ impl Scene {
                     .unwrap_or_else(|| "scene".into())
             }),
             balls,
-            ball: balls.a,
             contact: Contact { friction, impulse },
             profile,
             incoming,
