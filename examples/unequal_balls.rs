@@ -10,6 +10,7 @@
 //! cargo run --release --example unequal_balls
 //! ```
 
+#[allow(dead_code)] // this example uses only the exit helper
 mod common;
 
 use billiard_contact::formats::report::summary;

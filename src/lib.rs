@@ -35,7 +35,7 @@
 //! // S(0) = 2V = 1 m/s never reaches 0 (p_stick = m S(0) / (2 mu (1 + 1/alpha)) > P = 2 m U(0)),
 //! // so friction acts throughout: V' = V - mu P / m = 0.5 - 2 (0.06) (1) = 0.38 m/s (eqs 24-25).
 //! assert!((outcome.out.u_cm.y - 0.38).abs() < 1e-10);
-//! assert!((outcome.out.u_cm.x + 1.0).abs() < 1e-10);
+//! assert!((outcome.result.out.u_cm.x + 1.0).abs() < 1e-10);
 //! # Ok::<(), billiard_contact::Error>(())
 //! ```
 //!
