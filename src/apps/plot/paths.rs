@@ -132,18 +132,18 @@ struct Layout {
 }
 
 impl Layout {
-    /// The layout of `t`'s figure, balls of radius `radius` (m).
-    fn new(t: &TableOutcome, radius: f64, proj: &Projection) -> Self {
+    /// The layout of `t`'s figure, balls A and B of radii `radii` (m).
+    fn new(t: &TableOutcome, radii: [f64; 2], proj: &Projection) -> Self {
         let up = t.table.up;
         let end = t.end_time();
         let runs = [runs(&t.a, &up, end, proj), runs(&t.b, &up, end, proj)];
-        let outlines = [&t.a, &t.b].into_iter().flat_map(|r| {
+        let outlines = [&t.a, &t.b].into_iter().zip(radii).flat_map(|(r, radius)| {
             let (x, y) = proj.xy(&r.start.position);
             [(x - radius, y - radius), (x + radius, y + radius)]
         });
         let paths = runs.iter().flatten().flat_map(|(_, p)| p.iter().copied());
         let mut bounds = Bounds::of(paths.chain(outlines));
-        let span = bounds.span(radius);
+        let span = bounds.span(larger(radii));
         let arrows = final_arrows(t, proj, end, 0.2 * span);
         let vin = horizontal(&t.incoming[0], &up);
         let incoming_from = (vin.norm() > 0.0).then(|| {
@@ -221,31 +221,36 @@ fn equal_scale(b: &Bounds, radius: f64, dims: (u32, u32)) -> (Range<f64>, Range<
     )
 }
 
-/// Draws the figure of the table phase `t` on `root` with title `title`, the balls of
-/// radius `radius` (m); an error carries the backend's message.
+/// The larger of two radii (m): what the figure's margins are measured in.
+fn larger(radii: [f64; 2]) -> f64 {
+    radii[0].max(radii[1])
+}
+
+/// Draws the figure of the table phase `t` on `root` with title `title`, balls A and B of
+/// radii `radii` (m); an error carries the backend's message.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
 ) -> Result<(), String>
 where
     DB::ErrorType: 'static,
 {
     super::register_fonts();
-    draw_figure(root, t, radius, title).map_err(|e| e.to_string())
+    draw_figure(root, t, radii, title).map_err(|e| e.to_string())
 }
 
 /// The figure, element by element (in this order, so later ones are on top).
 fn draw_figure<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
 ) -> Drawn<DB> {
     let proj = Projection::new(&t.table.up);
-    let layout = Layout::new(t, radius, &proj);
-    let (x, y) = equal_scale(&layout.bounds, radius, root.dim_in_pixel());
+    let layout = Layout::new(t, radii, &proj);
+    let (x, y) = equal_scale(&layout.bounds, larger(radii), root.dim_in_pixel());
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(root)
         .caption(title, (FONT, 22))
@@ -263,7 +268,7 @@ fn draw_figure<DB: DrawingBackend>(
         ("A (cue ball)", &t.a, COLOR_A),
         ("B (object ball)", &t.b, COLOR_B),
     ];
-    for ((name, r, color), runs) in balls.into_iter().zip(&layout.runs) {
+    for (((name, r, color), runs), radius) in balls.into_iter().zip(&layout.runs).zip(radii) {
         draw_outline(&mut chart, proj.xy(&r.start.position), radius, color)?;
         draw_path(&mut chart, name, runs, color)?;
         draw_markers(&mut chart, r, &t.table.up, &proj, color, x.end - x.start)?;
@@ -459,26 +464,26 @@ fn draw_legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> Drawn<
         .draw()
 }
 
-/// The figure of `t` (balls of radius `radius`, m) as SVG text.
-pub fn svg(t: &TableOutcome, radius: f64, title: &str) -> Result<String, Error> {
+/// The figure of `t` (balls A and B of radii `radii`, m) as SVG text.
+pub fn svg(t: &TableOutcome, radii: [f64; 2], title: &str) -> Result<String, Error> {
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(&root, t, radius, title).map_err(plot_error)?;
+        draw(&root, t, radii, title).map_err(plot_error)?;
     }
     Ok(out)
 }
 
-/// Renders the figure of `t` (balls of radius `radius`, m) as PNG at `path` (written
+/// Renders the figure of `t` (balls A and B of radii `radii`, m) as PNG at `path` (written
 /// directly; the CLI renames it into place).
 pub fn png(
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
     path: &std::path::Path,
 ) -> Result<(), Error> {
     let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-    draw(&root, t, radius, title).map_err(plot_error)
+    draw(&root, t, radii, title).map_err(plot_error)
 }
 
 fn plot_error(message: String) -> Error {
