@@ -266,3 +266,159 @@ fn the_command_runs_the_bar_table_scene_and_writes_its_ball_paths() {
     assert!(std::fs::read_to_string(&paths).unwrap().lines().count() > 10);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The material of `[balls]` with `[balls.a]` and `[balls.b]`: Hertz's contact of two
+/// different spheres, written out from the textbook here (E* = E / (2 (1 - nu^2)) for one
+/// material, 1/R = 1/r_A + 1/r_B, m* = m_A m_B / (m_A + m_B), k = (4/3) E* sqrt(R),
+/// delta_max = (5 m* v^2 / (4 k))^(2/5), tau = (4/5) B(2/5, 1/2) delta_max / v at
+/// v = 2 U(0)); a batch row's stick time is its own contact time times the stick fraction
+/// p_stick / P = S(0) / (mu K) / ((1 + e) M U(0)) of the Hertz pulse.
+#[test]
+fn a_material_scene_of_unequal_balls_takes_the_two_spheres_contact_time() {
+    let (ma, ra, aa, mb, rb, ab) = (0.184, 0.030163, 0.4, 0.17, 0.028575, 0.35);
+    let (e, nu, mu) = (5.4e9, 0.34, 0.06);
+    let tau = |u0: f64| {
+        let v = 2.0 * u0;
+        let e_star = e / (2.0 * (1.0 - nu * nu));
+        let radius = ra * rb / (ra + rb);
+        let m_star = ma * mb / (ma + mb);
+        let k = 4.0 / 3.0 * e_star * f64::sqrt(radius);
+        let delta = (5.0 * m_star * v * v / (4.0 * k)).powf(0.4);
+        0.8 * common::beta_fn(0.4, 0.5) * delta / v
+    };
+    let text = format!(
+        "[balls]\nyoungs_modulus = {e:e}\npoisson_ratio = {nu}\n\
+         [balls.a]\nmass = {ma}\nradius = {ra}\nalpha = {aa}\n\
+         [balls.b]\nmass = {mb}\nradius = {rb}\nalpha = {ab}\n\
+         [contact]\nmu = {mu}\n[contact.profile]\nshape = \"hertz\"\n\
+         [incoming.cm]\nu = [0.5, 0.02, 0.0]\n"
+    );
+    let scene = Scene::parse(&text, Path::new("."), None).unwrap();
+    let rel = |got: f64, want: f64| ((got - want) / want).abs();
+    let got = billiard_contact::ForceProfile::duration(&scene.profile);
+    assert!(rel(got, tau(0.5)) <= 1e-12, "{got} vs {}", tau(0.5));
+    let hertz = scene.hertz().unwrap().unwrap();
+    assert!(rel(hertz.reduced_mass, ma * mb / (ma + mb)) <= 1e-15);
+    // Batch rows at two approach speeds, S(0) = 2 V = 0.08 U(0), elastic: P = 2 M U(0) with
+    // M = 2 m*, K = (1 + 1/alpha_A)/m_A + (1 + 1/alpha_B)/m_B.
+    let pair_mass = 2.0 * ma * mb / (ma + mb);
+    let k = (1.0 + 1.0 / aa) / ma + (1.0 + 1.0 / ab) / mb;
+    let q = 0.08 / (mu * k) / (2.0 * pair_mass);
+    for method in [Method::ClosedForm, Method::Dop853] {
+        let setup = BatchSetup::from_scene(&scene, scene.solver.with_method(method));
+        for u0 in [0.01, 10.0] {
+            let row = BatchInput::cm(billiard_contact::CmState::new(
+                Vector3::new(u0, 0.04 * u0, 0.0),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            ));
+            let t = resolve(&setup, &row).unwrap().stick_time.unwrap();
+            let want = tau(u0) * common::hertz_time(q);
+            assert!(rel(t, want) <= 1e-9, "{method}, U(0) = {u0}: {t} vs {want}");
+        }
+    }
+}
+
+/// The path figure (SVG) draws each ball's outline at contact with its own radius, and the
+/// line of centres through both outlines' centres. The outlines are the polylines of 73
+/// points in A's and B's colours; their widths in pixels are 2 r times one scale, to a
+/// pixel of rounding each.
+#[test]
+fn the_path_figure_draws_each_ball_with_its_own_radius() {
+    let dir = std::env::temp_dir().join(format!("bc-unequal-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("paths.svg");
+    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+        .arg("run")
+        .arg(bar_table())
+        .arg("--plot")
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let polylines = |colour: &str| -> Vec<Vec<(f64, f64)>> {
+        text.split("<polyline")
+            .skip(1)
+            .filter(|p| p.contains(&format!("stroke=\"{colour}\"")))
+            .map(|p| {
+                let pts = p
+                    .split("points=\"")
+                    .nth(1)
+                    .unwrap()
+                    .split('"')
+                    .next()
+                    .unwrap();
+                pts.split_whitespace()
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    // (width, centre) of the outline drawn in `colour`.
+    let outline = |colour: &str| {
+        let all = polylines(colour);
+        let ring: Vec<_> = all.iter().filter(|p| p.len() == 73).collect();
+        assert_eq!(ring.len(), 1, "{colour}");
+        let (xs, ys): (Vec<f64>, Vec<f64>) = ring[0].iter().copied().unzip();
+        let (x0, x1) = (
+            xs.iter().cloned().fold(f64::MAX, f64::min),
+            xs.iter().cloned().fold(f64::MIN, f64::max),
+        );
+        let (y0, y1) = (
+            ys.iter().cloned().fold(f64::MAX, f64::min),
+            ys.iter().cloned().fold(f64::MIN, f64::max),
+        );
+        (x1 - x0, (0.5 * (x0 + x1), 0.5 * (y0 + y1)))
+    };
+    let (wa, ca) = outline("#1F5AB4");
+    let (wb, cb) = outline("#C83C1E");
+    let ratio = 0.030163 / 0.028575;
+    assert!(
+        wa > wb && (wa / wb - ratio).abs() <= 2.0 / wb,
+        "{wa} {wb} against {ratio}"
+    );
+    // The dashed line of centres: its first and last dash span it (the legend's sample, in
+    // the same colour, is drawn last); both centres lie on it within two pixels.
+    let dashes = polylines("#5A5A5A");
+    let (p, q) = (dashes[0][0], dashes[dashes.len() - 2][1]);
+    let off = |c: (f64, f64)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        ((c.0 - p.0) * dy - (c.1 - p.1) * dx).abs() / dx.hypot(dy)
+    };
+    assert!(off(ca) <= 2.0 && off(cb) <= 2.0, "{} {}", off(ca), off(cb));
+}
+
+/// A throw chart's shot with the bar-table balls: B stands on the cloth beside A (centres
+/// r_A + r_B apart, B's centre r_B above the cloth at the cut angle), and the shot runs
+/// through the table phase.
+#[test]
+fn a_sweep_shot_sets_the_smaller_object_ball_down_on_the_cloth() {
+    use billiard_contact::sweep::{run_shot, Shot, Spin};
+    let scene = Scene::load(&bar_table()).unwrap();
+    let (ra, rb) = (scene.balls.a.radius(), scene.balls.b.radius());
+    let shot = Shot {
+        spin: Spin::Roll,
+        speed: 1.0,
+        side: 0.0,
+        cut_deg: 30.0,
+    };
+    let lab = shot.lab_scene(scene.balls);
+    let d = lab.b.position - lab.a.position;
+    assert!((d.norm() - (ra + rb)).abs() <= 1e-15, "{}", d.norm());
+    assert_eq!(lab.a.position.z, ra);
+    assert!((lab.b.position.z - rb).abs() <= 1e-17);
+    // The horizontal direction is the cut's: (sin 30, cos 30) from A.
+    let h = d.x.hypot(d.y);
+    assert!((d.x / h - 0.5).abs() <= 1e-15 && (d.y / h - 0.75f64.sqrt()).abs() <= 1e-15);
+    let row = run_shot(&scene, &scene.solver, shot).unwrap();
+    assert!(row.object_speed > 0.0 && row.throw_deg.is_some());
+}

@@ -259,8 +259,7 @@ fn draw_figure<DB: DrawingBackend>(
         .y_label_area_size(LABEL_Y)
         .build_cartesian_2d(x.clone(), y.clone())?;
     draw_axes(&mut chart, &proj)?;
-    let reach = 2.0 * ((x.end - x.start) + (y.end - y.start));
-    draw_line_of_centres(&mut chart, t, &proj, reach)?;
+    draw_line_of_centres(&mut chart, t, &proj, (&x, &y))?;
     if let Some(from) = layout.incoming_from {
         draw_incoming(&mut chart, from, proj.xy(&t.a.start.position))?;
     }
@@ -296,21 +295,22 @@ fn draw_axes<'a, DB: DrawingBackend + 'a>(
         .draw()
 }
 
-/// The line of centres at contact (dashed, grey), `reach` (m) beyond both balls: across
-/// the figure.
+/// The line of centres at contact (dashed, grey) across the figure, whose axes span
+/// `ranges` (m).
 fn draw_line_of_centres<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     t: &TableOutcome,
     proj: &Projection,
-    reach: f64,
+    ranges: (&Range<f64>, &Range<f64>),
 ) -> Drawn<DB> {
     let ca = proj.xy(&t.a.start.position);
-    let cb = proj.xy(&t.b.start.position);
     let l = proj.xy(&t.line);
-    let line = [
-        (ca.0 - reach * l.0, ca.1 - reach * l.1),
-        (cb.0 + reach * l.0, cb.1 + reach * l.1),
-    ];
+    // The backend moves a point outside the axes onto the border coordinate by coordinate,
+    // which turns a slanted line towards a corner: draw only the part inside the axes.
+    let Some((from, to)) = clip_line(ca, l, ranges) else {
+        return Ok(());
+    };
+    let line = [from, to];
     chart
         .draw_series(DashedLineSeries::new(
             line,
@@ -340,6 +340,30 @@ fn draw_incoming<'a, DB: DrawingBackend + 'a>(
         .label("A incoming")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_A.mix(0.6).stroke_width(2)));
     Ok(())
+}
+
+/// The part inside the box `ranges` of the line through `p` along `d`: its two ends, or
+/// `None` when the line misses the box (or `d` is zero). Each axis bounds the line
+/// parameter s of p + s d; the part inside is the intersection of the two intervals.
+fn clip_line(p: Point, d: Point, ranges: (&Range<f64>, &Range<f64>)) -> Option<(Point, Point)> {
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (start, dir, range) in [(p.0, d.0, ranges.0), (p.1, d.1, ranges.1)] {
+        if dir == 0.0 {
+            if start < range.start || start > range.end {
+                return None;
+            }
+        } else {
+            let (a, b) = ((range.start - start) / dir, (range.end - start) / dir);
+            lo = lo.max(a.min(b));
+            hi = hi.min(a.max(b));
+        }
+    }
+    (lo < hi && lo.is_finite() && hi.is_finite()).then(|| {
+        (
+            (p.0 + lo * d.0, p.1 + lo * d.1),
+            (p.0 + hi * d.0, p.1 + hi * d.1),
+        )
+    })
 }
 
 /// A ball's outline at contact: the circle of `radius` (m) about `centre`.
@@ -490,5 +514,30 @@ fn plot_error(message: String) -> Error {
     Error::Plot {
         path: "plot".into(),
         message: format!("drawing the path figure: {message}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clip_line;
+
+    #[test]
+    fn the_line_of_centres_is_clipped_to_the_axes_along_itself() {
+        let (x, y) = (-1.0..3.0, -1.0..1.0);
+        // Horizontal through (0.5, 0.25): from x = -1 to x = 3 at y = 0.25.
+        let h = clip_line((0.5, 0.25), (2.0, 0.0), (&x, &y)).unwrap();
+        assert_eq!(h, ((-1.0, 0.25), (3.0, 0.25)));
+        // Slope 1/2 through the origin: y reaches -1 and 1 at x = -2 and 2, outside x's
+        // -1 on the left, so the part inside runs from (-1, -0.5) to (2, 1).
+        let (a, b) = clip_line((0.0, 0.0), (0.8, 0.4), (&x, &y)).unwrap();
+        let close = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).abs().max((p.1 - q.1).abs()) < 1e-15;
+        assert!(
+            close(a, (-1.0, -0.5)) && close(b, (2.0, 1.0)),
+            "{a:?} {b:?}"
+        );
+        // A line that passes above the box, and a vertical one beside it.
+        assert!(clip_line((0.0, 2.0), (1.0, 0.0), (&x, &y)).is_none());
+        assert!(clip_line((4.0, 0.0), (0.0, 1.0), (&x, &y)).is_none());
+        assert!(clip_line((0.0, 0.0), (0.0, 0.0), (&x, &y)).is_none());
     }
 }
