@@ -24,7 +24,7 @@ const TOLERANCE: f64 = 1e-9;
 /// Largest accepted change of the lab momentum over m_A |v_A(0)|.
 const MOMENTUM: f64 = 1e-14;
 
-fn run() -> Result<(), Error> {
+pub fn run() -> Result<(), Error> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/scenes/bar_table_cut.toml");
     let scene = Scene::load(&path)?;
     let settings = scene.solver.with_method(Method::Dop853);
