@@ -358,12 +358,10 @@ fn clip_line(p: Point, d: Point, ranges: (&Range<f64>, &Range<f64>)) -> Option<(
             hi = hi.min(a.max(b));
         }
     }
-    (lo < hi && lo.is_finite() && hi.is_finite()).then(|| {
-        (
-            (p.0 + lo * d.0, p.1 + lo * d.1),
-            (p.0 + hi * d.0, p.1 + hi * d.1),
-        )
-    })
+    (lo < hi && lo.is_finite() && hi.is_finite()).then_some((
+        (p.0 + lo * d.0, p.1 + lo * d.1),
+        (p.0 + hi * d.0, p.1 + hi * d.1),
+    ))
 }
 
 /// A ball's outline at contact: the circle of `radius` (m) about `centre`.
