@@ -242,17 +242,18 @@ fn lab_positions_that_do_not_touch_at_r_a_plus_r_b_are_refused() {
     );
 }
 
-#[test]
-fn the_command_runs_the_bar_table_scene_and_writes_its_ball_paths() {
-    let dir = std::env::temp_dir().join(format!("bc-unequal-{}", std::process::id()));
+/// `billiard-contact run` on the bar-table scene with `--json` and `--{option} FILE`
+/// (`name` in a directory of the test's own): the JSON report and the file's text.
+fn run_bar_table_writing(option: &str, name: &str) -> (serde_json::Value, String) {
+    let dir = std::env::temp_dir().join(format!("bc-unequal-{option}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let paths = dir.join("paths.csv");
+    let file = dir.join(name);
     let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
         .arg("run")
         .arg(bar_table())
         .arg("--json")
-        .arg("--path")
-        .arg(&paths)
+        .arg(format!("--{option}"))
+        .arg(&file)
         .output()
         .unwrap();
     assert!(
@@ -260,11 +261,17 @@ fn the_command_runs_the_bar_table_scene_and_writes_its_ball_paths() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    (serde_json::from_slice(&out.stdout).unwrap(), text)
+}
+
+#[test]
+fn the_command_runs_the_bar_table_scene_and_writes_its_ball_paths() {
+    let (json, paths) = run_bar_table_writing("path", "paths.csv");
     assert_eq!(json["collision"], true);
     assert!(json["table"].is_object());
-    assert!(std::fs::read_to_string(&paths).unwrap().lines().count() > 10);
-    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(paths.lines().count() > 10);
 }
 
 /// The material of `[balls]` with `[balls.a]` and `[balls.b]`: Hertz's contact of two
@@ -325,23 +332,7 @@ fn a_material_scene_of_unequal_balls_takes_the_two_spheres_contact_time() {
 /// pixel of rounding each.
 #[test]
 fn the_path_figure_draws_each_ball_with_its_own_radius() {
-    let dir = std::env::temp_dir().join(format!("bc-unequal-plot-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let svg = dir.join("paths.svg");
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .arg("run")
-        .arg(bar_table())
-        .arg("--plot")
-        .arg(&svg)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(&svg).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
+    let (_, text) = run_bar_table_writing("plot", "paths.svg");
     let polylines = |colour: &str| -> Vec<Vec<(f64, f64)>> {
         text.split("<polyline")
             .skip(1)
