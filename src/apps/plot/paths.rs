@@ -440,8 +440,8 @@ impl<'a> TopView<'a> {
         Ok(())
     }
 
-    /// A ball's landings (crosses; on the main chart those closer than [`CROWDED_PX`] to
-    /// one drawn before are left out), where it starts to roll (dot) and where it rests
+    /// A ball's landings (crosses; those closer than [`CROWDED_PX`] to one drawn before
+    /// are left out), where it starts to roll (dot) and where it rests
     /// (square); on the main chart with their times.
     fn draw_markers<'b, DB: DrawingBackend + 'b>(
         &self,
@@ -459,7 +459,7 @@ impl<'a> TopView<'a> {
             let px = chart.backend_coord(&p);
             let near =
                 |q: &(i32, i32)| f64::from(q.0 - px.0).hypot(f64::from(q.1 - px.1)) < CROWDED_PX;
-            if !main || !drawn.iter().any(near) {
+            if !drawn.iter().any(near) {
                 drawn.push(px);
                 landings.push((p, false));
             }
@@ -529,7 +529,7 @@ impl<'a> TopView<'a> {
         if la + lb > 0 {
             e.push(LegendEntry::new(
                 landing_swatch(COLOR_KEY),
-                format!("landing on the cloth (A {la}, B {lb})"),
+                format!("landing (A {la}, B {lb}; those within {CROWDED_PX} px drawn once)"),
             ));
         }
         e.push(LegendEntry::new(
@@ -859,4 +859,126 @@ fn draw_arrow<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>, arrow: &Ar
     draw_clipped(chart, swatch.with_line(Line::Dashed), &[from, to])?;
     draw_clipped(chart, swatch, &[wing(1.0), to, wing(-1.0)])?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::apps::runner::run_scene;
+    use std::path::Path;
+
+    /// The draw shot of data/scenes, with `extra` added under its `[table]`.
+    fn draw_shot(extra: &str) -> Scene {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+        let text = std::fs::read_to_string(dir.join("draw_table.toml")).unwrap();
+        let text = text.replace(
+            "spin_decay = 0.044",
+            &format!("spin_decay = 0.044\n{extra}"),
+        );
+        Scene::parse(&text, &dir, None).unwrap()
+    }
+
+    fn view_of<T>(scene: &Scene, f: impl FnOnce(&TopView<'_>) -> T) -> T {
+        let run = run_scene(scene, &scene.solver, None).unwrap();
+        let t = run.table.as_ref().unwrap();
+        f(&TopView::new(scene, &run, t))
+    }
+
+    /// With rolling resistance both balls rest about 15 m apart along x and 0.3 m across:
+    /// the chart's height shrinks to its least (the paths fill its width), no arrow runs
+    /// past a rest point, and the balls at contact are small enough for the inset.
+    #[test]
+    fn the_frame_fits_paths_that_end_at_rest() {
+        let scene = draw_shot("rolling_resistance = 0.01");
+        view_of(&scene, |v| {
+            let b = &v.layout.bounds;
+            let width = v.x.end - v.x.start;
+            assert!((b.x1 - b.x0) / width > 0.85, "paths fill the width");
+            let pw = f64::from(WIDTH - 2 * MARGIN - LABEL_Y);
+            assert_eq!(f64::from(v.plot_height), (ASPECT.0 * pw).round());
+            // Equal scales: metres per pixel the same across and up.
+            let (sx, sy) = (width / pw, (v.y.end - v.y.start) / f64::from(v.plot_height));
+            assert!((sx / sy - 1.0).abs() < 1e-12);
+            assert!(v.layout.arrows.is_empty(), "both balls rest: no arrows");
+            assert!(v.inset.is_some());
+        });
+    }
+
+    /// Without rolling resistance the balls roll on: one arrow each, starting where the
+    /// path ends; the balls are large enough on the chart to need no inset.
+    #[test]
+    fn rolling_balls_get_arrows_from_the_end_of_their_paths() {
+        let scene = draw_shot("");
+        view_of(&scene, |v| {
+            assert_eq!(v.layout.arrows.len(), 2);
+            for (arrow, runs) in v.layout.arrows.iter().zip(&v.layout.runs) {
+                let end = *runs.last().unwrap().1.last().unwrap();
+                assert!((arrow.0 .0 - end.0).hypot(arrow.0 .1 - end.1) < 1e-9);
+            }
+            assert!(v.inset.is_none());
+        });
+    }
+
+    /// `[table] length, width`: the cushions' rectangle, centred on the origin, inside the
+    /// frame; one without the other, or a size <= 0, is refused naming the key.
+    #[test]
+    fn the_table_size_is_drawn_and_validated() {
+        let scene = draw_shot("length = 2.54\nwidth = 1.27");
+        let size = scene.table_size.unwrap();
+        assert_eq!((size.length(), size.width()), (2.54, 1.27));
+        assert_eq!(
+            cushion_corners(&size),
+            [
+                (-1.27, -0.635),
+                (1.27, -0.635),
+                (1.27, 0.635),
+                (-1.27, 0.635),
+                (-1.27, -0.635)
+            ]
+        );
+        view_of(&scene, |v| {
+            assert!(v.x.start < -1.27 && v.x.end > 1.27);
+            assert!(v.y.start < -0.635 && v.y.end > 0.635);
+        });
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+        let text = std::fs::read_to_string(dir.join("draw_table.toml")).unwrap();
+        for (extra, message) in [
+            (
+                "length = 2.54",
+                "table.length = 2.54: given together with table.width",
+            ),
+            (
+                "width = 1.27",
+                "table.width = 1.27: given together with table.length",
+            ),
+            ("length = 2.54\nwidth = 0", "table.width = 0: > 0 m"),
+            ("length = -1\nwidth = 1", "table.length = -1: > 0 m"),
+        ] {
+            let t = text.replace(
+                "spin_decay = 0.044",
+                &format!("spin_decay = 0.044\n{extra}"),
+            );
+            let e = Scene::parse(&t, &dir, None).unwrap_err().to_string();
+            assert!(e.contains(message), "{e}");
+        }
+    }
+
+    /// Clipping keeps the part of a segment inside the box and drops one outside it.
+    #[test]
+    fn segments_are_clipped_to_the_chart() {
+        let (x, y) = (0.0..1.0, 0.0..1.0);
+        assert_eq!(
+            clip((-1.0, 0.5), (2.0, 0.5), (&x, &y)),
+            Some(((0.0, 0.5), (1.0, 0.5)))
+        );
+        assert_eq!(
+            clip((-1.0, -1.0), (1.0, 1.0), (&x, &y)),
+            Some(((0.0, 0.0), (1.0, 1.0)))
+        );
+        assert_eq!(clip((2.0, 2.0), (3.0, 2.5), (&x, &y)), None);
+        assert_eq!(
+            clip((0.2, 0.2), (0.4, 0.6), (&x, &y)),
+            Some(((0.2, 0.2), (0.4, 0.6)))
+        );
+    }
 }
