@@ -556,6 +556,59 @@ pub fn read_csv<R: Read>(input: R, path: &Path) -> Result<Vec<StudyRow>, Error> 
     Ok(rows)
 }
 
+/// How far (factor) a run may lie from the fitted line on the straight part of a line.
+pub const STRAIGHT: f64 = 3.0;
+
+/// The highest order of the methods studied (LSODA's Adams formulas go to 12; dop853 is 8):
+/// a steeper fit is not an order.
+pub const MAX_ORDER: f64 = 12.0;
+
+/// Why a line has no observed order ([`Series::order_fit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoOrder {
+    /// Fewer than two runs with error in [1e-13, 1e-2].
+    TooFewRuns,
+    /// Runs with the same evaluations and errors more than a factor 2 apart: the
+    /// tolerance, not the work, sets the error.
+    NotSetByWork,
+    /// No three runs within a factor [`STRAIGHT`] of a line over a factor 1.5 in work.
+    NoStraightPart,
+    /// A slope steeper than [`MAX_ORDER`]: the error falls faster than any method's order
+    /// allows (equal steps on the smoothed pulse, whose errors cancel as for a periodic
+    /// integrand, or an error the tolerance sets).
+    FasterThanAnyOrder,
+}
+
+impl NoOrder {
+    /// A few words for legends and tables.
+    pub fn text(&self) -> &'static str {
+        match self {
+            NoOrder::TooFewRuns => "too few runs",
+            NoOrder::NotSetByWork => "error not set by work",
+            NoOrder::NoStraightPart => "no straight part",
+            NoOrder::FasterThanAnyOrder => "steeper than any order",
+        }
+    }
+}
+
+/// The least-squares line through `pts`: its slope and the largest distance (in y) of a
+/// point from it; `None` when the x are all equal.
+fn line_fit(pts: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let n = pts.len() as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| {
+        let b = sxy / sxx;
+        let worst = pts
+            .iter()
+            .map(|p| (p.1 - my - b * (p.0 - mx)).abs())
+            .fold(0.0, f64::max);
+        (b, worst)
+    })
+}
+
 /// A line of the figure: the rows of one scene, profile, method and breakpoint setting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series<'a> {
@@ -591,13 +644,26 @@ impl Series<'_> {
     }
 
     /// The observed order: minus the least-squares slope of log(error) against
-    /// log(rhs evaluations), over runs with error in [1e-13, 1e-2] (below, round-off
-    /// dominates; above, the asymptotic regime has not started) up to the ladder's most
-    /// accurate run (past it, more work only accumulates round-off: hertz with rk4 ends at
-    /// 1e-13 to 3e-13 after 4096 steps). `None` with fewer than two such runs (a ladder that
-    /// falls from above 1e-2 to round-off within one rung has no measurable order) or
-    /// without evaluation counts.
+    /// log(rhs evaluations) on the straight part of the line ([`Series::order_fit`]);
+    /// `None` where there is none.
     pub fn observed_order(&self) -> Option<f64> {
+        self.order_fit().ok()
+    }
+
+    /// The observed order p (error ~ evaluations^-p), or why there is none. The runs are
+    /// those with error in [1e-13, 1e-2] (below, round-off dominates; above, the
+    /// asymptotic regime has not started) up to the ladder's most accurate run (past it,
+    /// more work only accumulates round-off: hertz with rk4 ends at 1e-13 to 3e-13 after
+    /// 4096 steps). Two such runs give the secant's slope (a ladder that reaches round-off
+    /// within a rung or two). With more, the straight part: runs are dropped from either
+    /// end, the one that leaves the better fit first, until every run lies within a factor
+    /// [`STRAIGHT`] of the least-squares line, keeping at least three; the fit counts when
+    /// those runs span a factor 1.5 in evaluations, no two of them with the same
+    /// evaluations differ in error by more than a factor 2 (then the tolerance, not the
+    /// work, sets the error; runs at either end with their neighbour's work are left out
+    /// first), and the order is at most [`MAX_ORDER`] (LSODA on the tabulated pulse: 42
+    /// evaluations from rtol 1e-3 to 1e-6, then 1e-10 in 54 more: "p = 23.4").
+    pub fn order_fit(&self) -> Result<f64, NoOrder> {
         let best = self
             .rows
             .iter()
@@ -614,14 +680,47 @@ impl Series<'_> {
             })
             .collect();
         if pts.len() < 2 {
-            return None;
+            return Err(NoOrder::TooFewRuns);
         }
-        let n = pts.len() as f64;
-        let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-        let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-        let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-        let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        (sxx > 0.0).then(|| -sxy / sxx)
+        let mut w: &[(f64, f64)] = &pts;
+        // Runs at the ladder's ends with the work of their neighbour (the fewest steps a
+        // method takes, or the most) measure the tolerance, not the work.
+        while w.len() > 2 && w[0].0 == w[1].0 {
+            w = &w[1..];
+        }
+        while w.len() > 2 && w[w.len() - 1].0 == w[w.len() - 2].0 {
+            w = &w[..w.len() - 1];
+        }
+        let mut fit = line_fit(w);
+        while fit.is_none_or(|f| f.1 > STRAIGHT.ln()) && w.len() > 3 {
+            let (head, tail) = (line_fit(&w[1..]), line_fit(&w[..w.len() - 1]));
+            let worst = |f: Option<(f64, f64)>| f.map_or(f64::INFINITY, |f| f.1);
+            w = if worst(head) <= worst(tail) {
+                &w[1..]
+            } else {
+                &w[..w.len() - 1]
+            };
+            fit = line_fit(w);
+        }
+        let same_work = w.iter().enumerate().any(|(i, a)| {
+            w[i + 1..]
+                .iter()
+                .any(|b| a.0 == b.0 && (a.1 - b.1).abs() > 2f64.ln())
+        });
+        if same_work {
+            return Err(NoOrder::NotSetByWork);
+        }
+        let spans = w.len() == 2 || w[w.len() - 1].0 - w[0].0 >= 1.5f64.ln();
+        match fit {
+            Some((slope, worst)) if worst <= STRAIGHT.ln() && spans => {
+                if -slope > MAX_ORDER {
+                    Err(NoOrder::FasterThanAnyOrder)
+                } else {
+                    Ok(-slope)
+                }
+            }
+            _ => Err(NoOrder::NoStraightPart),
+        }
     }
 
     /// The fewest right-hand-side evaluations of a run with error <= `target`, if any.
@@ -696,11 +795,13 @@ fn cost_cell(line: &Series<'_>, target: f64) -> String {
     }
 }
 
-/// A line's observed order, one decimal, or "-".
+/// A line's observed order, one decimal, or "-" and why not.
 fn order_cell(line: &Series<'_>) -> String {
-    line.observed_order()
-        .map(|o| format!("{o:.1}"))
-        .unwrap_or_else(|| "-".into())
+    match line.order_fit() {
+        Ok(o) => format!("{o:.1}"),
+        Err(NoOrder::TooFewRuns) => "-".into(),
+        Err(why) => format!("- ({})", why.text()),
+    }
 }
 
 /// A plain-text summary: per scene and profile, each method's observed order and the
@@ -713,7 +814,7 @@ pub fn summary(rows: &[StudyRow]) -> String {
         if line.scene != scene {
             scene = line.scene;
             let _ = writeln!(s, "\nscene: {scene}");
-            let _ = write!(s, "{:<11} {:<34} {:>6}", "profile", "method", "order");
+            let _ = write!(s, "{:<11} {:<34} {:>24}", "profile", "method", "order");
             for t in TARGETS {
                 let _ = write!(s, "  {:>18}", format!("error<={t:e}"));
             }
@@ -721,7 +822,7 @@ pub fn summary(rows: &[StudyRow]) -> String {
         }
         let _ = write!(
             s,
-            "{:<11} {:<34} {:>6}",
+            "{:<11} {:<34} {:>24}",
             line.profile,
             line.label(),
             order_cell(&line)
@@ -746,8 +847,11 @@ pub fn markdown(rows: &[StudyRow]) -> String {
          in the same directory: do not edit by hand. Each cell is the time per contact \
          (median wall time of one solve) / the right-hand-side evaluations of the cheapest run \
          of the line's ladder that reaches the error; p is the observed order (error ~ \
-         evaluations^-p over the runs with error in [1e-13, 1e-2] up to the ladder's most \
-         accurate one); best is the smallest error of the ladder. \"no transform\": hertz and sine-power stepped through graded \
+         evaluations^-p), fitted on the straight part of the runs with error in [1e-13, 1e-2] \
+         up to the ladder's most accurate one (every run within a factor 3 of the line); \
+         \"-\" says why there is none: no straight part, the error not set by the work \
+         (runs with the same evaluations and errors a factor 2 or more apart), or a slope \
+         steeper than 12, the highest order of the methods; best is the smallest error of the ladder. \"no transform\": hertz and sine-power stepped through graded \
          breakpoints instead of the smoothing time transform; \"no breakpoints\": a table's \
          knots not stepped to.\n",
     );
