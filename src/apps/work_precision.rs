@@ -1108,6 +1108,33 @@ pub(crate) mod tests {
         assert_eq!(one.observed_order(), None);
     }
 
+    /// The order on the straight part, or why there is none: a first run far above the
+    /// power law 3 n^-4 is left out (p = 4 exactly on the rest); equal work with errors
+    /// 100 apart inside the line; a slope of ln(1e8) / ln 2 = 26.6; a zigzag.
+    #[test]
+    fn order_fit_on_the_straight_part_or_why_not() {
+        let line = |runs: &[(u64, f64)]| -> Result<f64, NoOrder> {
+            let rows: Vec<StudyRow> = runs
+                .iter()
+                .map(|&(n, e)| made_up_row("p", "m", e, n, n as f64 * 1e-9))
+                .collect();
+            series(&rows)[0].order_fit()
+        };
+        let mut law: Vec<(u64, f64)> = [16u64, 32, 64, 128, 256, 512]
+            .iter()
+            .map(|&n| (n, 3.0 * (n as f64).powi(-4)))
+            .collect();
+        law[0].1 = 1e-3;
+        assert!((line(&law).unwrap() - 4.0).abs() < 1e-12);
+        let tie = [(40, 1e-6), (60, 1e-7), (60, 1e-9), (80, 1e-10)];
+        assert_eq!(line(&tie), Err(NoOrder::NotSetByWork));
+        let steep = [(40, 1e-4), (60, 1e-8), (80, 1e-12)];
+        assert_eq!(line(&steep), Err(NoOrder::FasterThanAnyOrder));
+        let zigzag = [(10, 1e-3), (20, 1e-8), (40, 1e-4), (80, 1e-9), (160, 1e-5)];
+        assert_eq!(line(&zigzag), Err(NoOrder::NoStraightPart));
+        assert_eq!(line(&[(10, 1e-3)]), Err(NoOrder::TooFewRuns));
+    }
+
     /// Hertz runs with the time transform on and off (graded breakpoints), and the column
     /// says which; in the smoothed variable rk4 at 64 steps is far closer to the closed
     /// form (a t^1.5 end costs it its order: docs/model.md#the-smoothing-change-of-time-variable).
@@ -1169,8 +1196,8 @@ pub(crate) mod tests {
         assert!(md.starts_with("# What accuracy costs"));
         assert!(md.contains("\n## s\n"), "{md}");
         assert!(
-            // p = ln(1e-7 / 1e-11) / ln(120 / 80) = 22.7
-            md.contains("| hertz | dop853 | 22.7 | 1.0e-11 | 6.00 us / 80 | 12.00 us / 120 | 12.00 us / 120 | not reached |"),
+            // p = ln(1e-7 / 1e-11) / ln(120 / 80) = 22.7: steeper than any method's order.
+            md.contains("| hertz | dop853 | - (steeper than any order) | 1.0e-11 | 6.00 us / 80 | 12.00 us / 120 | 12.00 us / 120 | not reached |"),
             "{md}"
         );
         assert!(
