@@ -481,6 +481,30 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
         .map_err(|e| Error::io("work_precision.csv", e.into_error()))
 }
 
+/// Whether `method` is a peer's (e.g. `scipy-DOP853`, from `benches/peers/`), not one of
+/// this crate's methods.
+pub fn is_peer_method(method: &str) -> bool {
+    !Method::ALL.iter().any(|m| m.name() == method)
+}
+
+/// The study's own `rows` followed by the peers' rows of `existing` (an earlier CSV of the
+/// same directory) for the scenes and profiles `rows` has, so that a new run of the study
+/// keeps the rows a peer's script appended; also how many peer rows were dropped (their
+/// scene or profile is not in this run).
+pub fn with_peers_of(rows: Vec<StudyRow>, existing: Vec<StudyRow>) -> (Vec<StudyRow>, usize) {
+    let ours = |r: &StudyRow| {
+        rows.iter()
+            .any(|o| o.scene == r.scene && o.profile == r.profile)
+    };
+    let (kept, dropped): (Vec<StudyRow>, Vec<StudyRow>) = existing
+        .into_iter()
+        .filter(|r| is_peer_method(&r.method))
+        .partition(ours);
+    let mut out = rows;
+    out.extend(kept);
+    (out, dropped.len())
+}
+
 /// Reads a study CSV (ours, possibly with rows appended by a peer's script). The columns of
 /// [`COLUMNS`] are required (by name); of the extra columns, missing ones or empty cells
 /// read as breakpoints = true, scene = "", zero counts, no note, time transform = true (the
@@ -641,6 +665,11 @@ impl Series<'_> {
             (false, true) => format!("{} (no transform)", self.method),
             (false, false) => format!("{} (no transform, no breakpoints)", self.method),
         }
+    }
+
+    /// Whether the line is a peer's ([`is_peer_method`]).
+    pub fn is_peer(&self) -> bool {
+        is_peer_method(self.method)
     }
 
     /// The observed order: minus the least-squares slope of log(error) against
@@ -1204,6 +1233,25 @@ pub(crate) mod tests {
             md.contains("| hertz | dop853 | 2.00x, 3.00x | 2.00x, 3.00x | 2.00x, 3.00x |"),
             "{md}"
         );
+    }
+
+    /// A new run keeps the peers' rows of its scenes and profiles, after its own, and
+    /// drops its own old rows and the peers' rows of a scene it did not run.
+    #[test]
+    fn a_new_run_keeps_the_peers_rows() {
+        let ours = vec![made_up_row("hertz", "dop853", 1e-9, 100, 1e-5)];
+        let mut other_scene = made_up_row("hertz", "scipy-RK45", 1e-6, 300, 1e-3);
+        other_scene.scene = "t".into();
+        let existing = vec![
+            made_up_row("hertz", "dop853", 2e-9, 90, 1e-5),
+            made_up_row("hertz", "scipy-LSODA", 1e-7, 200, 1e-3),
+            made_up_row("rectangle", "scipy-LSODA", 1e-7, 200, 1e-3),
+            other_scene,
+        ];
+        let (rows, dropped) = with_peers_of(ours.clone(), existing.clone());
+        assert_eq!(rows, vec![ours[0].clone(), existing[1].clone()]);
+        assert_eq!(dropped, 2);
+        assert!(is_peer_method("scipy-DOP853") && !is_peer_method("dop853"));
     }
 
     #[test]

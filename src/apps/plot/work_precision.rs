@@ -130,7 +130,7 @@ fn colour(method: &str) -> RGBColor {
 /// triangles for the peers (scipy).
 fn swatch(line: &Series<'_>) -> Swatch {
     let s = Swatch::line(colour(line.method), 2);
-    if line.method.starts_with("scipy") {
+    if line.is_peer() {
         s.with_mark(Mark::Triangle, 5)
     } else if line.is_default() {
         s.with_mark(Mark::Circle, 4)
