@@ -126,124 +126,146 @@ pub struct TraceFigure {
     pub marked: bool,
 }
 
+impl Panel {
+    /// A panel titled `title` with the left axis `y_desc` and `curves`: no right axis, no
+    /// note, no least span.
+    fn new(title: &str, y_desc: &str, curves: Vec<Curve>) -> Self {
+        Panel {
+            title: title.into(),
+            y_desc: y_desc.into(),
+            y2_desc: None,
+            curves,
+            note: None,
+            min_span: 0.0,
+        }
+    }
+}
+
+/// The trace's rows as the figure's curves.
+struct Columns<'a> {
+    rows: &'a [TraceRow],
+    time: TimeAxis,
+    /// Few rows: each marked with a dot.
+    marked: bool,
+}
+
+impl Columns<'_> {
+    /// The look of the `i`-th curve of a panel (x, y, z colours), dotted rows when marked.
+    fn swatch(&self, i: usize) -> Swatch {
+        let s = Swatch::line(XYZ[i % 3], 2);
+        if self.marked {
+            s.with_mark(Mark::Circle, 3)
+        } else {
+            s
+        }
+    }
+
+    /// The trace CSV's column `i` (its cells times `factor`) against t.
+    fn curve(&self, i: usize, label: &str, swatch: Swatch, factor: f64) -> Curve {
+        Curve {
+            column: HEADER[i],
+            label: label.into(),
+            swatch,
+            points: self
+                .rows
+                .iter()
+                .filter_map(|r| Some((r.t * self.time.per_second, r.values()[i]? * factor)))
+                .collect(),
+            right_axis: false,
+        }
+    }
+
+    /// The six panels; `slip_note` says whether and when sliding stops, `no_slip` that
+    /// S(0) = 0.
+    fn panels(&self, slip_note: String, no_slip: bool) -> Vec<Panel> {
+        let p = Curve {
+            right_axis: true,
+            ..self.curve(
+                2,
+                "p(t) (right axis)",
+                self.swatch(1).with_line(Line::Dashed),
+                1.0,
+            )
+        };
+        let force = Panel {
+            y2_desc: Some("p (N s)".into()),
+            ..Panel::new(
+                "normal force f(t) and impulse p(t)",
+                "f (N)",
+                vec![self.curve(1, "f(t)", self.swatch(0), 1.0), p],
+            )
+        };
+        let slip = Panel {
+            note: Some(slip_note),
+            ..Panel::new(
+                "slip speed S(t)",
+                "S (m/s)",
+                vec![self.curve(12, "S(t)", self.swatch(0), 1.0)],
+            )
+        };
+        let degrees = 180.0 / std::f64::consts::PI;
+        let theta = Panel {
+            note: no_slip.then(|| "theta undefined: S(0) = 0".into()),
+            min_span: 2.0,
+            ..Panel::new(
+                "slip direction theta(t): constant while sliding",
+                "theta (deg)",
+                vec![self.curve(13, "theta(t)", self.swatch(0), degrees)],
+            )
+        };
+        let velocity = Panel::new(
+            "centre-of-mass velocity u = (U, V, W) of ball A",
+            "velocity (m/s)",
+            (0..3)
+                .map(|i| self.curve(3 + i, ["U", "V", "W"][i], self.swatch(i), 1.0))
+                .collect(),
+        );
+        let spins = (0..6)
+            .map(|i| {
+                let label = format!("omega_{} {}", ["A", "B"][i / 3], ["x", "y", "z"][i % 3]);
+                let s = if i < 3 {
+                    self.swatch(i)
+                } else {
+                    // Lighter and dashed, over A's (equal spins are then both seen).
+                    Swatch {
+                        color: light(XYZ[i % 3]),
+                        ..self.swatch(i).with_line(Line::Dashed)
+                    }
+                };
+                self.curve(6 + i, &label, s, 1.0)
+            })
+            .collect();
+        let spin = Panel::new("spins: ball A solid, ball B dashed", "spin (rad/s)", spins);
+        let heat = Panel::new(
+            "sliding heat H_sfr(t)",
+            "H_sfr (J)",
+            vec![self.curve(14, "H_sfr(t)", self.swatch(0), 1.0)],
+        );
+        vec![force, slip, theta, velocity, spin, heat]
+    }
+}
+
 impl TraceFigure {
     /// The figure of `run` (a run of `scene`) from its trace `rows`.
     pub fn new(scene: &Scene, run: &SceneOutcome, rows: &[TraceRow]) -> Self {
         let duration = scene.profile.duration();
         let time = TimeAxis::for_duration(duration);
-        let marked = rows.len() <= MARKED_ROWS;
-        let swatch = |i: usize| {
-            let s = Swatch::line(XYZ[i % 3], 2);
-            if marked {
-                s.with_mark(Mark::Circle, 3)
-            } else {
-                s
-            }
-        };
-        // The trace CSV's column `i` (its cells times `factor`) against t.
-        let curve = |i: usize, label: &str, swatch: Swatch, factor: f64| Curve {
-            column: HEADER[i],
-            label: label.into(),
-            swatch,
-            points: rows
-                .iter()
-                .filter_map(|r| {
-                    let v = r.values()[i]?;
-                    Some((r.t * time.per_second, v * factor))
-                })
-                .collect(),
-            right_axis: false,
+        let columns = Columns {
+            rows,
+            time,
+            marked: rows.len() <= MARKED_ROWS,
         };
         let no_slip = rows.first().is_some_and(|r| r.theta.is_none());
         // With S(0) = 0 there is no sliding to stop.
         let stick = run.outcome.stick_time.filter(|_| !no_slip);
-        let force = Panel {
-            title: "normal force f(t) and impulse p(t)".into(),
-            y_desc: "f (N)".into(),
-            y2_desc: Some("p (N s)".into()),
-            curves: vec![
-                curve(1, "f(t)", swatch(0), 1.0),
-                Curve {
-                    right_axis: true,
-                    ..curve(
-                        2,
-                        "p(t) (right axis)",
-                        swatch(1).with_line(Line::Dashed),
-                        1.0,
-                    )
-                },
-            ],
-            note: None,
-            min_span: 0.0,
-        };
-        let slip = Panel {
-            title: "slip speed S(t)".into(),
-            y_desc: "S (m/s)".into(),
-            y2_desc: None,
-            curves: vec![curve(12, "S(t)", swatch(0), 1.0)],
-            note: Some(match (no_slip, stick) {
-                (true, _) => "no sliding: S(0) = 0".into(),
-                (false, Some(t)) => format!(
-                    "sliding stops at t = {} {}",
-                    short(t * time.per_second),
-                    time.unit
-                ),
-                (false, None) => "slides throughout the contact".into(),
-            }),
-            min_span: 0.0,
-        };
-        let theta = Panel {
-            title: "slip direction theta(t): constant while sliding".into(),
-            y_desc: "theta (deg)".into(),
-            y2_desc: None,
-            curves: vec![curve(
-                13,
-                "theta(t)",
-                swatch(0),
-                180.0 / std::f64::consts::PI,
-            )],
-            note: no_slip.then(|| "theta undefined: S(0) = 0".into()),
-            min_span: 2.0,
-        };
-        let velocity = Panel {
-            title: "centre-of-mass velocity u = (U, V, W) of ball A".into(),
-            y_desc: "velocity (m/s)".into(),
-            y2_desc: None,
-            curves: (0..3)
-                .map(|i| curve(3 + i, ["U", "V", "W"][i], swatch(i), 1.0))
-                .collect(),
-            note: None,
-            min_span: 0.0,
-        };
-        let spin = Panel {
-            title: "spins: ball A solid, ball B dashed".into(),
-            y_desc: "spin (rad/s)".into(),
-            y2_desc: None,
-            curves: (0..6)
-                .map(|i| {
-                    let label = format!("omega_{} {}", ["A", "B"][i / 3], ["x", "y", "z"][i % 3]);
-                    let s = if i < 3 {
-                        swatch(i)
-                    } else {
-                        // Lighter and dashed, over A's (equal spins are then both seen).
-                        Swatch {
-                            color: light(XYZ[i % 3]),
-                            ..swatch(i).with_line(Line::Dashed)
-                        }
-                    };
-                    curve(6 + i, &label, s, 1.0)
-                })
-                .collect(),
-            note: None,
-            min_span: 0.0,
-        };
-        let heat = Panel {
-            title: "sliding heat H_sfr(t)".into(),
-            y_desc: "H_sfr (J)".into(),
-            y2_desc: None,
-            curves: vec![curve(14, "H_sfr(t)", swatch(0), 1.0)],
-            note: None,
-            min_span: 0.0,
+        let slip_note = match (no_slip, stick) {
+            (true, _) => "no sliding: S(0) = 0".into(),
+            (false, Some(t)) => format!(
+                "sliding stops at t = {} {}",
+                short(t * time.per_second),
+                time.unit
+            ),
+            (false, None) => "slides throughout the contact".into(),
         };
         TraceFigure {
             title: format!(
@@ -256,7 +278,7 @@ impl TraceFigure {
                  ({} {}){}{}",
                 short(duration * time.per_second),
                 time.unit,
-                if marked {
+                if columns.marked {
                     "; dots: the rows of the trace (as --trace writes them)"
                 } else {
                     ""
@@ -270,8 +292,8 @@ impl TraceFigure {
             time,
             duration: duration * time.per_second,
             stick_time: stick.map(|t| t * time.per_second),
-            panels: vec![force, slip, theta, velocity, spin, heat],
-            marked,
+            panels: columns.panels(slip_note, no_slip),
+            marked: columns.marked,
         }
     }
 
