@@ -91,6 +91,7 @@ pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
 pub use contact::closed_form::ClosedForm;
+pub use contact::law_outcome::{solve_law, LawOutcome};
 pub use contact::outcome::{solve, Outcome};
 pub use contact::result::ContactResult;
 pub use error::Error;
@@ -101,6 +102,8 @@ pub use integrator::{Method, Sampling, SolverSettings, Stats};
 pub use model::collision::Collision;
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
+pub use integrator::law::HeadOn;
+pub use model::contact_law::{ContactLaw, Damping};
 pub use model::material::{HertzContact, Material};
 pub use model::params::{
     Ball, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID,
@@ -118,5 +121,8 @@ pub mod details {
     pub use crate::integrator::{
         integrate, sidi_order, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
     };
+    pub use crate::integrator::law::{head_on, LAW_SPAN};
+    pub use crate::model::contact_law::CALIBRATION_RTOL;
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
+    pub use crate::model::material::{elastic_impact, hertz_stiffness, reduced_mass};
 }

@@ -116,7 +116,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (text, outcome) = match &args.trace {
         Some(path) => {
             let file = AtomicFile::create(path)?;
-            let mut csv = CsvTrace::new(file)?;
+            let mut csv = CsvTrace::with_columns(file, scene.law.is_some())?;
             let outcome = run_scene(&scene, &settings, Some((&mut csv, sampling)))?;
             let text = render(&outcome)?;
             csv.finish()?.commit()?;
