@@ -68,7 +68,12 @@ pub fn run() -> Result<(), Error> {
         }
         check(&law, reduced, &points)?;
         curves.push(Curve {
-            name: format!("{damping} ({} = {:.3e} {})", symbol(damping), law.coefficient(), damping.unit()),
+            name: format!(
+                "{damping} ({} = {:.3e} {})",
+                symbol(damping),
+                law.coefficient(),
+                damping.unit()
+            ),
             colour,
             points,
         });
@@ -127,7 +132,11 @@ fn draw<DB: DrawingBackend>(
         .x_label_area_size(45)
         .y_label_area_size(60)
         .build_cartesian_2d(
-            (SPEEDS.0..SPEEDS.1).log_scale().with_key_points(SPEED_LABELS.to_vec()), 0.68f64..1.0)
+            (SPEEDS.0..SPEEDS.1)
+                .log_scale()
+                .with_key_points(SPEED_LABELS.to_vec()),
+            0.68f64..1.0,
+        )
         .map_err(e)?;
     chart
         .configure_mesh()
@@ -167,7 +176,11 @@ fn draw<DB: DrawingBackend>(
         .x_label_area_size(45)
         .y_label_area_size(60)
         .build_cartesian_2d(
-            (SPEEDS.0..SPEEDS.1).log_scale().with_key_points(SPEED_LABELS.to_vec()), 200.0f64..700.0)
+            (SPEEDS.0..SPEEDS.1)
+                .log_scale()
+                .with_key_points(SPEED_LABELS.to_vec()),
+            200.0f64..700.0,
+        )
         .map_err(e)?;
     chart
         .configure_mesh()

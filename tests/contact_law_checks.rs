@@ -74,6 +74,8 @@ fn hunt_crossley_e(x: f64) -> f64 {
 fn elastic_law_is_the_hertz_profile() {
     let k = pool_stiffness();
     let law = ContactLaw::elastic(k).unwrap();
+    // Largest relative errors of P, tau, the state (scaled) and the stick time (over tau).
+    let mut worst = [0.0f64; 4];
     for (u, spin) in [
         (Vector3::new(0.5, 0.05, 0.0), Vector3::zeros()), // sticks
         (Vector3::new(0.5, 0.4, 0.1), Vector3::new(0.0, 10.0, -20.0)), // slides throughout
@@ -84,19 +86,36 @@ fn elastic_law_is_the_hertz_profile() {
         let tau = 0.8 * BETA_2_5_1_2 * d / v;
         let profile = Hertz::new(tau).unwrap();
         let reference = solve(&c, &profile, &tight(Method::ClosedForm), None).unwrap();
-        for method in [Method::ClosedForm, Method::Rk4, Method::Dopri5, Method::Dop853] {
+        for method in [
+            Method::ClosedForm,
+            Method::Rk4,
+            Method::Dopri5,
+            Method::Dop853,
+        ] {
             let o = solve_law(&c, &law, &tight(method), None).unwrap();
             let l = o.law.unwrap();
             let p = 2.0 * M * u.x;
-            assert!((l.impulse - p).abs() < 1e-10 * p, "{method}: P {} vs {p}", l.impulse);
-            assert!((l.duration - tau).abs() < 1e-10 * tau, "{method}: {} vs {tau}", l.duration);
+            assert!(
+                (l.impulse - p).abs() < 1e-10 * p,
+                "{method}: P {} vs {p}",
+                l.impulse
+            );
+            assert!(
+                (l.duration - tau).abs() < 1e-10 * tau,
+                "{method}: {} vs {tau}",
+                l.duration
+            );
             assert!((l.max_compression - d).abs() < 1e-9 * d, "{method}");
             let f_max = k * d.powf(1.5);
             assert!((l.peak_force - f_max).abs() < 1e-8 * f_max, "{method}");
             let err = details::state_error(&c, &o.result.out, &reference.result.out);
             assert!(err < CLOSED_FORM_TOL, "{method}: state {err:e}");
+            worst[0] = worst[0].max((l.impulse - p).abs() / p);
+            worst[1] = worst[1].max((l.duration - tau).abs() / tau);
+            worst[2] = worst[2].max(err);
             match (o.stick_time, reference.stick_time) {
                 (Some(t), Some(t_ref)) => {
+                    worst[3] = worst[3].max((t - t_ref).abs() / tau);
                     assert!((t - t_ref).abs() < 1e-10 * tau, "{method}: {t} vs {t_ref}")
                 }
                 (None, None) => {}
@@ -104,6 +123,10 @@ fn elastic_law_is_the_hertz_profile() {
             }
         }
     }
+    println!(
+        "largest errors: P {:e}, tau {:e}, state {:e}, stick time {:e}",
+        worst[0], worst[1], worst[2], worst[3]
+    );
 }
 
 /// Every law and method: the outgoing state is the closed form's at the realised impulse,
@@ -125,7 +148,12 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
     for law in &laws {
         for (u, spin) in shots {
             let c = collision(u, spin, 0.06);
-            for method in [Method::ClosedForm, Method::Rk4, Method::Dopri5, Method::Dop853] {
+            for method in [
+                Method::ClosedForm,
+                Method::Rk4,
+                Method::Dopri5,
+                Method::Dop853,
+            ] {
                 let o = solve_law(&c, law, &tight(method), None).unwrap();
                 let l = o.law.unwrap();
                 assert!(
@@ -138,7 +166,11 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
                 let normal = o.result.heat - o.result.heat_sliding;
                 let scale = M * c.scales.speed * c.scales.speed;
                 let err = (normal - loss).abs() / scale;
-                assert!(err < CLOSED_FORM_TOL, "{} {method}: {normal} vs {loss}", law.damping());
+                assert!(
+                    err < CLOSED_FORM_TOL,
+                    "{} {method}: {normal} vs {loss}",
+                    law.damping()
+                );
                 worst[0] = worst[0].max(o.check.closed_form_error);
                 worst[1] = worst[1].max(err);
                 if law.damping() == Damping::HuntCrossley {
@@ -152,7 +184,10 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
             }
         }
     }
-    println!("largest closed-form error {:e}, energy {:e}", worst[0], worst[1]);
+    println!(
+        "largest closed-form error {:e}, energy {:e}",
+        worst[0], worst[1]
+    );
 }
 
 /// Hunt-Crossley: the same e for the same beta v at other beta, v and k; e against the
@@ -171,13 +206,19 @@ fn hunt_crossley_restitution_depends_on_beta_v_alone() {
         let e = hunt_crossley_e(x);
         for (k, v) in [(1e9, 1.0), (1e7, 0.01), (1e12, 20.0), (1e4, 1e-4)] {
             let got = head_on(k, x / v, v);
-            assert!((got - e).abs() < 1e-9, "beta v = {x}, k {k}, v {v}: {got} vs {e}");
+            assert!(
+                (got - e).abs() < 1e-9,
+                "beta v = {x}, k {k}, v {v}: {got} vs {e}"
+            );
             worst = worst.max((got - e).abs());
         }
     }
     for x in [1e-4, 1e-3] {
         let slope = (1.0 - head_on(1e9, x, 1.0)) / x;
-        assert!((slope - 2.0 / 3.0).abs() < 1.0 * x, "beta v {x}: slope {slope}");
+        assert!(
+            (slope - 2.0 / 3.0).abs() < 1.0 * x,
+            "beta v {x}: slope {slope}"
+        );
     }
     println!("largest |e - e(beta v)| {worst:e}");
 }
@@ -215,7 +256,11 @@ fn calibration_reaches_its_restitution() {
         let o = solve_law(&c, &law, &tight(Method::Dop853), None).unwrap();
         let e = o.law.unwrap().restitution;
         assert!((e - 0.95).abs() < 1e-10, "{damping}: {e}");
-        println!("{damping}: coefficient {:e}, e - 0.95 = {:e}", law.coefficient(), e - 0.95);
+        println!(
+            "{damping}: coefficient {:e}, e - 0.95 = {:e}",
+            law.coefficient(),
+            e - 0.95
+        );
         if damping == Damping::HuntCrossley {
             // beta v = x with e(x) = 0.95, by bisection on the energy relation.
             let (mut lo, mut hi) = (1e-6, 1.0);
@@ -247,7 +292,12 @@ fn hard_cases_hold() {
                 ContactLaw::calibrated(k, Damping::KuwabaraKono, 0.9, v, M / 2.0).unwrap(),
             ] {
                 let c = collision(Vector3::new(u0, 0.3 * u0, 0.0), Vector3::zeros(), 0.2);
-                for method in [Method::ClosedForm, Method::Rk4, Method::Dopri5, Method::Dop853] {
+                for method in [
+                    Method::ClosedForm,
+                    Method::Rk4,
+                    Method::Dopri5,
+                    Method::Dop853,
+                ] {
                     let o = solve_law(&c, &law, &tight(method), None)
                         .unwrap_or_else(|e| panic!("k {k} v {v} {} {method}: {e}", law.damping()));
                     let l = o.law.unwrap();

@@ -45,13 +45,22 @@ fn refusals_name_the_fields() {
         &format!("{BASE}[contact.profile]\nshape = \"half-sine\"\nduration = 2.5e-4\n"),
         &["contact.law", "[contact.profile]"],
     );
-    refused(&BASE.replace("stiffness = 4.5e8\n", ""), &["contact.law.stiffness", "missing"]);
     refused(
-        &BASE.replace("radius = 0.028575", "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34"),
+        &BASE.replace("stiffness = 4.5e8\n", ""),
+        &["contact.law.stiffness", "missing"],
+    );
+    refused(
+        &BASE.replace(
+            "radius = 0.028575",
+            "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34",
+        ),
         &["contact.law.stiffness", "balls.youngs_modulus"],
     );
     refused(
-        &BASE.replace("coefficient = 2e-6", "coefficient = 2e-6\nrestitution = 0.9\nat_speed = 1.0"),
+        &BASE.replace(
+            "coefficient = 2e-6",
+            "coefficient = 2e-6\nrestitution = 0.9\nat_speed = 1.0",
+        ),
         &["contact.law.coefficient", "contact.law.restitution"],
     );
     refused(
@@ -62,16 +71,23 @@ fn refusals_name_the_fields() {
         &BASE.replace("damping = \"kuwabara-kono\"", "damping = \"viscous\""),
         &["contact.law.damping = \"viscous\"", "hunt-crossley"],
     );
-    refused(&BASE.replace("u = [1.0", "u = [-1.0"), &["incoming", "approach"]);
-    refused(&BASE.replace("coefficient = 2e-6", "coefficient = -1"), &["contact.law.coefficient = -1"]);
+    refused(
+        &BASE.replace("u = [1.0", "u = [-1.0"),
+        &["incoming", "approach"],
+    );
+    refused(
+        &BASE.replace("coefficient = 2e-6", "coefficient = -1"),
+        &["contact.law.coefficient = -1"],
+    );
 }
 
 /// The material gives the stiffness k = (4/3) E* sqrt(R), E* = E / (2 (1 - nu^2)), R = r / 2.
 #[test]
 fn the_material_gives_the_stiffness() {
-    let text = BASE
-        .replace("stiffness = 4.5e8\n", "")
-        .replace("radius = 0.028575", "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34");
+    let text = BASE.replace("stiffness = 4.5e8\n", "").replace(
+        "radius = 0.028575",
+        "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34",
+    );
     let law = parse(&text).unwrap().law.unwrap();
     let k = 4.0 / 3.0 * 5.4e9 / (2.0 * (1.0 - 0.34 * 0.34)) * (0.028575f64 / 2.0).sqrt();
     assert!((law.stiffness() - k).abs() < 1e-12 * k);
@@ -97,14 +113,22 @@ fn kuwabara_kono_ends_compressed() {
         // The closed form's trace integrates the normal law again, stepping to the samples:
         // its end agrees with the first run's to the tolerance.
         assert!((last.t - l.duration).abs() < 1e-9 * l.duration, "{method}");
-        assert!((last.impulse - l.impulse).abs() < 1e-9 * l.impulse, "{method}");
+        assert!(
+            (last.impulse - l.impulse).abs() < 1e-9 * l.impulse,
+            "{method}"
+        );
         let json: serde_json::Value =
             serde_json::from_str(&Report::new(&scene, &run).to_json().unwrap()).unwrap();
         assert_eq!(json["profile"], "contact-law");
         assert_eq!(json["duration"].as_f64().unwrap(), l.duration);
         assert_eq!(json["impulse"].as_f64().unwrap(), l.impulse);
         let cl = &json["contact_law"];
-        for key in ["restitution", "max_compression", "peak_force", "coefficient"] {
+        for key in [
+            "restitution",
+            "max_compression",
+            "peak_force",
+            "coefficient",
+        ] {
             assert!(cl[key].as_f64().is_some(), "{key}");
         }
         assert_eq!(cl["coefficient"].as_f64().unwrap(), 2e-6);
@@ -117,7 +141,12 @@ fn kuwabara_kono_ends_compressed() {
 fn trace_gains_the_compression_column() {
     let mut csv = CsvTrace::with_columns(Vec::new(), true).unwrap();
     let scene = parse(BASE).unwrap();
-    run_scene(&scene, &scene.solver, Some((&mut csv, Sampling::Uniform(10)))).unwrap();
+    run_scene(
+        &scene,
+        &scene.solver,
+        Some((&mut csv, Sampling::Uniform(10))),
+    )
+    .unwrap();
     let text = String::from_utf8(csv.finish().unwrap()).unwrap();
     let header = text.lines().next().unwrap();
     assert!(header.ends_with("H_sfr (J),delta (m)"), "{header}");
@@ -126,5 +155,8 @@ fn trace_gains_the_compression_column() {
     // 10 samples of tau_0 / 10 before the end (the contact lasts about tau_0), and the end.
     assert!((11..=13).contains(&widths.len()), "{}", widths.len());
     let plain = CsvTrace::new(Vec::new()).unwrap().finish().unwrap();
-    assert!(String::from_utf8(plain).unwrap().trim_end().ends_with("H_sfr (J)"));
+    assert!(String::from_utf8(plain)
+        .unwrap()
+        .trim_end()
+        .ends_with("H_sfr (J)"));
 }

@@ -2,10 +2,10 @@
 
 use crate::contact::check::{checks, Checks};
 use crate::contact::closed_form::ClosedForm;
+use crate::contact::law_outcome::LawOutcome;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::trace::{TraceRow, TraceSink};
-use crate::contact::law_outcome::LawOutcome;
 use crate::integrator::{integrate, Integrated, Method, Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
 use crate::profile::ForceProfile;

@@ -49,14 +49,14 @@
 //! ```
 
 use crate::error::Error;
+use crate::integrator::law::pair_mass;
 use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
-use crate::model::effects::Effects;
-use crate::model::frame::{Frame, LabScene};
-use crate::integrator::law::pair_mass;
 use crate::model::contact_law::{
     ContactLaw, Damping, AT_SPEED_FIELD, COEFFICIENT_FIELD, RESTITUTION_FIELD, STIFFNESS_FIELD,
 };
+use crate::model::effects::Effects;
+use crate::model::frame::{Frame, LabScene};
 use crate::model::material::{
     elastic_impact, hertz_stiffness, HertzContact, Material, POISSON_RATIO_FIELD,
     YOUNGS_MODULUS_FIELD,
@@ -282,7 +282,10 @@ impl RawLaw {
             (Some(k), Some(m)) => {
                 return Err(Error::invalid(
                     STIFFNESS_FIELD,
-                    format!("{k} together with {YOUNGS_MODULUS_FIELD} = {}", m.youngs_modulus()),
+                    format!(
+                        "{k} together with {YOUNGS_MODULUS_FIELD} = {}",
+                        m.youngs_modulus()
+                    ),
                     "one of them: the stiffness, or the balls' material it follows from",
                 ))
             }
@@ -576,7 +579,9 @@ impl Scene {
             (Some(p), _, _) => p,
             (None, _, Some(law)) => law_time_unit(law, &ball, &incoming)?,
             (None, ForceSource::Profile(spec), None) => {
-                let mat = material.as_ref().expect("without the material the profile is built");
+                let mat = material
+                    .as_ref()
+                    .expect("without the material the profile is built");
                 let (cm, _) = incoming.to_cm(ball.radius())?;
                 let c = Collision::new(ball, contact, effects, cm)?;
                 let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
@@ -661,7 +666,7 @@ impl Scene {
 fn law_time_unit(law: &ContactLaw, ball: &Ball, incoming: &Incoming) -> Result<Profile, Error> {
     let (cm, _) = incoming.to_cm(ball.radius())?;
     let u0 = cm.u_cm.x;
-    if !(u0 > 0.0) {
+    if u0.is_nan() || u0 <= 0.0 {
         return Err(Error::invalid(
             "incoming",
             format!("a normal speed U(0) = {u0} m/s with [contact.law]"),

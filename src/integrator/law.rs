@@ -394,10 +394,10 @@ pub(crate) fn normal_run(
             end(v) <= 0.0 || (0..3).any(|i| found[i].is_none() && watched(i, v) <= 0.0)
         })?;
         if hit {
-            for i in 0..3 {
-                if found[i].is_none() && watched(i, &reached) <= 0.0 {
+            for (i, slot) in found.iter_mut().enumerate() {
+                if slot.is_none() && watched(i, &reached) <= 0.0 {
                     let at = locate(&mut stepper, &rhs, &prev, &reached, |v| watched(i, v))?;
-                    found[i] = Some(at);
+                    *slot = Some(at);
                 }
             }
             if end(&reached) <= 0.0 {
@@ -608,7 +608,23 @@ impl LawProblem<'_> {
                 return Ok((at, LawEvent::SlidingStopped { time, impulse }));
             }
         }
-        let at = locate(&mut run.stepper, &rhs, &prev, &cross, |v| self.separation(v))?;
+        self.end_or_segment(run, &rhs, prev, cross, true)
+    }
+
+    /// After stepping `rhs` from `prev` to `cross`: the segment's end when no event was
+    /// `hit`, else the end of the contact located inside the step.
+    fn end_or_segment<R: ScaledRhs<LAW_DIM>>(
+        &self,
+        run: &mut Run<'_>,
+        rhs: &R,
+        prev: SVector<f64, LAW_DIM>,
+        cross: SVector<f64, LAW_DIM>,
+        hit: bool,
+    ) -> Result<(SVector<f64, LAW_DIM>, LawEvent), Error> {
+        if !hit {
+            return Ok((cross, LawEvent::ReachedEnd));
+        }
+        let at = locate(&mut run.stepper, rhs, &prev, &cross, |v| self.separation(v))?;
         Ok((at, LawEvent::Ended))
     }
 
@@ -632,11 +648,7 @@ impl LawProblem<'_> {
                 }
                 false
             })?;
-        if !hit {
-            return Ok((cross, LawEvent::ReachedEnd));
-        }
-        let at = locate(&mut run.stepper, &rhs, &prev, &cross, |v| self.separation(v))?;
-        Ok((at, LawEvent::Ended))
+        self.end_or_segment(run, &rhs, prev, cross, hit)
     }
 
     /// The normal law alone (no friction, or stuck): only x, U and delta move.
@@ -690,7 +702,11 @@ mod tests {
         let d = (5.0 * m * v * v / (4.0 * k)).powf(0.4);
         let tau = 0.8 * 3.679_093_980_405_881 * d / v;
         assert!((h.restitution - 1.0).abs() < 1e-11, "{}", h.restitution);
-        assert!((h.duration - tau).abs() < 1e-10 * tau, "{} vs {tau}", h.duration);
+        assert!(
+            (h.duration - tau).abs() < 1e-10 * tau,
+            "{} vs {tau}",
+            h.duration
+        );
         assert!((h.max_compression - d).abs() < 1e-11 * d);
         let f = k * d.powf(1.5);
         assert!((h.peak_force - f).abs() < 1e-9 * f);

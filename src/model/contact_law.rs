@@ -20,8 +20,8 @@
 
 use crate::error::{finite, Error};
 use crate::integrator::law::{head_on, HeadOn};
-use crate::model::params::positive;
 use crate::model::material::elastic_impact;
+use crate::model::params::positive;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -112,7 +112,10 @@ impl ContactLaw {
             return Err(Error::invalid(
                 COEFFICIENT_FIELD,
                 coefficient,
-                format!(">= 0 {} (a damping that does not add energy)", damping.unit()),
+                format!(
+                    ">= 0 {} (a damping that does not add energy)",
+                    damping.unit()
+                ),
             ));
         }
         if damping == Damping::None && coefficient != 0.0 {
@@ -208,9 +211,13 @@ impl ContactLaw {
     ///
     /// ```
     /// use billiard_contact::{ContactLaw, Damping};
-    /// // Hunt-Crossley: e depends on beta v alone, about 1 - (2/3) beta v for small damping.
+    /// // Hunt-Crossley: e depends on beta v alone; at v = 1 m/s, x = beta v with e = 0.95
+    /// // solves -e x - ln(1 - e x) = x - ln(1 + x) (docs/contact-law.md#the-laws).
     /// let law = ContactLaw::calibrated(4.5e8, Damping::HuntCrossley, 0.95, 1.0, 0.085)?;
-    /// assert!((law.coefficient() - 0.0765).abs() < 1e-3);
+    /// let x = law.coefficient() * 1.0;
+    /// let residual = -0.95 * x - (-0.95 * x).ln_1p() - (x - x.ln_1p());
+    /// assert!(residual.abs() < 1e-13 && (x - 0.0789).abs() < 1e-4);
+    /// assert!((law.head_on(0.085, 1.0, 1e-12)?.restitution - 0.95).abs() < 1e-10);
     /// # Ok::<(), billiard_contact::Error>(())
     /// ```
     pub fn calibrated(

@@ -133,8 +133,7 @@ impl HertzContact {
         }
         let (effective_modulus, effective_radius, stiffness) = hertz_stiffness(a, b);
         let reduced_mass = reduced_mass(a.0, b.0);
-        let (max_compression, duration) =
-            elastic_impact(stiffness, reduced_mass, approach_speed);
+        let (max_compression, duration) = elastic_impact(stiffness, reduced_mass, approach_speed);
         let contact = HertzContact {
             effective_modulus,
             effective_radius,
