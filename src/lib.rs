@@ -120,7 +120,7 @@ pub mod details {
     pub use crate::contact::closed_form::ClosedFormBatch;
     pub use crate::integrator::law::{head_on, LAW_SPAN};
     pub use crate::integrator::{
-        integrate, sidi_order, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
+        integrate, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
     };
     pub use crate::model::contact_law::CALIBRATION_RTOL;
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
