@@ -533,7 +533,7 @@ proptest! {
         };
         let scene = |l: LabScene| Scene {
             name: "rotation".into(),
-            ball: Ball::new(case.m, r, case.alpha).unwrap(),
+            balls: Ball::new(case.m, r, case.alpha).unwrap().into(),
             material: None,
             contact: Contact { friction: case.friction(), impulse: case.rule() },
             profile: case.profile(),
@@ -543,6 +543,7 @@ proptest! {
             effects: Effects::default(),
             source: None,
             table: None,
+            table_size: None,
         };
         let s0 = scene(lab);
         let s1 = scene(turned);

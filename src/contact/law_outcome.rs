@@ -172,12 +172,12 @@ fn law_outcome(scales: &LawScales, head: &HeadOn) -> LawOutcome {
 /// [m U(0), 2 m U(0)] (an integrator's round-off beyond it is the run's error, which the
 /// checks then show).
 fn realised(c: &Collision, impulse: f64) -> Result<Collision, Error> {
-    let (m, u0) = (c.ball.mass(), c.incoming.u_cm.x);
+    let (m, u0) = (c.balls.pair_mass(), c.incoming.u_cm.x);
     let contact = Contact {
         friction: c.contact.friction,
         impulse: ImpulseRule::explicit(impulse.clamp(m * u0, 2.0 * m * u0))?,
     };
-    Collision::new(c.ball, contact, c.effects, c.incoming)
+    Collision::new(c.balls, contact, c.effects, c.incoming)
 }
 
 /// The closed form's trace under a law: the normal law integrated again with a point every

@@ -139,7 +139,7 @@ pub(crate) fn closed_form_checks(c: &Collision, exact: &ClosedForm) -> Checks {
 /// Puts a time-stepping run's result, work and checks into `outcome` (which holds the
 /// closed form's).
 pub(crate) fn take_run(outcome: &mut Outcome, c: &Collision, run: &Integrated) {
-    let m = c.ball.mass();
+    let m = c.balls.pair_mass();
     let e = c.direction.unwrap_or_else(Vector2::zeros);
     let du = run.out.u_cm - c.incoming.u_cm;
     let j = -m * (du.y * e.x + du.z * e.y);
@@ -154,7 +154,7 @@ pub(crate) fn take_run(outcome: &mut Outcome, c: &Collision, run: &Integrated) {
     }
     r.tangential_impulse = j.max(0.0);
     r.heat_sliding = run.heat_sliding;
-    r.heat = c.incoming.kinetic_energy(&c.ball) - run.out.kinetic_energy(&c.ball);
+    r.heat = c.incoming.kinetic_energy(&c.balls) - run.out.kinetic_energy(&c.balls);
     r.out = run.out;
     outcome.stats = run.stats;
     outcome.check = checks(c, &outcome.exact, &run.out, j, run.heat_sliding);

@@ -46,6 +46,8 @@
 //! rolling_resistance = 0.0   # a rolling ball decelerates at rolling_resistance g (0: off)
 //! spin_decay = 0.0       # |w.up| falls at spin_decay g / (alpha r) on the cloth (0: off)
 //! # height = 0.0         # cloth height along up (m); default: r below the balls' centres
+//! # length = 2.54        # m, with width: the playing area between the cushions, centred
+//! # width = 1.27         # on the lab origin, drawn by --plot (cushions not modelled)
 //! ```
 
 use crate::error::Error;
@@ -61,10 +63,10 @@ use crate::model::material::{
     elastic_impact, hertz_stiffness, HertzContact, Material, POISSON_RATIO_FIELD,
     YOUNGS_MODULUS_FIELD,
 };
-use crate::model::params::{Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, BallPair, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Hertz, Profile, ProfileSpec};
-use crate::table_phase::{Table, TableParams, TableSettings};
+use crate::table_phase::{Table, TableParams, TableSettings, TableSize};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
@@ -94,13 +96,13 @@ pub struct LabFrame<'a> {
 }
 
 impl Incoming {
-    /// The paper's centre-of-mass state of balls of radius `radius` (m); for lab input also
-    /// the lab scene with its frame (the balls must touch, see [`Frame::new`]).
-    pub fn to_cm(&self, radius: f64) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
+    /// The paper's centre-of-mass state of the balls `balls`; for lab input also the lab
+    /// scene with its frame (the balls must touch, see [`Frame::of_pair`]).
+    pub fn to_cm(&self, balls: &BallPair) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
         Ok(match self {
             Incoming::Cm(cm) => (*cm, None),
             Incoming::Lab(lab) => {
-                let frame = Frame::new(lab, radius)?;
+                let frame = Frame::of_pair(lab, balls)?;
                 (frame.to_cm(lab), Some(LabFrame { frame, lab }))
             }
         })
@@ -112,10 +114,12 @@ impl Incoming {
 pub struct Scene {
     /// Name shown in reports.
     pub name: String,
-    /// The balls.
-    pub ball: Ball,
-    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`), when given: the
-    /// profile's duration then follows from it ([`Scene::hertz`]).
+    /// The balls: `[balls]` (identical; `Ball::into()` makes the pair) or `[balls.a]` and
+    /// `[balls.b]`.
+    pub balls: BallPair,
+    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`, the same for
+    /// both balls), when given: the profile's duration then follows from it
+    /// ([`Scene::hertz`]).
     pub material: Option<Material>,
     /// Friction and impulse rule.
     pub contact: Contact,
@@ -135,6 +139,9 @@ pub struct Scene {
     /// The cloth (`[table]`) as given; `None` when the section is absent (defaults apply
     /// when the effect `table` is on).
     pub table: Option<TableParams>,
+    /// The playing area between the cushions (`[table] length, width`), drawn on the top
+    /// view; `None` when not given.
+    pub table_size: Option<TableSize>,
 }
 
 /// Solver settings as a scene's `[solver]` section or the command line gives them: each
@@ -212,6 +219,8 @@ struct RawTable {
     rolling_resistance: Option<f64>,
     spin_decay: Option<f64>,
     height: Option<f64>,
+    length: Option<f64>,
+    width: Option<f64>,
 }
 
 impl RawTable {
@@ -227,16 +236,88 @@ impl RawTable {
             height: self.height,
         })
     }
+
+    /// The playing area when both `length` and `width` are given (`None` when neither is).
+    fn size(&self) -> Result<Option<TableSize>, Error> {
+        match (self.length, self.width) {
+            (Some(l), Some(w)) => TableSize::new(l, w).map(Some),
+            (None, None) => Ok(None),
+            (Some(l), None) => Err(Error::invalid(
+                "table.length",
+                l,
+                "given together with table.width (the playing area's width, m)",
+            )),
+            (None, Some(w)) => Err(Error::invalid(
+                "table.width",
+                w,
+                "given together with table.length (the playing area's length, m)",
+            )),
+        }
+    }
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawBalls {
-    mass: f64,
-    radius: f64,
+    mass: Option<f64>,
+    radius: Option<f64>,
     alpha: Option<f64>,
     youngs_modulus: Option<f64>,
     poisson_ratio: Option<f64>,
+    a: Option<RawBall>,
+    b: Option<RawBall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBall {
+    mass: f64,
+    radius: f64,
+    alpha: Option<f64>,
+}
+
+impl RawBalls {
+    /// `[balls]` with mass, radius (and alpha): two identical balls; `[balls.a]` and
+    /// `[balls.b]`: balls of their own; never both forms.
+    fn build(&self) -> Result<BallPair, Error> {
+        let shared = self.mass.is_some() || self.radius.is_some() || self.alpha.is_some();
+        let own = |section: &str, b: &RawBall| {
+            Ball::in_section(section, b.mass, b.radius, b.alpha.unwrap_or(ALPHA_SOLID))
+        };
+        match (&self.a, &self.b) {
+            (Some(a), Some(b)) if !shared => {
+                Ok(BallPair::new(own("balls.a", a)?, own("balls.b", b)?))
+            }
+            (None, None) => {
+                let missing = |key: &str| {
+                    Error::invalid(
+                        format!("balls.{key}"),
+                        "missing",
+                        "[balls] with mass and radius (two identical balls), or [balls.a] and \
+                         [balls.b]",
+                    )
+                };
+                let mass = self.mass.ok_or_else(|| missing("mass"))?;
+                let radius = self.radius.ok_or_else(|| missing("radius"))?;
+                let ball = Ball::new(mass, radius, self.alpha.unwrap_or(ALPHA_SOLID))?;
+                Ok(BallPair::identical(ball))
+            }
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "balls.mass/radius/alpha",
+                "given together with [balls.a] and [balls.b]",
+                "one form: [balls] keys for two identical balls, or [balls.a] and [balls.b]",
+            )),
+            (Some(_), None) | (None, Some(_)) => Err(Error::invalid(
+                if self.a.is_some() {
+                    "balls.b"
+                } else {
+                    "balls.a"
+                },
+                "missing",
+                "[balls.a] and [balls.b] together (or [balls] keys for identical balls)",
+            )),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -272,13 +353,13 @@ enum LawModel {
 }
 
 impl RawLaw {
-    /// The validated law for balls `ball` of `material` (if given): the stiffness from
+    /// The validated law for the balls `balls` of `material` (if given): the stiffness from
     /// exactly one of `stiffness` or the material, the coefficient given or calibrated.
-    fn build(&self, ball: &Ball, material: Option<&Material>) -> Result<ContactLaw, Error> {
+    fn build(&self, balls: &BallPair, material: Option<&Material>) -> Result<ContactLaw, Error> {
         let LawModel::Hertz = self.model;
         let stiffness = match (self.stiffness, material) {
             (Some(k), None) => k,
-            (None, Some(m)) => hertz_stiffness((ball, m), (ball, m)).2,
+            (None, Some(m)) => hertz_stiffness((&balls.a, m), (&balls.b, m)).2,
             (Some(k), Some(m)) => {
                 return Err(Error::invalid(
                     STIFFNESS_FIELD,
@@ -301,7 +382,7 @@ impl RawLaw {
         match (self.coefficient, self.restitution, self.at_speed) {
             (c, None, None) => ContactLaw::new(stiffness, damping, c.unwrap_or(0.0)),
             (None, Some(e), Some(v)) => {
-                ContactLaw::calibrated(stiffness, damping, e, v, 0.5 * pair_mass(ball))
+                ContactLaw::calibrated(stiffness, damping, e, v, 0.5 * pair_mass(balls))
             }
             (Some(c), Some(e), _) => Err(Error::invalid(
                 COEFFICIENT_FIELD,
@@ -544,11 +625,7 @@ impl Scene {
                 path: shown.clone(),
                 message: explain_toml_error(text, &e),
             })?;
-        let ball = Ball::new(
-            raw.balls.mass,
-            raw.balls.radius,
-            raw.balls.alpha.unwrap_or(ALPHA_SOLID),
-        )?;
+        let balls = raw.balls.build()?;
         let material = material_of(&raw.balls)?;
         let friction = raw.contact.mu.build()?;
         let force = raw.contact.force_source()?;
@@ -556,7 +633,7 @@ impl Scene {
             ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
                 .unwrap_or(ImpulseRule::ELASTIC);
         let law = match force {
-            ForceSource::Law(law) => Some(law.build(&ball, material.as_ref())?),
+            ForceSource::Law(law) => Some(law.build(&balls, material.as_ref())?),
             ForceSource::Profile(spec) => {
                 check_duration_source(spec, material.as_ref())?;
                 None
@@ -577,14 +654,14 @@ impl Scene {
         let effects = raw.effects.unwrap_or_default();
         let profile = match (given, &force, &law) {
             (Some(p), _, _) => p,
-            (None, _, Some(law)) => law_time_unit(law, &ball, &incoming)?,
+            (None, _, Some(law)) => law_time_unit(law, &balls, &incoming)?,
             (None, ForceSource::Profile(spec), None) => {
                 let mat = material
                     .as_ref()
                     .expect("without the material the profile is built");
-                let (cm, _) = incoming.to_cm(ball.radius())?;
-                let c = Collision::new(ball, contact, effects, cm)?;
-                let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
+                let (cm, _) = incoming.to_cm(&balls)?;
+                let c = Collision::new(balls, contact, effects, cm)?;
+                let hertz = HertzContact::of_pair(&balls, mat, c.incoming.u_cm.x)?;
                 spec.build_with(base, Some(hertz.duration))?
             }
             (None, ForceSource::Law(_), None) => unreachable!("a law section builds the law"),
@@ -596,7 +673,7 @@ impl Scene {
                     .map(|s| s.to_string_lossy().into_owned())
                     .unwrap_or_else(|| "scene".into())
             }),
-            ball,
+            balls,
             material,
             contact,
             profile,
@@ -606,6 +683,12 @@ impl Scene {
             effects,
             source: source.map(Path::to_path_buf),
             table: raw.table.as_ref().map(RawTable::build).transpose()?,
+            table_size: raw
+                .table
+                .as_ref()
+                .map(RawTable::size)
+                .transpose()?
+                .flatten(),
         };
         // Validate the geometry and the impulse now, so a bad scene fails at load.
         scene.collision()?;
@@ -632,9 +715,8 @@ impl Scene {
         Table::new(
             self.table.unwrap_or_default(),
             lab.up,
-            lab.a.position,
-            lab.b.position,
-            self.ball.radius(),
+            [lab.a.position, lab.b.position],
+            [self.balls.a.radius(), self.balls.b.radius()],
         )
         .map(Some)
     }
@@ -642,9 +724,9 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
-        let (cm, lab) = self.incoming.to_cm(self.ball.radius())?;
+        let (cm, lab) = self.incoming.to_cm(&self.balls)?;
         Ok((
-            Collision::new(self.ball, self.contact, self.effects, cm)?,
+            Collision::new(self.balls, self.contact, self.effects, cm)?,
             lab,
         ))
     }
@@ -656,15 +738,19 @@ impl Scene {
             return Ok(None);
         };
         let (c, _) = self.collision()?;
-        HertzContact::identical(&self.ball, material, c.incoming.u_cm.x).map(Some)
+        HertzContact::of_pair(&self.balls, material, c.incoming.u_cm.x).map(Some)
     }
 }
 
-/// The elastic Hertz pulse of `law` for balls `ball` approaching as `incoming` gives it: the
+/// The elastic Hertz pulse of `law` for the balls `balls` approaching as `incoming` gives it: the
 /// time unit of a law scene. Balls that do not approach are refused (the law has no contact
 /// to make).
-fn law_time_unit(law: &ContactLaw, ball: &Ball, incoming: &Incoming) -> Result<Profile, Error> {
-    let (cm, _) = incoming.to_cm(ball.radius())?;
+fn law_time_unit(
+    law: &ContactLaw,
+    balls: &BallPair,
+    incoming: &Incoming,
+) -> Result<Profile, Error> {
+    let (cm, _) = incoming.to_cm(balls)?;
     let u0 = cm.u_cm.x;
     if u0.is_nan() || u0 <= 0.0 {
         return Err(Error::invalid(
@@ -673,7 +759,7 @@ fn law_time_unit(law: &ContactLaw, ball: &Ball, incoming: &Incoming) -> Result<P
             "approaching balls (U(0) > 0): a contact law needs a contact to make",
         ));
     }
-    let (_, tau) = elastic_impact(law.stiffness(), 0.5 * pair_mass(ball), 2.0 * u0);
+    let (_, tau) = elastic_impact(law.stiffness(), 0.5 * pair_mass(balls), 2.0 * u0);
     Ok(Profile::Hertz(Hertz::new(tau)?))
 }
 

@@ -75,8 +75,8 @@ static UNIT_PULSE: UnitPulse = UnitPulse;
 
 /// The pair mass M = 2 m* (kg) of the law's normal dynamics, M U' = -f: the one place the
 /// law reads the balls' masses (the mass m of identical balls).
-pub(crate) fn pair_mass(ball: &crate::model::params::Ball) -> f64 {
-    ball.mass()
+pub(crate) fn pair_mass(balls: &crate::model::params::BallPair) -> f64 {
+    balls.pair_mass()
 }
 
 /// A law with the scales of one collision.
@@ -124,7 +124,7 @@ impl LawScales {
 
     /// The scales of `law` in collision `c`.
     pub(crate) fn for_collision(c: &Collision, law: &ContactLaw) -> Result<Self, Error> {
-        LawScales::new(law, pair_mass(&c.ball), c.incoming.u_cm.x, c.scales.speed)
+        LawScales::new(law, pair_mass(&c.balls), c.incoming.u_cm.x, c.scales.speed)
     }
 
     /// The law.
