@@ -2,7 +2,6 @@
 //! them, and batches of lab-frame collisions from numpy arrays.
 
 mod errors;
-mod frame;
 mod lab;
 mod run;
 mod settings;

@@ -39,7 +39,7 @@ pub fn run_scene(
     let out = outcome.result.out;
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
-            let (a, b) = frame.to_lab(&out);
+            let (a, b, throw) = frame.outgoing(lab, &out);
             let m = scene.ball.mass();
             let dp = (m * (a.velocity + b.velocity) - m * (lab.a.velocity + lab.b.velocity)).amax();
             let err = if dp == 0.0 {
@@ -47,7 +47,6 @@ pub fn run_scene(
             } else {
                 dp / collision.scales.impulse
             };
-            let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
             let table = table_phase(scene, lab, (a, b), collision.scales.speed)?;
             (Some((a, b)), throw, err, table)
         }
