@@ -13,7 +13,7 @@ use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{Error, Evaluate, Friction, LabBall, LabScene, Method, Scene};
 use numpy::npyffi::{npy_intp, NPY_ARRAY_CARRAY, NPY_TYPES, PY_ARRAY_API};
 use numpy::{
-    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
+    PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyValueError;
@@ -219,13 +219,18 @@ impl LabRows for Inputs {
     /// checked as they are parsed; these come as numbers).
     #[inline(always)]
     fn row(&self, i: usize) -> Result<LabScene, Error> {
-        let v = [0, 1, 2, 3, 4, 5, 6].map(|k| self.vec(k, i));
+        let (pa, va, wa) = (self.vec(0, i), self.vec(1, i), self.vec(2, i));
+        let (pb, vb, wb, up) = (
+            self.vec(3, i),
+            self.vec(4, i),
+            self.vec(5, i),
+            self.vec(6, i),
+        );
         // x * 0 is 0 for finite x, NaN otherwise: one comparison for the 21 numbers.
-        let zero: f64 = v.iter().map(|v| v.x * 0.0 + v.y * 0.0 + v.z * 0.0).sum();
-        if zero != 0.0 {
-            return Err(non_finite(&v));
+        let z = |v: &Vector3<f64>| v.x * 0.0 + v.y * 0.0 + v.z * 0.0;
+        if z(&pa) + z(&va) + z(&wa) + z(&pb) + z(&vb) + z(&wb) + z(&up) != 0.0 {
+            return Err(non_finite(&[pa, va, wa, pb, vb, wb, up]));
         }
-        let [pa, va, wa, pb, vb, wb, up] = v;
         Ok(LabScene {
             a: LabBall {
                 position: pa,
@@ -383,118 +388,79 @@ fn shape_str(shape: &[usize]) -> String {
     }
 }
 
-/// The output arrays of `resolve_lab`. For N rows: arrays of shape (N, 3) and (N,). For
-/// one collision, one numpy buffer holds everything and the outputs are views of it,
-/// shapes (3,) and (): one allocation instead of eight (the single call is dominated by
-/// numpy object creation).
-enum Outputs<'py> {
-    Rows {
-        vectors: [Bound<'py, PyAny>; 4],
-        scalars: [Bound<'py, PyAny>; 3],
-        sticks: Bound<'py, PyAny>,
-    },
-    One {
-        /// va, wa, vb, wb, impulse, tangential impulse, throw, sticks (a byte of the 16th).
-        block: Bound<'py, PyArray1<f64>>,
-    },
+/// The output arrays of `resolve_lab`, all in one numpy buffer of float64 (the outputs are
+/// C-contiguous views of it): "va", "wa", "vb", "wb" at elements 0, 3n, 6n, 9n (n rows of
+/// 3), "impulse", "tangential_impulse", "throw_angle_deg" at 12n, 13n, 14n, then "sticks",
+/// one byte a row. One allocation instead of eight: for one collision the call is
+/// dominated by creating numpy objects; for many, a buffer of 4 MB or more is given huge
+/// pages by numpy (one page fault per 2 MB where eight arrays took one per 4 kB, which
+/// cost more than the collisions at 100,000 rows).
+struct Outputs<'py> {
+    block: Bound<'py, PyArray1<f64>>,
+    n: usize,
+    /// One collision: shapes (3,) and () instead of (N, 3) and (N,).
+    single: bool,
 }
 
-/// Elements of `block` for one collision.
-const ONE_LEN: usize = 16;
+/// Elements of the buffer for n rows: 15 float64 a row and the sticks' bytes.
+fn block_len(n: usize) -> usize {
+    15 * n + n.div_ceil(8)
+}
 
 impl<'py> Outputs<'py> {
     fn new(py: Python<'py>, n: usize, single: bool) -> Self {
-        // SAFETY (uninitialised arrays): every element is written by `fill` before the
-        // arrays reach Python; on error they are dropped unseen.
-        unsafe {
-            if single {
-                let block = PyArray1::<f64>::new(py, [ONE_LEN], false);
-                *block.data().add(ONE_LEN - 1) = 0.0;
-                return Outputs::One { block };
-            }
-            let vector = || PyArray2::<f64>::new(py, [n, 3], false).into_any();
-            let scalar = || PyArray1::<f64>::new(py, [n], false).into_any();
-            Outputs::Rows {
-                vectors: [vector(), vector(), vector(), vector()],
-                scalars: [scalar(), scalar(), scalar()],
-                sticks: PyArray1::<bool>::new(py, [n], false).into_any(),
-            }
-        }
+        // SAFETY (uninitialised): every element is written by `resolve_lab_into` before the
+        // arrays reach Python; on error they are dropped unseen. The padding bytes after
+        // the sticks are never read.
+        let block = unsafe { PyArray1::<f64>::new(py, [block_len(n)], false) };
+        Outputs { block, n, single }
     }
 
-    /// The arrays' elements, as the library's output columns.
+    /// The buffer's parts, as the library's output columns.
     ///
     /// # Safety
-    /// The arrays are fresh, C-contiguous and not yet visible to Python: nothing else
-    /// reads or writes them while the columns live.
+    /// The buffer is fresh, C-contiguous and not yet visible to Python: nothing else reads
+    /// or writes it while the columns live.
     unsafe fn columns<'s>(&self) -> LabOutColumns<'s> {
-        unsafe fn part<'s, T>(base: *mut T, len: usize) -> &'s mut [T] {
-            unsafe { std::slice::from_raw_parts_mut(base, len) }
-        }
-        /// An (n, 3) array as n rows of 3 (the same layout: [f64; 3] has f64's alignment).
-        unsafe fn rows<'s>(a: &Bound<'_, PyAny>) -> &'s mut [[f64; 3]] {
-            let a = unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() };
-            unsafe { part(a.data().cast::<[f64; 3]>(), a.len() / 3) }
-        }
-        unsafe fn f64s<'s>(a: &Bound<'_, PyAny>) -> &'s mut [f64] {
-            let a = unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() };
-            unsafe { part(a.data(), a.len()) }
-        }
+        let (d, n) = (self.block.data(), self.n);
         unsafe {
-            match self {
-                Outputs::Rows {
-                    vectors,
-                    scalars,
-                    sticks,
-                } => {
-                    let st = sticks.cast_unchecked::<PyArrayDyn<bool>>();
-                    LabOutColumns {
-                        va: rows(&vectors[0]),
-                        wa: rows(&vectors[1]),
-                        vb: rows(&vectors[2]),
-                        wb: rows(&vectors[3]),
-                        impulse: f64s(&scalars[0]),
-                        tangential_impulse: f64s(&scalars[1]),
-                        sticks: part(st.data(), st.len()),
-                        throw_angle_deg: f64s(&scalars[2]),
-                    }
-                }
-                Outputs::One { block } => {
-                    let d = block.data();
-                    let vector = |at: usize| part(d.add(at).cast::<[f64; 3]>(), 1);
-                    LabOutColumns {
-                        va: vector(0),
-                        wa: vector(3),
-                        vb: vector(6),
-                        wb: vector(9),
-                        impulse: part(d.add(12), 1),
-                        tangential_impulse: part(d.add(13), 1),
-                        throw_angle_deg: part(d.add(14), 1),
-                        sticks: part(d.add(15).cast::<bool>(), 1),
-                    }
-                }
+            let part = |at: usize| std::slice::from_raw_parts_mut(d.add(at), n);
+            // [f64; 3] has f64's alignment: n rows of 3 elements are 3n elements.
+            let rows = |at: usize| std::slice::from_raw_parts_mut(d.add(at).cast::<[f64; 3]>(), n);
+            LabOutColumns {
+                va: rows(0),
+                wa: rows(3 * n),
+                vb: rows(6 * n),
+                wb: rows(9 * n),
+                impulse: part(12 * n),
+                tangential_impulse: part(13 * n),
+                throw_angle_deg: part(14 * n),
+                sticks: std::slice::from_raw_parts_mut(d.add(15 * n).cast::<bool>(), n),
             }
         }
     }
 
     fn into_dict(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = result_dict(py)?;
-        let (vectors, scalars, sticks) = match self {
-            Outputs::Rows {
-                vectors,
-                scalars,
-                sticks,
-            } => (vectors, scalars, sticks),
-            Outputs::One { block } => {
-                let v = |k: usize| vector_view(&block, 3 * k);
-                let s = |k: usize| scalar(&block, k, NPY_TYPES::NPY_DOUBLE);
-                (
-                    [v(0)?, v(1)?, v(2)?, v(3)?],
-                    [s(12)?, s(13)?, s(14)?],
-                    scalar(&block, 15, NPY_TYPES::NPY_BOOL)?,
-                )
-            }
+        let (b, n) = (&self.block, self.n);
+        let real = NPY_TYPES::NPY_DOUBLE;
+        let (vectors, scalars, sticks) = if self.single {
+            let v = |at: usize| view(b, at, &[3], real);
+            let s = |at: usize| scalar(b, at, real);
+            (
+                [v(0)?, v(3)?, v(6)?, v(9)?],
+                [s(12)?, s(13)?, s(14)?],
+                scalar(b, 15, NPY_TYPES::NPY_BOOL)?,
+            )
+        } else {
+            let v = |at: usize| view(b, at, &[n, 3], real);
+            let s = |at: usize| view(b, at, &[n], real);
+            (
+                [v(0)?, v(3 * n)?, v(6 * n)?, v(9 * n)?],
+                [s(12 * n)?, s(13 * n)?, s(14 * n)?],
+                view(b, 15 * n, &[n], NPY_TYPES::NPY_BOOL)?,
+            )
         };
+        let d = result_dict(py)?;
         let [va, wa, vb, wb] = vectors;
         let [p, j, throw] = scalars;
         d.set_item(intern!(py, "va"), va)?;
@@ -509,22 +475,31 @@ impl<'py> Outputs<'py> {
     }
 }
 
-/// A view of shape (3,) of `block` at element `at`.
-fn vector_view<'py>(block: &Bound<'py, PyArray1<f64>>, at: usize) -> PyResult<Bound<'py, PyAny>> {
+/// A C-contiguous view of shape `dims` and type `dtype` (float64 or bool) of `block`,
+/// starting at float64 element `at`.
+fn view<'py>(
+    block: &Bound<'py, PyArray1<f64>>,
+    at: usize,
+    dims: &[usize],
+    dtype: NPY_TYPES,
+) -> PyResult<Bound<'py, PyAny>> {
     let py = block.py();
-    let mut dims: [npy_intp; 1] = [3];
-    // SAFETY: elements at .. at + 3 lie inside the block (`ONE_LEN` elements); the view
-    // keeps the block alive through its base object (PyArray_SetBaseObject steals the new
-    // reference); the descriptor from PyArray_DescrFromType is a new reference, stolen by
-    // PyArray_NewFromDescr.
+    let mut shape = [0 as npy_intp; 2];
+    for (s, &d) in shape.iter_mut().zip(dims) {
+        *s = d as npy_intp;
+    }
+    // SAFETY: the view lies inside the block (`block_len` elements: the caller's offsets
+    // and shapes are the layout of `Outputs`); it keeps the block alive through its base
+    // object (PyArray_SetBaseObject steals the new reference); the descriptor from
+    // PyArray_DescrFromType is a new reference, stolen by PyArray_NewFromDescr.
     unsafe {
-        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, NPY_TYPES::NPY_DOUBLE as c_int);
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, dtype as c_int);
         let ptr = PY_ARRAY_API.PyArray_NewFromDescr(
             py,
             numpy::npyffi::get_type_object(py, numpy::npyffi::NpyTypes::PyArray_Type),
             descr,
-            1,
-            dims.as_mut_ptr(),
+            dims.len() as c_int,
+            shape.as_mut_ptr(),
             std::ptr::null_mut(),
             block.data().add(at).cast(),
             NPY_ARRAY_CARRAY,
