@@ -95,10 +95,10 @@ fn main() {
     let scene = Scene::default_scene();
     let settings = SolverSettings::default().with_method(Method::ClosedForm);
     let setup = BatchSetup::from_scene(&scene, settings);
-    let r = scene.ball.radius();
+    let r = scene.balls.a.radius();
     let n = 1024; // below the cut-over: this thread only
     let rows = lab_rows(n, r);
-    let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
+    let kernel = ClosedFormBatch::new(setup.balls, setup.contact, setup.effects);
     let cms: Vec<_> = rows
         .iter()
         .map(|l| Frame::new(l, r).unwrap().to_cm(l))
@@ -148,7 +148,7 @@ fn main() {
             one.install(|| resolve_lab_into(&setup, black_box(&rows[..]), cols.out()).unwrap())
         });
         let split = best(n, passes, || {
-            let (head, tail) = split(cols.out(), n / 2);
+            let (head, tail) = cols.out().split_at(n / 2);
             let (a, b) = rayon::join(
                 || resolve_lab_into(&setup, black_box(&rows[..n / 2]), head),
                 || resolve_lab_into(&setup, black_box(&rows[n / 2..]), tail),
@@ -156,42 +156,8 @@ fn main() {
             a.and(b).unwrap()
         });
         println!(
-            "{n:>6} rows: one thread {:6.1} ns wall, pool {:6.1} ns wall per row ({:6.1} ns CPU of this thread)",
-            serial.0, split.0, split.1
+            "{n:>6} rows: one thread {:6.1} ns, two halves on the pool {:6.1} ns wall per row",
+            serial.0, split.0
         );
     }
-}
-
-/// Rows [0, k) and [k, n) of the columns.
-fn split(o: LabOutColumns<'_>, k: usize) -> (LabOutColumns<'_>, LabOutColumns<'_>) {
-    let (va0, va1) = o.va.split_at_mut(k);
-    let (wa0, wa1) = o.wa.split_at_mut(k);
-    let (vb0, vb1) = o.vb.split_at_mut(k);
-    let (wb0, wb1) = o.wb.split_at_mut(k);
-    let (p0, p1) = o.impulse.split_at_mut(k);
-    let (j0, j1) = o.tangential_impulse.split_at_mut(k);
-    let (s0, s1) = o.sticks.split_at_mut(k);
-    let (t0, t1) = o.throw_angle_deg.split_at_mut(k);
-    (
-        LabOutColumns {
-            va: va0,
-            wa: wa0,
-            vb: vb0,
-            wb: wb0,
-            impulse: p0,
-            tangential_impulse: j0,
-            sticks: s0,
-            throw_angle_deg: t0,
-        },
-        LabOutColumns {
-            va: va1,
-            wa: wa1,
-            vb: vb1,
-            wb: wb1,
-            impulse: p1,
-            tangential_impulse: j1,
-            sticks: s1,
-            throw_angle_deg: t1,
-        },
-    )
 }

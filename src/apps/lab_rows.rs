@@ -1,7 +1,7 @@
 //! Lab-frame collisions read where the caller keeps them and written into its columns: the
 //! entry point for callers with their own memory layout (the Python bindings' numpy arrays).
 //!
-//! Row i: its lab scene, the [`Frame`] of the scene, the setup's method on the
+//! Row i: its lab scene, the [`Frame`] of the scene ([`Frame::of_pair`], the setup's balls), the setup's method on the
 //! centre-of-mass state, then the outgoing lab motions and the throw angle
 //! ([`Frame::outgoing`]): the path of the lab rows of [`crate::batch::run_csv`], without the
 //! per-row overrides, the stick time and the text.
@@ -88,8 +88,8 @@ impl<'a> LabOutColumns<'a> {
         lens.iter().all(|&l| l == n).then_some(n)
     }
 
-    /// Rows [0, k) and [k, n).
-    fn split_at(self, k: usize) -> (LabOutColumns<'a>, LabOutColumns<'a>) {
+    /// Rows [0, k) and [k, n) of every column (`k` at most the shortest column's length).
+    pub fn split_at(self, k: usize) -> (LabOutColumns<'a>, LabOutColumns<'a>) {
         let (va0, va1) = self.va.split_at_mut(k);
         let (wa0, wa1) = self.wa.split_at_mut(k);
         let (vb0, vb1) = self.vb.split_at_mut(k);
@@ -129,7 +129,7 @@ impl<'a> LabOutColumns<'a> {
 /// use billiard_contact::{LabBall, LabScene, Method, Scene, SolverSettings};
 /// use nalgebra::Vector3;
 /// let scene = Scene::default_scene();
-/// let r = scene.ball.radius();
+/// let r = scene.balls.a.radius();
 /// let setup = BatchSetup::from_scene(&scene, SolverSettings::default().with_method(Method::ClosedForm));
 /// // Head on along +y: A at 2 m/s onto B at rest (eq 52 with e = 1: they exchange velocities).
 /// let head_on = LabScene {
@@ -145,7 +145,7 @@ impl<'a> LabOutColumns<'a> {
 /// };
 /// resolve_lab_into(&setup, &[head_on][..], out).unwrap();
 /// assert_eq!((va[0], vb[0]), ([0.0, 0.0, 0.0], [0.0, 2.0, 0.0]));
-/// assert_eq!(p[0], 2.0 * scene.ball.mass()); // P = 2 m U(0), U(0) = 1 m/s
+/// assert_eq!(p[0], 2.0 * scene.balls.a.mass()); // P = 2 m U(0), U(0) = 1 m/s
 /// assert_eq!(throw[0], 0.0); // no slip, no throw: B leaves along the line of centres
 /// ```
 pub fn resolve_lab_into<R: LabRows + ?Sized>(
@@ -172,7 +172,7 @@ pub fn resolve_lab_into<R: LabRows + ?Sized>(
         ));
     }
     let kernel = (setup.settings.method() == Method::ClosedForm)
-        .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects));
+        .then(|| ClosedFormBatch::new(setup.balls, setup.contact, setup.effects));
     let job = Job {
         setup,
         kernel: kernel.as_ref(),
@@ -237,7 +237,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
             }
             return Ok(());
         };
-        let radius = self.setup.ball.radius();
+        let balls = &self.setup.balls;
         let mut block = Block::new();
         for first in (0..n).step_by(BLOCK) {
             let m = BLOCK.min(n - first);
@@ -252,7 +252,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
                         break;
                     }
                 };
-                match Frame::new(&lab, radius) {
+                match Frame::of_pair(&lab, balls) {
                     Ok(frame) => {
                         block.frames[q] = frame;
                         block.labs[q] = lab;
@@ -292,7 +292,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
     #[inline(always)]
     fn row(&self, i: usize) -> Result<(ContactResult, Motions), Error> {
         let lab = self.rows.row(i)?;
-        let frame = Frame::new(&lab, self.setup.ball.radius())?;
+        let frame = Frame::of_pair(&lab, &self.setup.balls)?;
         let cm = frame.to_cm(&lab);
         let result = match self.kernel {
             Some(k) => k.resolve_without_theta(&cm)?,
