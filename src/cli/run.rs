@@ -9,7 +9,10 @@ use billiard_contact::formats::ball_paths::{
 };
 use billiard_contact::formats::report::{summary, Report};
 use billiard_contact::formats::scene::SolverOverrides;
-use billiard_contact::formats::trace::CsvTrace;
+use billiard_contact::formats::trace::{CsvTrace, Tee, TraceRow};
+use billiard_contact::plot::paths::TopView;
+use billiard_contact::plot::trace::TraceFigure;
+use billiard_contact::plot::FigureFormat;
 use billiard_contact::table_phase::TableOutcome;
 use billiard_contact::{run_scene, Error, Sampling, Scene, SceneOutcome};
 use clap::Args;
@@ -54,10 +57,14 @@ pub struct RunArgs {
     /// Uniform intervals of the path CSV (plus every change of phase; default 200).
     #[arg(long = "path-samples", value_name = "N")]
     ball_path_samples: Option<u64>,
-    /// Draw a top view of both balls' paths with the line of centres (SVG, or PNG for a
-    /// `.png` name; needs `[effects] table = true`).
-    #[arg(long, value_name = "FILE.svg")]
+    /// Draw a top view of both balls' paths with the line of centres (`.svg` or `.png`;
+    /// needs `[effects] table = true`).
+    #[arg(long, value_name = "FILE.svg|png")]
     plot: Option<PathBuf>,
+    /// Draw the run's trace against time (`.svg` or `.png`): force and impulse, slip speed,
+    /// slip direction, velocity, spins, sliding heat; the rows of --trace (with --samples).
+    #[arg(long, value_name = "FILE.svg|png")]
+    plot_trace: Option<PathBuf>,
 }
 
 impl RunArgs {
@@ -74,6 +81,11 @@ impl RunArgs {
 
     /// The checks of the options that need the scene.
     fn validate(&self, scene: &Scene) -> Result<(), Error> {
+        for (option, path) in [("--plot", &self.plot), ("--plot-trace", &self.plot_trace)] {
+            if let Some(path) = path {
+                FigureFormat::of(option, path)?;
+            }
+        }
         if self.samples == Some(0) {
             return Err(Error::invalid("--samples", 0, "at least 1"));
         }
@@ -112,21 +124,35 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             summary(&scene, outcome)
         })
     };
-    // The trace becomes visible only once the whole run, report included, succeeded.
-    let (text, outcome) = match &args.trace {
-        Some(path) => {
+    // The trace becomes visible only once the whole run, report included, succeeded; the
+    // trace figure draws the same rows.
+    let mut rows: Vec<TraceRow> = Vec::new();
+    let (text, outcome) = match (&args.trace, args.plot_trace.is_some()) {
+        (Some(path), plot) => {
             let file = AtomicFile::create(path)?;
             let mut csv = CsvTrace::new(file)?;
-            let outcome = run_scene(&scene, &settings, Some((&mut csv, sampling)))?;
+            let outcome = if plot {
+                let mut both = Tee(&mut csv, &mut rows);
+                run_scene(&scene, &settings, Some((&mut both, sampling)))?
+            } else {
+                run_scene(&scene, &settings, Some((&mut csv, sampling)))?
+            };
             let text = render(&outcome)?;
             csv.finish()?.commit()?;
             (text, outcome)
         }
-        None => {
+        (None, true) => {
+            let outcome = run_scene(&scene, &settings, Some((&mut rows, sampling)))?;
+            (render(&outcome)?, outcome)
+        }
+        (None, false) => {
             let outcome = run_scene(&scene, &settings, None)?;
             (render(&outcome)?, outcome)
         }
     };
+    if let Some(path) = &args.plot_trace {
+        TraceFigure::new(&scene, &outcome, &rows).write("--plot-trace", path)?;
+    }
     if let Some(table_phase) = &outcome.table {
         if let Some(path) = &args.ball_paths {
             let samples = args.ball_path_samples.unwrap_or(DEFAULT_BALL_PATH_SAMPLES);
@@ -134,7 +160,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             write_ball_paths(AtomicFile::create(path)?, &rows)?.commit()?;
         }
         if let Some(path) = &args.plot {
-            write_plot(path, table_phase, &scene)?;
+            write_plot(path, table_phase, &scene, &outcome)?;
         }
     }
     let mut stdout = std::io::stdout().lock();
@@ -144,31 +170,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         .map_err(|e| Error::io("stdout", e))
 }
 
-/// The top view of the table phase: SVG through an atomic file, PNG for a `.png` name
-/// (rendered beside the target and renamed into place).
-fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<(), Error> {
-    use billiard_contact::plot::paths;
-    let title = format!("{}: top view", scene.name);
-    let png = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if png {
-        let file = AtomicFile::create(path)?;
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
-        let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
-        let drawn = paths::png(table_phase, scene.balls.radii(), &title, &temp);
-        let moved =
-            drawn.and_then(|_| std::fs::rename(&temp, path).map_err(|e| Error::io(path, e)));
-        if moved.is_err() {
-            let _ = std::fs::remove_file(&temp);
-        }
-        drop(file);
-        moved
-    } else {
-        let svg = paths::svg(table_phase, scene.balls.radii(), &title)?;
-        let mut file = AtomicFile::create(path)?;
-        file.write_all(svg.as_bytes())
-            .map_err(|e| Error::io(path, e))?;
-        file.commit()
-    }
+/// The top view of the table phase, SVG or PNG by the file name's extension.
+fn write_plot(
+    path: &Path,
+    table_phase: &TableOutcome,
+    scene: &Scene,
+    outcome: &SceneOutcome,
+) -> Result<(), Error> {
+    TopView::new(scene, outcome, table_phase).write("--plot", path)
 }
