@@ -25,6 +25,7 @@ def run(
     atol: Optional[float] = None,
     steps: Optional[int] = None,
     trace: bool = False,
+    time_transform: Optional[bool] = None,
 ) -> dict[str, Any]:
     """Runs a scene file (TOML) as ``billiard-contact run SCENE --json`` does.
 
@@ -36,7 +37,10 @@ def run(
     ``profile``, ``duration`` (s), ``table`` with the table effect).
 
     method, rtol, atol, steps override the scene's ``[solver]`` as ``--method``,
-    ``--rtol`` (which sets atol too unless atol is given), ``--atol``, ``--steps`` do.
+    ``--rtol`` (which sets atol too unless atol is given), ``--atol``, ``--steps`` do;
+    time_transform (True/False) as ``--time-transform``: whether the time-stepping methods
+    integrate hertz and sine-power pulses in the smoothing change of time variable (None:
+    the scene's ``[solver] time_transform``, by default the library's True).
     samples=N adds ``report["trace"]``: a dict of numpy arrays keyed by ``TRACE_COLUMNS``,
     at t = i duration / N (i = 0..N) plus the stop of sliding, in the paper's centre-of-mass
     frame; ``theta`` is NaN where the CSV cell is empty (S(0) = 0). trace=True (without
@@ -56,20 +60,31 @@ def run_toml(
     atol: Optional[float] = None,
     steps: Optional[int] = None,
     trace: bool = False,
+    time_transform: Optional[bool] = None,
 ) -> dict[str, Any]:
     """As ``run``, for scene text; relative profile files resolve against base_dir."""
+
+Evaluate = Literal["along-contact", "initial"]
+"""Where mu(S) is evaluated: the library's names (scene files' ``contact.mu.evaluate``)."""
+EvaluateAlias = Literal["contact", "initial-slip"]
+"""The first release's names, accepted for ``"along-contact"`` and ``"initial"``."""
 
 class SpeedDependentFriction:
     """Ball-ball friction mu(S) = a + b exp(-c S), S the sliding speed of the contact
     points (m/s); a, b dimensionless (>= 0, <= 1e6), c in s/m (>= 0).
 
-    evaluate="contact" (default): mu at the current sliding speed all along the contact.
-    evaluate="initial-slip": mu(S(0)) at the sliding speed before the collision, then used
-    as a constant coefficient (pooltool's convention).
+    evaluate="along-contact" (default): mu at the current sliding speed all along the
+    contact. evaluate="initial": mu(S(0)) at the sliding speed before the collision, then
+    used as a constant coefficient (pooltool's convention). The names are the scene files'
+    (``contact.mu.evaluate``); "contact" and "initial-slip" are accepted for them too.
     """
 
     def __init__(
-        self, a: float, b: float, c: float, evaluate: Literal["contact", "initial-slip"] = "contact"
+        self,
+        a: float,
+        b: float,
+        c: float,
+        evaluate: Union[Evaluate, EvaluateAlias] = "along-contact",
     ) -> None: ...
     @property
     def a(self) -> float: ...
@@ -79,7 +94,8 @@ class SpeedDependentFriction:
     def c(self) -> float:
         """Decay rate (s/m)."""
     @property
-    def evaluate(self) -> Literal["contact", "initial-slip"]: ...
+    def evaluate(self) -> Evaluate:
+        """The library's name of the convention (also when an alias was given)."""
     def mu(self, s: float) -> float:
         """mu at sliding speed s (m/s)."""
 
@@ -187,6 +203,7 @@ class BallBall:
         up: Optional[ArrayLike3] = None,
         method: Optional[Method] = None,
         rtol: Optional[float] = None,
+        time_transform: Optional[bool] = None,
     ) -> LabResult:
         """Resolves collisions given in the lab frame.
 
@@ -196,7 +213,9 @@ class BallBall:
         touch: |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
 
         method None is the closed form; "rk4", "dopri5", "dop853" integrate (rtol, default
-        1e-10, sets atol too). N >= 2048 rows run on all cores without the GIL.
+        1e-10, sets atol too; time_transform, default the library's True: the smoothing
+        change of time variable for "hertz" and "sine-power" profiles). N >= 2048 rows run
+        on all cores without the GIL.
 
         Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number").
         """

@@ -28,10 +28,11 @@ lab frame, z up; any memory order):
   hit with follow or draw spin gets a small vertical velocity from friction).
 - Friction. ``mu`` is a number or a ``SpeedDependentFriction(a, b, c)`` (default: the
   fit a + b exp(-c S) that pooltool's default resolver uses, a = 9.951e-3, b = 0.108,
-  c = 1.088). ``SpeedDependentFriction(..., evaluate="contact")`` (default) evaluates mu at
-  the current sliding speed all along the contact; ``evaluate="initial-slip"`` freezes mu
-  at the sliding speed before the collision, pooltool's convention: mu(S(0)) is computed
-  from the incoming state and used as a constant coefficient.
+  c = 1.088). ``SpeedDependentFriction(..., evaluate="along-contact")`` (default)
+  evaluates mu at the current sliding speed all along the contact;
+  ``evaluate="initial"`` freezes mu at the sliding speed before the collision, pooltool's
+  convention: mu(S(0)) is computed from the incoming state and used as a constant
+  coefficient (the first release's names "contact" and "initial-slip" work too).
 - Motion state. Both balls leave the collision ``const.sliding``.
 
 Differences from pooltool's ``frictional_inelastic``: that model's tangential impulse is
@@ -73,7 +74,7 @@ class BilliardContact(CoreBallBallCollision):
 
     Attributes:
         mu: ball-ball friction, a number or ``SpeedDependentFriction`` (see the module's
-            documentation for ``evaluate="contact"`` and ``"initial-slip"``).
+            documentation for ``evaluate="along-contact"`` and ``"initial"``).
         restitution: e in [0, 1] (normal impulse (1 + e) m U(0)); ``None``: the mean of
             the two balls' ``params.e_b``.
         alpha: moment of inertia factor, I = alpha m R^2 (0.4: solid ball).

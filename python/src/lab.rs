@@ -1,16 +1,20 @@
 //! `BallBall`, `SpeedDependentFriction` and `BallBall.resolve_lab`: many lab-frame
-//! collisions from numpy arrays, in Rust, without the GIL.
+//! collisions from numpy arrays, in Rust, without the GIL. The numpy arrays are read in
+//! place and the results written straight into the output arrays by the library's
+//! `batch::resolve_lab_into` (the change of frame, the method and the throw angle are the
+//! library's, as for the command line's lab-frame batch rows).
 
 use crate::ball::Ball;
 use crate::errors::to_py;
-use crate::frame::{Frame, LabRow};
 use crate::settings;
-use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
+use billiard_contact::batch::{
+    resolve_lab_into, BatchSetup, LabOutColumns, LabRows, PARALLEL_LAB_ROWS,
+};
 use billiard_contact::nalgebra::Vector3;
-use billiard_contact::{BallPair, Error, Friction, Incoming, Scene};
+use billiard_contact::{BallPair, Error, Evaluate, Friction, LabBall, LabScene, Method, Scene};
 use numpy::npyffi::{npy_intp, NPY_ARRAY_CARRAY, NPY_TYPES, PY_ARRAY_API};
 use numpy::{
-    PyArray1, PyArray2, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
+    PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyValueError;
@@ -18,23 +22,27 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyString};
-use rayon::prelude::*;
 use std::os::raw::c_int;
 use std::path::Path;
 
-/// Rows from which `resolve_lab` releases the GIL and works on all cores (below, the
-/// thread hand-over costs more than the rows).
-const PARALLEL_ROWS: usize = 2048;
-/// Rows per parallel work item.
-const CHUNK_ROWS: usize = 1024;
+/// The names `evaluate=` takes: the library's (scene files' `contact.mu.evaluate`) first,
+/// then the names of the first release, kept as aliases.
+const EVALUATE_NAMES: [(&str, Evaluate); 4] = [
+    ("along-contact", Evaluate::AlongContact),
+    ("initial", Evaluate::Initial),
+    ("contact", Evaluate::AlongContact),
+    ("initial-slip", Evaluate::Initial),
+];
 
 /// Ball-ball friction mu(S) = a + b exp(-c S), S the sliding speed of the contact
 /// points (m/s); a, b dimensionless, c in s/m.
 ///
-/// `evaluate="contact"` (default): mu at the current sliding speed all along the contact
-/// (the sliding speed falls as the friction acts).
-/// `evaluate="initial-slip"`: mu frozen at the sliding speed before the collision,
-/// mu(S(0)), and used as a constant coefficient (pooltool's convention).
+/// `evaluate="along-contact"` (default): mu at the current sliding speed all along the
+/// contact (the sliding speed falls as the friction acts).
+/// `evaluate="initial"`: mu frozen at the sliding speed before the collision, mu(S(0)),
+/// and used as a constant coefficient (pooltool's convention).
+/// The names are the scene files' (`contact.mu.evaluate`); "contact" and "initial-slip"
+/// are accepted for them too.
 #[pyclass(
     frozen,
     module = "billiard_contact._core",
@@ -42,6 +50,7 @@ const CHUNK_ROWS: usize = 1024;
 )]
 #[derive(Clone, Copy)]
 pub struct SpeedDependentFriction {
+    /// The law, evaluated as `evaluate=` says.
     friction: Friction,
     #[pyo3(get)]
     a: f64,
@@ -49,44 +58,43 @@ pub struct SpeedDependentFriction {
     b: f64,
     #[pyo3(get)]
     c: f64,
-    initial_slip: bool,
+    evaluate: Evaluate,
 }
 
 #[pymethods]
 impl SpeedDependentFriction {
     #[new]
-    #[pyo3(signature = (a, b, c, evaluate = "contact"))]
+    #[pyo3(signature = (a, b, c, evaluate = "along-contact"))]
     fn new(a: f64, b: f64, c: f64, evaluate: &str) -> PyResult<Self> {
         let friction = Friction::speed_dependent(a, b, c).map_err(to_py)?;
-        let initial_slip = match evaluate {
-            "contact" => false,
-            "initial-slip" => true,
-            other => {
-                return Err(to_py(Error::invalid(
-                    "evaluate",
-                    format!("\"{other}\""),
-                    "\"contact\" (mu(S) along the contact) or \"initial-slip\" (mu(S(0)) \
-                     frozen, pooltool's convention)",
-                )))
-            }
+        let Some(&(_, evaluate)) = EVALUATE_NAMES.iter().find(|(name, _)| *name == evaluate) else {
+            let accepted: Vec<String> = EVALUATE_NAMES
+                .iter()
+                .map(|(name, _)| format!("\"{name}\""))
+                .collect();
+            return Err(to_py(Error::invalid(
+                "evaluate",
+                format!("\"{evaluate}\""),
+                format!(
+                    "{} (mu(S) along the contact) or {} (mu(S(0)) frozen, pooltool's \
+                     convention); also {} and {}",
+                    accepted[0], accepted[1], accepted[2], accepted[3]
+                ),
+            )));
         };
         Ok(SpeedDependentFriction {
-            friction,
+            friction: friction.evaluated(evaluate),
             a,
             b,
             c,
-            initial_slip,
+            evaluate,
         })
     }
 
-    /// Where mu(S) is evaluated: "contact" or "initial-slip".
+    /// Where mu(S) is evaluated: "along-contact" or "initial" (the library's names).
     #[getter]
     fn evaluate(&self) -> &'static str {
-        if self.initial_slip {
-            "initial-slip"
-        } else {
-            "contact"
-        }
+        self.evaluate.name()
     }
 
     /// mu at sliding speed `s` (m/s).
@@ -189,96 +197,12 @@ pub struct BallBall {
     closed_form: BatchSetup,
     /// Given as a=Ball(...), b=Ball(...) (else mass, radius, alpha).
     by_ball: bool,
-    /// [r_A, r_B] (m) and the mass weights [m_A, m_B] / (m_A + m_B), for the lab frame.
-    radii: [f64; 2],
-    weights: [f64; 2],
     mu: Mu,
     restitution: f64,
     profile: String,
     duration: f64,
     friction: bool,
     stick: bool,
-}
-
-/// One output row.
-#[derive(Clone, Copy)]
-struct RowOut {
-    va: Vector3<f64>,
-    wa: Vector3<f64>,
-    vb: Vector3<f64>,
-    wb: Vector3<f64>,
-    impulse: f64,
-    tangential_impulse: f64,
-    sticks: bool,
-    throw: f64,
-}
-
-/// The output columns of a range of rows.
-struct OutSlices<'a> {
-    va: &'a mut [f64],
-    wa: &'a mut [f64],
-    vb: &'a mut [f64],
-    wb: &'a mut [f64],
-    impulse: &'a mut [f64],
-    tangential_impulse: &'a mut [f64],
-    sticks: &'a mut [bool],
-    throw: &'a mut [f64],
-}
-
-impl<'a> OutSlices<'a> {
-    /// Rows [0, k) and [k, n).
-    fn split_at(self, k: usize) -> (OutSlices<'a>, OutSlices<'a>) {
-        let (va0, va1) = self.va.split_at_mut(3 * k);
-        let (wa0, wa1) = self.wa.split_at_mut(3 * k);
-        let (vb0, vb1) = self.vb.split_at_mut(3 * k);
-        let (wb0, wb1) = self.wb.split_at_mut(3 * k);
-        let (p0, p1) = self.impulse.split_at_mut(k);
-        let (j0, j1) = self.tangential_impulse.split_at_mut(k);
-        let (s0, s1) = self.sticks.split_at_mut(k);
-        let (t0, t1) = self.throw.split_at_mut(k);
-        (
-            OutSlices {
-                va: va0,
-                wa: wa0,
-                vb: vb0,
-                wb: wb0,
-                impulse: p0,
-                tangential_impulse: j0,
-                sticks: s0,
-                throw: t0,
-            },
-            OutSlices {
-                va: va1,
-                wa: wa1,
-                vb: vb1,
-                wb: wb1,
-                impulse: p1,
-                tangential_impulse: j1,
-                sticks: s1,
-                throw: t1,
-            },
-        )
-    }
-
-    /// Row i (i < the number of rows: `fill_range` loops over `impulse.len()`, and every
-    /// slice was split at the same rows).
-    #[inline(always)]
-    fn put(&mut self, i: usize, o: &RowOut) {
-        debug_assert!(i < self.impulse.len() && 3 * i + 3 <= self.va.len());
-        // SAFETY: as above; the vector slices hold 3 elements per row.
-        unsafe {
-            for k in 0..3 {
-                *self.va.get_unchecked_mut(3 * i + k) = o.va[k];
-                *self.wa.get_unchecked_mut(3 * i + k) = o.wa[k];
-                *self.vb.get_unchecked_mut(3 * i + k) = o.vb[k];
-                *self.wb.get_unchecked_mut(3 * i + k) = o.wb[k];
-            }
-            *self.impulse.get_unchecked_mut(i) = o.impulse;
-            *self.tangential_impulse.get_unchecked_mut(i) = o.tangential_impulse;
-            *self.sticks.get_unchecked_mut(i) = o.sticks;
-            *self.throw.get_unchecked_mut(i) = o.throw;
-        }
-    }
 }
 
 /// One input, read through its own byte strides (any memory order and alignment; a (3,)
@@ -300,6 +224,7 @@ unsafe impl Sync for Strided {}
 /// The seven inputs, each of n rows.
 struct Inputs {
     views: [Strided; 7],
+    n: usize,
 }
 
 const NAMES: [&str; 7] = ["pa", "va", "wa", "pb", "vb", "wb", "up"];
@@ -317,26 +242,42 @@ impl Inputs {
             Vector3::new(at(base), at(base + v.col), at(base + 2 * v.col))
         }
     }
+}
 
-    /// Row i, every component checked finite.
+impl LabRows for Inputs {
+    fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Row i, every component checked finite (the library's lab rows from a file are
+    /// checked as they are parsed; these come as numbers).
     #[inline(always)]
-    fn row(&self, i: usize) -> Result<LabRow, Error> {
-        let r = LabRow {
-            pa: self.vec(0, i),
-            va: self.vec(1, i),
-            wa: self.vec(2, i),
-            pb: self.vec(3, i),
-            vb: self.vec(4, i),
-            wb: self.vec(5, i),
-            up: self.vec(6, i),
-        };
+    fn row(&self, i: usize) -> Result<LabScene, Error> {
+        let (pa, va, wa) = (self.vec(0, i), self.vec(1, i), self.vec(2, i));
+        let (pb, vb, wb, up) = (
+            self.vec(3, i),
+            self.vec(4, i),
+            self.vec(5, i),
+            self.vec(6, i),
+        );
         // x * 0 is 0 for finite x, NaN otherwise: one comparison for the 21 numbers.
         let z = |v: &Vector3<f64>| v.x * 0.0 + v.y * 0.0 + v.z * 0.0;
-        let zero = z(&r.pa) + z(&r.va) + z(&r.wa) + z(&r.pb) + z(&r.vb) + z(&r.wb) + z(&r.up);
-        if zero != 0.0 {
-            return Err(non_finite(&[r.pa, r.va, r.wa, r.pb, r.vb, r.wb, r.up]));
+        if z(&pa) + z(&va) + z(&wa) + z(&pb) + z(&vb) + z(&wb) + z(&up) != 0.0 {
+            return Err(non_finite(&[pa, va, wa, pb, vb, wb, up]));
         }
-        Ok(r)
+        Ok(LabScene {
+            a: LabBall {
+                position: pa,
+                velocity: va,
+                spin: wa,
+            },
+            b: LabBall {
+                position: pb,
+                velocity: vb,
+                spin: wb,
+            },
+            up,
+        })
     }
 }
 
@@ -353,99 +294,37 @@ fn non_finite(all: &[Vector3<f64>; 7]) -> Error {
     Error::invalid("input", "a non-finite number", "finite numbers")
 }
 
-impl BallBall {
-    /// One collision: lab row -> centre-of-mass state -> the library -> lab motions.
-    #[inline(always)]
-    fn resolve_row(
-        &self,
-        setup: &BatchSetup,
-        frozen: Option<&Friction>,
-        inputs: &Inputs,
-        i: usize,
-    ) -> Result<RowOut, Error> {
-        let row = inputs.row(i)?;
-        let frame = Frame::new(&row, self.radii, self.weights)?;
-        let cm = frame.to_cm(&row);
-        let input = match frozen {
-            None => BatchInput::cm(cm),
-            // mu(S(0)) from the incoming slip, then a constant coefficient for this row.
-            Some(f) => BatchInput {
-                incoming: Incoming::Cm(cm),
-                overrides: Overrides {
-                    mu: Some(f.mu(cm.sliding_speed_of(&self.scene.balls))),
-                    ..Overrides::default()
-                },
-            },
-        };
-        let o = resolve(setup, &input)?;
-        let (a, b) = frame.to_lab(&o.result.out);
-        Ok(RowOut {
-            va: a.velocity,
-            wa: a.spin,
-            vb: b.velocity,
-            wb: b.spin,
-            impulse: o.result.impulse,
-            tangential_impulse: o.result.tangential_impulse,
-            sticks: o.result.sticks,
-            throw: frame
-                .throw_angle_deg(&(b.velocity - row.vb))
-                .unwrap_or(f64::NAN),
-        })
-    }
-
-    /// Rows [start, start + out.len) into `out`; the first failing row and its error.
-    fn fill_range(
-        &self,
-        setup: &BatchSetup,
-        frozen: Option<&Friction>,
-        inputs: &Inputs,
-        start: usize,
-        mut out: OutSlices,
-    ) -> Result<(), (usize, Error)> {
-        for k in 0..out.impulse.len() {
-            let i = start + k;
-            match self.resolve_row(setup, frozen, inputs, i) {
-                Ok(o) => out.put(k, &o),
-                Err(e) => return Err((i, e)),
-            }
-        }
-        Ok(())
-    }
-
-    /// All n rows, in parallel chunks when `parallel`.
-    fn fill(
-        &self,
-        setup: &BatchSetup,
-        frozen: Option<&Friction>,
-        inputs: &Inputs,
-        out: OutSlices,
-        parallel: bool,
-    ) -> Result<(), (usize, Error)> {
-        let n = out.impulse.len();
-        if !parallel {
-            return self.fill_range(setup, frozen, inputs, 0, out);
-        }
-        let mut chunks = Vec::with_capacity(n.div_ceil(CHUNK_ROWS));
-        let mut rest = out;
-        let mut start = 0;
-        while start < n {
-            let k = CHUNK_ROWS.min(n - start);
-            let (head, tail) = rest.split_at(k);
-            chunks.push((start, head));
-            rest = tail;
-            start += k;
-        }
-        chunks
-            .into_par_iter()
-            .map(|(start, chunk)| self.fill_range(setup, frozen, inputs, start, chunk))
-            .reduce(
-                || Ok(()),
-                |a, b| match (a, b) {
-                    (Err(x), Err(y)) => Err(if x.0 <= y.0 { x } else { y }),
-                    (Err(x), _) | (_, Err(x)) => Err(x),
-                    _ => Ok(()),
-                },
-            )
+/// The library's error for a lab scene, with the arguments' names: `pb` and `pa` for the
+/// balls' positions, `up`.
+#[cold]
+#[inline(never)]
+fn with_argument_names(e: Error) -> Error {
+    match e {
+        Error::NotTouching {
+            position_b: [x, y, z],
+            distance,
+            contact_distance,
+            contact_term,
+            tolerance,
+            ..
+        } => Error::invalid(
+            "pb",
+            format!("[{x}, {y}, {z}] (|pb - pa| = {distance} m)"),
+            format!(
+                "the balls must touch: |pb - pa| = {contact_term} = {contact_distance} m within a \
+                 relative {tolerance:e}"
+            ),
+        ),
+        Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } if field == "incoming.lab.up" => Error::InvalidParameter {
+            field: "up".into(),
+            value,
+            expected,
+        },
+        other => other,
     }
 }
 
@@ -526,7 +405,8 @@ fn shaped(arrays: &[Option<Bound<'_, PyArrayDyn<f64>>>; 7]) -> PyResult<(Inputs,
             }
         }
     }
-    Ok((Inputs { views }, n.map_or(1, |(m, _)| m), n.is_none()))
+    let rows = n.map_or(1, |(m, _)| m);
+    Ok((Inputs { views, n: rows }, rows, n.is_none()))
 }
 
 fn shape_str(shape: &[usize]) -> String {
@@ -543,112 +423,79 @@ fn shape_str(shape: &[usize]) -> String {
     }
 }
 
-/// The output arrays of `resolve_lab`. For N rows: arrays of shape (N, 3) and (N,). For
-/// one collision, one numpy buffer holds everything and the outputs are views of it,
-/// shapes (3,) and (): one allocation instead of eight (the single call is dominated by
-/// numpy object creation).
-enum Outputs<'py> {
-    Rows {
-        vectors: [Bound<'py, PyAny>; 4],
-        scalars: [Bound<'py, PyAny>; 3],
-        sticks: Bound<'py, PyAny>,
-    },
-    One {
-        /// va, wa, vb, wb, impulse, tangential impulse, throw, sticks (a byte of the 16th).
-        block: Bound<'py, PyArray1<f64>>,
-    },
+/// The output arrays of `resolve_lab`, all in one numpy buffer of float64 (the outputs are
+/// C-contiguous views of it): "va", "wa", "vb", "wb" at elements 0, 3n, 6n, 9n (n rows of
+/// 3), "impulse", "tangential_impulse", "throw_angle_deg" at 12n, 13n, 14n, then "sticks",
+/// one byte a row. One allocation instead of eight: for one collision the call is
+/// dominated by creating numpy objects; for many, a buffer of 4 MB or more is given huge
+/// pages by numpy (one page fault per 2 MB where eight arrays took one per 4 kB, which
+/// cost more than the collisions at 100,000 rows).
+struct Outputs<'py> {
+    block: Bound<'py, PyArray1<f64>>,
+    n: usize,
+    /// One collision: shapes (3,) and () instead of (N, 3) and (N,).
+    single: bool,
 }
 
-/// Elements of `block` for one collision.
-const ONE_LEN: usize = 16;
+/// Elements of the buffer for n rows: 15 float64 a row and the sticks' bytes.
+fn block_len(n: usize) -> usize {
+    15 * n + n.div_ceil(8)
+}
 
 impl<'py> Outputs<'py> {
     fn new(py: Python<'py>, n: usize, single: bool) -> Self {
-        // SAFETY (uninitialised arrays): every element is written by `fill` before the
-        // arrays reach Python; on error they are dropped unseen.
-        unsafe {
-            if single {
-                let block = PyArray1::<f64>::new(py, [ONE_LEN], false);
-                *block.data().add(ONE_LEN - 1) = 0.0;
-                return Outputs::One { block };
-            }
-            let vector = || PyArray2::<f64>::new(py, [n, 3], false).into_any();
-            let scalar = || PyArray1::<f64>::new(py, [n], false).into_any();
-            Outputs::Rows {
-                vectors: [vector(), vector(), vector(), vector()],
-                scalars: [scalar(), scalar(), scalar()],
-                sticks: PyArray1::<bool>::new(py, [n], false).into_any(),
-            }
-        }
+        // SAFETY (uninitialised): every element is written by `resolve_lab_into` before the
+        // arrays reach Python; on error they are dropped unseen. The padding bytes after
+        // the sticks are never read.
+        let block = unsafe { PyArray1::<f64>::new(py, [block_len(n)], false) };
+        Outputs { block, n, single }
     }
 
-    /// The arrays' elements, to fill.
+    /// The buffer's parts, as the library's output columns.
     ///
     /// # Safety
-    /// The arrays are fresh, C-contiguous and not yet visible to Python: nothing else
-    /// reads or writes them while the slices live.
-    unsafe fn slices<'s>(&self) -> OutSlices<'s> {
-        unsafe fn part<'s, T>(base: *mut T, len: usize) -> &'s mut [T] {
-            unsafe { std::slice::from_raw_parts_mut(base, len) }
-        }
-        unsafe fn f64s<'s>(a: &Bound<'_, PyAny>) -> &'s mut [f64] {
-            let a = unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() };
-            unsafe { part(a.data(), a.len()) }
-        }
+    /// The buffer is fresh, C-contiguous and not yet visible to Python: nothing else reads
+    /// or writes it while the columns live.
+    unsafe fn columns<'s>(&self) -> LabOutColumns<'s> {
+        let (d, n) = (self.block.data(), self.n);
         unsafe {
-            match self {
-                Outputs::Rows {
-                    vectors,
-                    scalars,
-                    sticks,
-                } => {
-                    let st = sticks.cast_unchecked::<PyArrayDyn<bool>>();
-                    OutSlices {
-                        va: f64s(&vectors[0]),
-                        wa: f64s(&vectors[1]),
-                        vb: f64s(&vectors[2]),
-                        wb: f64s(&vectors[3]),
-                        impulse: f64s(&scalars[0]),
-                        tangential_impulse: f64s(&scalars[1]),
-                        sticks: part(st.data(), st.len()),
-                        throw: f64s(&scalars[2]),
-                    }
-                }
-                Outputs::One { block } => {
-                    let d = block.data();
-                    OutSlices {
-                        va: part(d, 3),
-                        wa: part(d.add(3), 3),
-                        vb: part(d.add(6), 3),
-                        wb: part(d.add(9), 3),
-                        impulse: part(d.add(12), 1),
-                        tangential_impulse: part(d.add(13), 1),
-                        throw: part(d.add(14), 1),
-                        sticks: part(d.add(15).cast::<bool>(), 1),
-                    }
-                }
+            let part = |at: usize| std::slice::from_raw_parts_mut(d.add(at), n);
+            // [f64; 3] has f64's alignment: n rows of 3 elements are 3n elements.
+            let rows = |at: usize| std::slice::from_raw_parts_mut(d.add(at).cast::<[f64; 3]>(), n);
+            LabOutColumns {
+                va: rows(0),
+                wa: rows(3 * n),
+                vb: rows(6 * n),
+                wb: rows(9 * n),
+                impulse: part(12 * n),
+                tangential_impulse: part(13 * n),
+                throw_angle_deg: part(14 * n),
+                sticks: std::slice::from_raw_parts_mut(d.add(15 * n).cast::<bool>(), n),
             }
         }
     }
 
     fn into_dict(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = result_dict(py)?;
-        let (vectors, scalars, sticks) = match self {
-            Outputs::Rows {
-                vectors,
-                scalars,
-                sticks,
-            } => (vectors, scalars, sticks),
-            Outputs::One { block } => {
-                let v = |k: usize| vector_view(&block, 3 * k);
-                let s = |k: usize| scalar(&block, k, NPY_TYPES::NPY_DOUBLE);
-                (
-                    [v(0)?, v(1)?, v(2)?, v(3)?],
-                    [s(12)?, s(13)?, s(14)?],
-                    scalar(&block, 15, NPY_TYPES::NPY_BOOL)?,
-                )
-            }
+        let (b, n) = (&self.block, self.n);
+        let real = NPY_TYPES::NPY_DOUBLE;
+        let (vectors, scalars, sticks) = if self.single {
+            let v = |at: usize| view(b, at, &[3], real);
+            let s = |at: usize| scalar(b, at, real);
+            (
+                [v(0)?, v(3)?, v(6)?, v(9)?],
+                [s(12)?, s(13)?, s(14)?],
+                scalar(b, 15, NPY_TYPES::NPY_BOOL)?,
+            )
+        } else {
+            let v = |at: usize| view(b, at, &[n, 3], real);
+            let s = |at: usize| view(b, at, &[n], real);
+            (
+                [v(0)?, v(3 * n)?, v(6 * n)?, v(9 * n)?],
+                [s(12 * n)?, s(13 * n)?, s(14 * n)?],
+                view(b, 15 * n, &[n], NPY_TYPES::NPY_BOOL)?,
+            )
         };
+        let d = result_dict(py)?;
         let [va, wa, vb, wb] = vectors;
         let [p, j, throw] = scalars;
         d.set_item(intern!(py, "va"), va)?;
@@ -663,22 +510,31 @@ impl<'py> Outputs<'py> {
     }
 }
 
-/// A view of shape (3,) of `block` at element `at`.
-fn vector_view<'py>(block: &Bound<'py, PyArray1<f64>>, at: usize) -> PyResult<Bound<'py, PyAny>> {
+/// A C-contiguous view of shape `dims` and type `dtype` (float64 or bool) of `block`,
+/// starting at float64 element `at`.
+fn view<'py>(
+    block: &Bound<'py, PyArray1<f64>>,
+    at: usize,
+    dims: &[usize],
+    dtype: NPY_TYPES,
+) -> PyResult<Bound<'py, PyAny>> {
     let py = block.py();
-    let mut dims: [npy_intp; 1] = [3];
-    // SAFETY: elements at .. at + 3 lie inside the block (`ONE_LEN` elements); the view
-    // keeps the block alive through its base object (PyArray_SetBaseObject steals the new
-    // reference); the descriptor from PyArray_DescrFromType is a new reference, stolen by
-    // PyArray_NewFromDescr.
+    let mut shape = [0 as npy_intp; 2];
+    for (s, &d) in shape.iter_mut().zip(dims) {
+        *s = d as npy_intp;
+    }
+    // SAFETY: the view lies inside the block (`block_len` elements: the caller's offsets
+    // and shapes are the layout of `Outputs`); it keeps the block alive through its base
+    // object (PyArray_SetBaseObject steals the new reference); the descriptor from
+    // PyArray_DescrFromType is a new reference, stolen by PyArray_NewFromDescr.
     unsafe {
-        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, NPY_TYPES::NPY_DOUBLE as c_int);
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, dtype as c_int);
         let ptr = PY_ARRAY_API.PyArray_NewFromDescr(
             py,
             numpy::npyffi::get_type_object(py, numpy::npyffi::NpyTypes::PyArray_Type),
             descr,
-            1,
-            dims.as_mut_ptr(),
+            dims.len() as c_int,
+            shape.as_mut_ptr(),
             std::ptr::null_mut(),
             block.data().add(at).cast(),
             NPY_ARRAY_CARRAY,
@@ -763,10 +619,11 @@ impl BallBall {
         let mu_toml = match mu {
             Mu::Constant(x) => toml_f64(x),
             Mu::Speed(s) => format!(
-                "{{ model = \"speed-dependent\", a = {}, b = {}, c = {} }}",
+                "{{ model = \"speed-dependent\", a = {}, b = {}, c = {}, evaluate = \"{}\" }}",
                 toml_f64(s.a),
                 toml_f64(s.b),
-                toml_f64(s.c)
+                toml_f64(s.c),
+                s.evaluate.name()
             ),
         };
         let profile_toml = serde_json::to_string(profile).expect("a string serialises");
@@ -785,15 +642,14 @@ impl BallBall {
         let scene = Scene::parse(&text, Path::new("."), None)
             .map_err(crate::errors::unwrap_scene_message)
             .map_err(to_py)?;
-        let closed_form =
-            BatchSetup::from_scene(&scene, settings::for_batch(None, None).map_err(to_py)?);
-        let balls = scene.balls;
+        let closed_form = BatchSetup::from_scene(
+            &scene,
+            settings::for_batch(None, None, None).map_err(to_py)?,
+        );
         Ok(BallBall {
             scene,
             closed_form,
             by_ball: a.is_some() || b.is_some(),
-            radii: balls.radii(),
-            weights: balls.mass_weights(),
             mu,
             restitution,
             profile: profile.to_string(),
@@ -812,7 +668,10 @@ impl BallBall {
     /// |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
     ///
     /// method: None (the closed form), "closed-form", "rk4", "dopri5" or "dop853";
-    /// rtol: relative tolerance of the adaptive methods (atol = rtol), default 1e-10.
+    /// rtol: relative tolerance of the adaptive methods (atol = rtol), default 1e-10;
+    /// time_transform: whether the time-stepping methods integrate in the smoothing
+    /// change of time variable (the library's default, True; it acts on the "hertz" and
+    /// "sine-power" profiles).
     ///
     /// Returns a dict of numpy arrays: "va", "wa", "vb", "wb" (outgoing velocities, m/s,
     /// and spins, rad/s; the input's shape), "impulse" (normal impulse P, N s),
@@ -825,7 +684,8 @@ impl BallBall {
     ///
     /// Bad input raises ValueError naming the row and the field, with the command
     /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.
-    #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None))]
+    #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None,
+                        time_transform = None))]
     #[allow(clippy::too_many_arguments)]
     fn resolve_lab<'py>(
         &self,
@@ -839,6 +699,7 @@ impl BallBall {
         up: Option<&Bound<'py, PyAny>>,
         method: Option<&str>,
         rtol: Option<f64>,
+        time_transform: Option<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let arrays = [
             Some(float_array(pa)?),
@@ -851,41 +712,38 @@ impl BallBall {
         ];
         let (inputs, n, single) = shaped(&arrays)?;
         let own_setup;
-        let setup = if method.is_none() && rtol.is_none() {
+        let setup = if method.is_none() && rtol.is_none() && time_transform.is_none() {
             &self.closed_form
         } else {
             own_setup = BatchSetup::from_scene(
                 &self.scene,
-                settings::for_batch(method, rtol).map_err(to_py)?,
+                settings::for_batch(method, rtol, time_transform).map_err(to_py)?,
             );
             &own_setup
         };
-        let frozen = match self.mu {
-            Mu::Speed(s) if s.initial_slip => Some(s.friction),
-            _ => None,
-        };
         let out = Outputs::new(py, n, single);
         // SAFETY: fresh C-contiguous arrays, written only here (see `Outputs`).
-        let slices = unsafe { out.slices() };
-        let closed_form = matches!(method, None | Some("closed-form"));
-        let result = if n >= PARALLEL_ROWS || !closed_form {
-            // Without the GIL: hold read-only borrows, so no Rust code writes the inputs
-            // meanwhile (numpy's borrow tracking).
+        let columns = unsafe { out.columns() };
+        let result = if n >= PARALLEL_LAB_ROWS || setup.settings.method() != Method::ClosedForm {
+            // Without the GIL (the library spreads the rows over its threads from
+            // PARALLEL_LAB_ROWS on; time stepping takes long even for one row): hold
+            // read-only borrows, so no Rust code writes the inputs meanwhile (numpy's
+            // borrow tracking).
             let borrows = arrays
                 .iter()
                 .flatten()
                 .map(|a| a.try_readonly())
                 .collect::<Result<Vec<_>, _>>()?;
-            let parallel = n >= PARALLEL_ROWS;
-            let r = py.detach(|| self.fill(setup, frozen.as_ref(), &inputs, slices, parallel));
+            let r = py.detach(|| resolve_lab_into(setup, &inputs, columns));
             drop(borrows);
             r
         } else {
             // A few rows with the GIL held: read straight from the buffers.
-            self.fill(setup, frozen.as_ref(), &inputs, slices, false)
+            resolve_lab_into(setup, &inputs, columns)
         };
         drop(arrays);
         if let Err((i, e)) = result {
+            let e = with_argument_names(e);
             let msg = if single {
                 e.to_string()
             } else {

@@ -3,7 +3,6 @@
 
 mod ball;
 mod errors;
-mod frame;
 mod lab;
 mod run;
 mod settings;

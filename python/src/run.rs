@@ -78,6 +78,7 @@ struct Options {
     steps: Option<i64>,
     samples: Option<i64>,
     trace: bool,
+    time_transform: Option<bool>,
 }
 
 /// The report's JSON and the trace columns (with samples or trace=True).
@@ -94,7 +95,14 @@ fn run_json(source: Source, o: &Options) -> Result<(String, Option<Columns>), Er
             Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e9]"))?)
         }
     };
-    let settings = settings::for_run(&scene, o.method.as_deref(), o.rtol, o.atol, steps)?;
+    let settings = settings::for_run(
+        &scene,
+        o.method.as_deref(),
+        o.rtol,
+        o.atol,
+        steps,
+        o.time_transform,
+    )?;
     let sampling = match o.samples {
         None => Sampling::Steps,
         Some(n) if n >= 1 => Sampling::Uniform(n as u64),
@@ -132,7 +140,8 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 ///
 /// method ("closed-form", "rk4", "dopri5", "dop853"), rtol, atol and steps override the
 /// scene's [solver] as the command's options do (a new rtol sets atol too unless atol is
-/// given). samples=N adds report["trace"]: numpy arrays keyed by the trace CSV's column
+/// given); time_transform (True or False) overrides the scene's `[solver] time_transform`
+/// as `--time-transform` does (None: the scene's, by default the library's True). samples=N adds report["trace"]: numpy arrays keyed by the trace CSV's column
 /// names without units ("t", "f", "p", "U", "V", "W", "omega_a_x" .. "omega_b_z", "S",
 /// "theta", "H_sfr"; SI units, the centre-of-mass frame), at t = i duration / N plus the
 /// stop of sliding; trace=True gives one row per accepted step instead. theta is NaN where
@@ -141,7 +150,7 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 /// Bad input raises ValueError with the command's one-line message; a failed run
 /// RuntimeError.
 #[pyfunction]
-#[pyo3(signature = (path, method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false))]
+#[pyo3(signature = (path, method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false, time_transform = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -152,6 +161,7 @@ pub fn run<'py>(
     atol: Option<f64>,
     steps: Option<i64>,
     trace: bool,
+    time_transform: Option<bool>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = Options {
         method,
@@ -160,6 +170,7 @@ pub fn run<'py>(
         steps,
         samples,
         trace,
+        time_transform,
     };
     run_py(py, Source::File(path), o)
 }
@@ -167,7 +178,7 @@ pub fn run<'py>(
 /// Runs a scene given as TOML text; relative profile files resolve against base_dir.
 /// Otherwise as `run`.
 #[pyfunction]
-#[pyo3(signature = (text, base_dir = PathBuf::from("."), method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false))]
+#[pyo3(signature = (text, base_dir = PathBuf::from("."), method = None, rtol = None, samples = None, *, atol = None, steps = None, trace = false, time_transform = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run_toml<'py>(
     py: Python<'py>,
@@ -179,6 +190,7 @@ pub fn run_toml<'py>(
     atol: Option<f64>,
     steps: Option<i64>,
     trace: bool,
+    time_transform: Option<bool>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = Options {
         method,
@@ -187,6 +199,7 @@ pub fn run_toml<'py>(
         steps,
         samples,
         trace,
+        time_transform,
     };
     run_py(
         py,

@@ -10,27 +10,34 @@ pub fn method(name: &str) -> Result<Method, Error> {
 }
 
 /// The scene's settings with the overrides of `billiard-contact run`: `--method`, `--rtol`
-/// (which carries atol with it unless atol is given), `--atol`, `--steps`.
+/// (which carries atol with it unless atol is given), `--atol`, `--steps`,
+/// `--time-transform` (`None`: the scene's, by default the library's).
 pub fn for_run(
     scene: &Scene,
     method_name: Option<&str>,
     rtol: Option<f64>,
     atol: Option<f64>,
     steps: Option<u32>,
+    time_transform: Option<bool>,
 ) -> Result<SolverSettings, Error> {
     SolverOverrides {
         method: method_name.map(method).transpose()?,
         rtol,
         atol,
         steps,
-        time_transform: None,
+        time_transform,
     }
     .apply(&scene.solver)
 }
 
 /// Settings for a batch: the closed form unless a method is named; `rtol` (default the
-/// library's, 1e-10) sets atol too, as `billiard-contact batch --rtol` does.
-pub fn for_batch(method_name: Option<&str>, rtol: Option<f64>) -> Result<SolverSettings, Error> {
+/// library's, 1e-10) sets atol too, as `billiard-contact batch --rtol` does;
+/// `time_transform` as `--time-transform` (default the library's).
+pub fn for_batch(
+    method_name: Option<&str>,
+    rtol: Option<f64>,
+    time_transform: Option<bool>,
+) -> Result<SolverSettings, Error> {
     SolverOverrides {
         method: Some(
             method_name
@@ -41,7 +48,7 @@ pub fn for_batch(method_name: Option<&str>, rtol: Option<f64>) -> Result<SolverS
         rtol,
         atol: None,
         steps: None,
-        time_transform: None,
+        time_transform,
     }
     .apply(&SolverSettings::default())
 }

@@ -31,7 +31,7 @@ def test_documented_example_runs():
         # momentum is conserved (the balls are identical)
         np.testing.assert_allclose(out["va"] + out["vb"], va, atol=1e-15)
     assert repr(model).startswith("BallBall(mass=0.170097, radius=0.028575, alpha=0.4, mu=0.06")
-    assert sd.mu.a == 9.951e-3 and sd.mu.evaluate == "contact"
+    assert sd.mu.a == 9.951e-3 and sd.mu.evaluate == "along-contact"
     assert sd.mu.mu(0.0) == 9.951e-3 + 0.108
 
 
@@ -59,7 +59,7 @@ def test_stubs_match_the_extension():
         assert members == runtime, cls
     # the signatures the stubs give are the extension's
     assert list(inspect.signature(bc.BallBall.resolve_lab).parameters) == [
-        "self", "pa", "va", "wa", "pb", "vb", "wb", "up", "method", "rtol"]
+        "self", "pa", "va", "wa", "pb", "vb", "wb", "up", "method", "rtol", "time_transform"]
     assert list(inspect.signature(bc.run).parameters)[:4] == ["path", "method", "rtol", "samples"]
 
 

@@ -64,7 +64,10 @@ def test_speed_dependent_friction_gives_the_cli_message(cli, tmp_path, abc, fiel
 
 
 def test_evaluate_names_the_choices():
-    with pytest.raises(ValueError, match=r'^evaluate = "start": "contact" .* or "initial-slip"'):
+    with pytest.raises(
+        ValueError,
+        match=r'^evaluate = "start": "along-contact" .* or "initial" .*; also "contact" and "initial-slip"$',
+    ):
         bc.SpeedDependentFriction(a=0.01, b=0.1, c=1.0, evaluate="start")
 
 

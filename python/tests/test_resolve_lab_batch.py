@@ -61,7 +61,7 @@ def random_states(n: int, seed: int, vertical: bool = True):
     return pa, va, wa, pb, vb, wb, up
 
 
-def batch_via_cli(cli, tmp_path, states, scene_text, method=None, mu=None):
+def batch_via_cli(cli, tmp_path, states, scene_text, method=None, mu=None, options=()):
     """The command's lab-frame batch on the same states; the output rows as dicts."""
     pa, va, wa, pb, vb, wb, up = states
     n = len(pa)
@@ -82,7 +82,7 @@ def batch_via_cli(cli, tmp_path, states, scene_text, method=None, mu=None):
     args = ["batch", str(inp), "--out", str(out), "--scene", str(scene)]
     if method:
         args += ["--method", method]
-    run_cli(cli, *args)
+    run_cli(cli, *args, *options)
     with open(out, newline="") as f:
         return list(csv.DictReader(f))
 
@@ -163,7 +163,7 @@ def test_speed_dependent_friction_and_restitution_agree_with_cli_batch(cli, tmp_
 
 
 def test_mu_frozen_at_initial_slip_agrees_with_cli_per_row_mu(cli, tmp_path):
-    """evaluate="initial-slip": the command with a per-row constant mu = a + b exp(-c S(0)),
+    """evaluate="initial": the command with a per-row constant mu = a + b exp(-c S(0)),
     S(0) computed here from the lab state (the tangential relative velocity of the contact
     points)."""
     a, b, c = 9.951e-3, 0.108, 1.088
@@ -175,7 +175,7 @@ def test_mu_frozen_at_initial_slip_agrees_with_cli_per_row_mu(cli, tmp_path):
     s0 = np.linalg.norm(tangential, axis=1)
     mu_rows = a + b * np.exp(-c * s0)
     model = bc.BallBall(
-        mass=M, radius=R, mu=bc.SpeedDependentFriction(a, b, c, evaluate="initial-slip")
+        mass=M, radius=R, mu=bc.SpeedDependentFriction(a, b, c, evaluate="initial")
     )
     got = model.resolve_lab(*states[:6], up=up)
     rows = batch_via_cli(
@@ -183,6 +183,39 @@ def test_mu_frozen_at_initial_slip_agrees_with_cli_per_row_mu(cli, tmp_path):
     )
     # mu enters linearly; S(0) here and in the library differ by round-off only
     compare(got, rows, states, tol=1e-12)
+
+
+def test_evaluate_aliases_are_the_library_names():
+    """The first release's names "contact" and "initial-slip" are the library's
+    "along-contact" and "initial": the same friction, the same numbers; the model reports the
+    library's name. The two conventions differ (mu falls along the contact in one)."""
+    states = random_states(500, seed=6)
+    out = {}
+    for name in ("along-contact", "contact", "initial", "initial-slip"):
+        f = bc.SpeedDependentFriction(9.951e-3, 0.108, 1.088, evaluate=name)
+        assert f.evaluate == {"contact": "along-contact", "initial-slip": "initial"}.get(name, name)
+        out[name] = bc.BallBall(mass=M, radius=R, mu=f).resolve_lab(*states[:6], up=states[6])
+    for alias, name in (("contact", "along-contact"), ("initial-slip", "initial")):
+        for k in out[name]:
+            np.testing.assert_array_equal(out[alias][k], out[name][k])
+    assert not np.allclose(out["initial"]["tangential_impulse"], out["along-contact"]["tangential_impulse"])
+    assert bc.SpeedDependentFriction(0.01, 0.1, 1.0).evaluate == "along-contact"
+
+
+@pytest.mark.parametrize("transform", [False, True])
+def test_time_transform_agrees_with_cli_batch(cli, tmp_path, transform):
+    """A hertz pulse with dop853, integrated in the smoothed time variable or not, as the
+    command's --time-transform."""
+    states = random_states(200, seed=7)
+    model = bc.BallBall(mass=M, radius=R, mu=0.06, profile="hertz")
+    got = model.resolve_lab(*states[:6], up=states[6], method="dop853", time_transform=transform)
+    text = SCENE.format(m=M, r=R, alpha=0.4, mu=0.06, e=1.0).replace('"half-sine"', '"hertz"')
+    rows = batch_via_cli(
+        cli, tmp_path, states, text, method="dop853",
+        options=("--time-transform", "true" if transform else "false"),
+    )
+    # Within 1e-12: the other setting differs by the integration error (rtol 1e-10).
+    compare(got, rows, states)
 
 
 @pytest.mark.parametrize("method", ["dop853", "rk4"])

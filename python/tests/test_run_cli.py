@@ -39,6 +39,8 @@ def test_run_toml_equals_run(cli, scene):
         ("stun_cut_sticks.toml", dict(method="dopri5", rtol=1e-7), ["--method", "dopri5", "--rtol", "1e-7"]),
         ("draw_side_spin.toml", dict(rtol=1e-8, atol=1e-6), ["--rtol", "1e-8", "--atol", "1e-6"]),
         ("cut_speed_dependent.toml", dict(method="dop853", rtol=1e-12), ["--method", "dop853", "--rtol", "1e-12"]),
+        ("hertz_material.toml", dict(method="dop853", time_transform=False), ["--method", "dop853", "--time-transform", "false"]),
+        ("hertz_material.toml", dict(method="rk4", time_transform=True), ["--method", "rk4", "--time-transform", "true"]),
     ],
 )
 def test_solver_options_equal_cli_options(cli, scene, options, args):
@@ -47,6 +49,21 @@ def test_solver_options_equal_cli_options(cli, scene, options, args):
     expected = cli_json(cli, "run", path, "--json", *args)
     assert got == expected
     assert got["solver"]["method"] == options.get("method", got["solver"]["method"])
+
+
+def test_time_transform_reaches_the_solver():
+    """A hertz pulse integrated in the smoothed time variable and without it: different step
+    sequences (the option is passed on), the same collision to the tolerance; None is the
+    library's default (on), and run_toml takes the option too."""
+    path = SCENES[0].parent / "hertz_material.toml"
+    on = bc.run(str(path), method="dop853")
+    off = bc.run(str(path), method="dop853", time_transform=False)
+    assert bc.run(str(path), method="dop853", time_transform=True) == on
+    assert off["solver"] != on["solver"]
+    for k in ("impulse", "tangential_impulse", "s_out"):
+        assert off[k] == pytest.approx(on[k], rel=1e-8, abs=1e-12), k
+    text = path.read_text()
+    assert bc.run_toml(text, base_dir=str(path.parent), method="dop853", time_transform=False) == off
 
 
 def read_trace_csv(path):

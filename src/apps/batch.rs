@@ -60,6 +60,8 @@ use rayon::prelude::*;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
+pub use crate::apps::lab_rows::{resolve_lab_into, LabOutColumns, LabRows, PARALLEL_LAB_ROWS};
+
 /// Rows read, resolved and written per chunk by default: the memory held at any time.
 pub const DEFAULT_CHUNK_ROWS: usize = 16_384;
 
@@ -235,7 +237,9 @@ fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
         .then(|| ClosedFormBatch::new(setup.balls, setup.contact, setup.effects))
 }
 
-fn resolve_with(
+/// [`resolve`] with the closed-form kernel of the setup's own parameters when the caller
+/// made it once for many rows (`shared`; used for rows without overrides).
+pub(crate) fn resolve_with(
     setup: &BatchSetup,
     shared: Option<&ClosedFormBatch>,
     input: &BatchInput,
@@ -285,9 +289,7 @@ fn resolve_with(
         }
     };
     if let Some(LabFrame { frame, lab }) = lab {
-        let (a, b) = frame.to_lab(&out.result.out);
-        let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
-        out.lab = Some((a, b, throw));
+        out.lab = Some(frame.outgoing(lab, &out.result.out));
     }
     Ok(out)
 }

@@ -43,7 +43,7 @@ pub fn run_scene(
     let out = outcome.result.out;
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
-            let (a, b) = frame.to_lab(&out);
+            let (a, b, throw) = frame.outgoing(lab, &out);
             // m_A (v_A + (m_B/m_A) v_B): m (v_A + v_B) exactly for identical balls.
             let (m, ratio) = (
                 scene.balls.a.mass(),
@@ -57,7 +57,6 @@ pub fn run_scene(
             } else {
                 dp / collision.scales.impulse
             };
-            let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
             let table = table_phase(scene, lab, (a, b), collision.scales.speed)?;
             (Some((a, b)), throw, err, table)
         }

@@ -255,6 +255,19 @@ impl ClosedFormBatch {
     /// The closed form of one incoming state; the errors of [`Collision::new`].
     #[inline(always)]
     pub fn resolve(&self, s: &CmState) -> Result<ContactResult, Error> {
+        self.resolve_theta::<true>(s)
+    }
+
+    /// [`ClosedFormBatch::resolve`] without the sliding direction: `theta` is `None` (its
+    /// arctangent is a fifth of the cost), for callers that do not report it.
+    #[inline(always)]
+    pub(crate) fn resolve_without_theta(&self, s: &CmState) -> Result<ContactResult, Error> {
+        self.resolve_theta::<false>(s)
+    }
+
+    /// The closed form, with theta when `THETA`.
+    #[inline(always)]
+    fn resolve_theta<const THETA: bool>(&self, s: &CmState) -> Result<ContactResult, Error> {
         if !s.is_finite() {
             return Err(self.invalid(s));
         }
@@ -262,11 +275,11 @@ impl ClosedFormBatch {
         let u0 = s.u_cm.x;
         let p = self.rule.impulse(m, u0)?;
         if let (Some(FrictionLaw::Constant(mu)), true) = (self.friction.map(|f| f.law()), p > 0.0) {
-            return Ok(self.resolve_constant_mu(s, mu, p));
+            return Ok(self.resolve_constant_mu::<THETA>(s, mu, p));
         }
         let slip = s.slip_with(self.radius_a, self.radius_ratio);
         let s0 = planar_length(slip);
-        let theta = (s0 > 0.0).then(|| slip_angle(slip));
+        let theta = (THETA && s0 > 0.0).then(|| slip_angle(slip));
         let law = match self.friction {
             Some(f) if p > 0.0 => Some(SlidingLaw::new(f.acting_from(s0), s0, self.k, self.stick)),
             _ => None,
@@ -312,16 +325,20 @@ impl ClosedFormBatch {
         })
     }
 
-    /// The error [`Collision::new`] gives for this state (out of line).
     /// The common case, constant mu and a collision: the same formulas with the
     /// reciprocals of m, k and k mu precomputed (multiplications instead of divisions).
     #[inline(always)]
-    fn resolve_constant_mu(&self, s: &CmState, mu: f64, p: f64) -> ContactResult {
+    fn resolve_constant_mu<const THETA: bool>(
+        &self,
+        s: &CmState,
+        mu: f64,
+        p: f64,
+    ) -> ContactResult {
         let slip = s.slip_with(self.radius_a, self.radius_ratio);
         let s0 = planar_length(slip);
         let (theta, e, p_stick) = if s0 > 0.0 {
             (
-                Some(slip_angle(slip)),
+                THETA.then(|| slip_angle(slip)),
                 slip * (1.0 / s0),
                 s0 * self.inv_k_mu,
             )
@@ -355,6 +372,7 @@ impl ClosedFormBatch {
         }
     }
 
+    /// The error [`Collision::new`] gives for this state (out of line).
     #[cold]
     #[inline(never)]
     fn invalid(&self, s: &CmState) -> Error {

@@ -60,6 +60,7 @@ impl Frame {
 
     /// The frame of a lab scene of two identical balls of radius `radius` (m), see
     /// [`Frame::of_pair`].
+    #[inline(always)]
     pub fn new(scene: &LabScene, radius: f64) -> Result<Self, Error> {
         // The weights of identical balls are 1/2 whatever their mass.
         Frame::build(scene, [radius, radius], [0.5, 0.5])
@@ -67,6 +68,7 @@ impl Frame {
 
     /// The frame of a lab scene whose balls touch: |p_B - p_A| = r_A + r_B within
     /// [`TOUCH_TOLERANCE`] relative; `up` must be a non-zero finite vector.
+    #[inline(always)]
     pub fn of_pair(scene: &LabScene, balls: &BallPair) -> Result<Self, Error> {
         Frame::build(
             scene,
@@ -77,6 +79,7 @@ impl Frame {
 
     /// The frame of balls of radii `radii` touching in `scene`, whose centre of mass moves
     /// with the mass weights `weights`.
+    #[inline(always)]
     fn build(scene: &LabScene, radii: [f64; 2], weights: [f64; 2]) -> Result<Self, Error> {
         let d = scene.b.position - scene.a.position;
         let dist = d.norm();
@@ -143,6 +146,7 @@ impl Frame {
     }
 
     /// The centre-of-mass state of a lab scene.
+    #[inline(always)]
     pub fn to_cm(&self, scene: &LabScene) -> CmState {
         let rt = self.basis.transpose();
         CmState {
@@ -153,6 +157,7 @@ impl Frame {
     }
 
     /// Lab-frame motions of A and B for a centre-of-mass state.
+    #[inline(always)]
     pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
         let u = self.basis * cm.u_cm;
         let [wa, wb] = self.weights;
@@ -168,10 +173,21 @@ impl Frame {
         )
     }
 
+    /// The outgoing lab motions of A and B for the outgoing centre-of-mass state `out` of the
+    /// lab scene `lab` (whose frame this is), and the throw angle of B's velocity change
+    /// ([`Frame::throw_angle_deg`]).
+    #[inline(always)]
+    pub fn outgoing(&self, lab: &LabScene, out: &CmState) -> (LabMotion, LabMotion, Option<f64>) {
+        let (a, b) = self.to_lab(out);
+        let throw = self.throw_angle_deg(&(b.velocity - lab.b.velocity));
+        (a, b, throw)
+    }
+
     /// The throw angle (degrees): the signed angle, counter-clockwise about `up`, from the
     /// horizontal line of centres to the horizontal part of B's velocity change
     /// `delta_v_b` (lab frame). `None` when the line of centres is vertical or the
     /// horizontal velocity change vanishes.
+    #[inline(always)]
     pub fn throw_angle_deg(&self, delta_v_b: &Vector3<f64>) -> Option<f64> {
         let ex = self.basis.column(0).into_owned();
         let line = horizontal(&ex, &self.up);

@@ -24,6 +24,7 @@ pub struct CmState {
 
 impl CmState {
     /// A state from ball A's velocity and both spins.
+    #[inline]
     pub fn new(u_cm: Vector3<f64>, omega_a: Vector3<f64>, omega_b: Vector3<f64>) -> Self {
         CmState {
             u_cm,
@@ -33,12 +34,14 @@ impl CmState {
     }
 
     /// Omega = Omega^A + Omega^B (eq 4).
+    #[inline]
     pub fn omega_sum(&self) -> Vector3<f64> {
         self.omega_a + self.omega_b
     }
 
     /// The slip (S cos theta, S sin theta) = (2V + r Omega_z, 2W - r Omega_y) of eqs 5-6 (m/s):
     /// the surface of B slides relative to A along -slip (eq 3).
+    #[inline]
     pub fn slip(&self, radius: f64) -> Vector2<f64> {
         self.slip_with(radius, 1.0)
     }
@@ -63,6 +66,7 @@ impl CmState {
     }
 
     /// Sliding speed S >= 0 (m/s), eqs 5-6.
+    #[inline]
     pub fn sliding_speed(&self, radius: f64) -> f64 {
         planar_length(self.slip(radius))
     }
