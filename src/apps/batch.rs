@@ -36,10 +36,12 @@
 //! (outgoing lab velocities and spins) and `throw_angle_deg` (empty when undefined); with
 //! a time-stepping method also `closed_form_error` and `rhs_evaluations`.
 
+use crate::apps::runner::throw_angle_deg;
 use crate::contact::closed_form::ClosedFormBatch;
 use crate::contact::outcome::solve;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
+use crate::formats::names::did_you_mean;
 use crate::formats::number::{finite_output, Shortest};
 use crate::formats::scene::{Incoming, LabFrame, Scene};
 use crate::integrator::{Method, SolverSettings};
@@ -255,7 +257,7 @@ fn resolve_with(
     };
     if let Some(LabFrame { frame, lab }) = lab {
         let (a, b) = frame.to_lab(&out.result.out);
-        let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
+        let throw = throw_angle_deg(&out.result, &frame, &lab.b.velocity, &b.velocity);
         out.lab = Some((a, b, throw));
     }
     Ok(out)
@@ -358,15 +360,71 @@ fn bare(cell: &str) -> &str {
     }
 }
 
+/// Prefixes of the x, y, z columns of the centre-of-mass frame's state.
+const CM_PREFIXES: [&str; 3] = ["u_", "omega_a_", "omega_b_"];
+
+/// Prefixes of the x, y, z columns of the lab frame's state.
+const LAB_PREFIXES: [&str; 7] = ["a_p", "a_v", "a_w", "b_p", "b_v", "b_w", "up_"];
+
+/// The input columns accepted with the state columns of `prefixes`: `id`, the state's x, y
+/// and z columns, the overrides.
+fn accepted_columns(prefixes: &[&str]) -> Vec<String> {
+    let mut names = vec!["id".to_string()];
+    for p in prefixes {
+        names.extend(["x", "y", "z"].map(|axis| format!("{p}{axis}")));
+    }
+    names.extend(OVERRIDES.map(String::from));
+    names
+}
+
+/// Every header cell names an input column (`id`, a state column of either frame, an
+/// override), once: an unknown column is refused with the accepted names and the closest
+/// one, as a scene file's unknown key is.
+fn check_names(names: &[&str]) -> Result<(), String> {
+    let all = accepted_columns(&[&CM_PREFIXES[..], &LAB_PREFIXES[..]].concat());
+    let all: Vec<&str> = all.iter().map(String::as_str).collect();
+    let mut seen = std::collections::HashSet::new();
+    for (k, n) in names.iter().enumerate() {
+        if n.is_empty() {
+            return Err(format!(
+                "column {} has no name: every column needs one (see docs/formats.md#input-columns)",
+                k + 1
+            ));
+        }
+        if !all.contains(n) {
+            return Err(format!(
+                "column `{n}`: unknown column, expected one of {}{}",
+                all.iter()
+                    .map(|a| format!("`{a}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                did_you_mean(n, &all)
+            ));
+        }
+        if !seen.insert(*n) {
+            return Err(format!("column `{n}` appears twice"));
+        }
+    }
+    Ok(())
+}
+
+/// Every state column belongs to the input's frame (`prefixes`, named `frame`): a column of
+/// the other frame would be ignored.
+fn check_frame(names: &[&str], prefixes: &[&str], frame: &str) -> Result<(), String> {
+    let own = accepted_columns(prefixes);
+    match names.iter().find(|n| !own.iter().any(|o| o == *n)) {
+        Some(n) => Err(format!(
+            "column `{n}` belongs to the other frame; this input is in the {frame} frame: give \
+             the columns of one frame"
+        )),
+        None => Ok(()),
+    }
+}
+
 impl Columns {
     fn from_header(header: &csv::StringRecord) -> Result<Self, String> {
         let names: Vec<&str> = header.iter().map(bare).collect();
-        let mut seen = std::collections::HashSet::new();
-        for n in &names {
-            if !n.is_empty() && !seen.insert(*n) {
-                return Err(format!("column `{n}` appears twice"));
-            }
-        }
+        check_names(&names)?;
         let find = |n: &str| names.iter().position(|h| *h == n);
         let xyz = |prefix: &str| {
             [
@@ -387,6 +445,7 @@ impl Columns {
                 return Err("no state columns: give u_x, u_y, u_z (centre-of-mass frame) or a_px .. b_vz (lab frame)".into())
             }
             (true, false) => {
+                check_frame(&names, &CM_PREFIXES, "centre-of-mass")?;
                 let mut req = [0; 3];
                 for (k, c) in u.iter().enumerate() {
                     req[k] = c.ok_or_else(|| format!("missing column `u_{}`", ["x", "y", "z"][k]))?;
@@ -398,6 +457,7 @@ impl Columns {
                 })
             }
             (false, true) => {
+                check_frame(&names, &LAB_PREFIXES, "lab")?;
                 for p in lab_names {
                     for (k, c) in xyz(p).iter().enumerate() {
                         if c.is_none() {
@@ -694,8 +754,11 @@ pub fn run_csv<R: Read, W: Write>(
         line,
         message,
     };
+    // Records end at "\n" (the "\r" of a CRLF line is trimmed with the cells' white space):
+    // a CRLF terminator would count each record's line one too low.
     let mut rd = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
+        .terminator(csv::Terminator::Any(b'\n'))
         .from_reader(input);
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;

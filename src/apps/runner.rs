@@ -2,6 +2,7 @@
 //! form.
 
 use crate::contact::outcome::{solve, Outcome};
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::{table_needs_lab_scene, LabFrame, Scene};
 use crate::formats::trace::TraceSink;
@@ -9,6 +10,7 @@ use crate::integrator::{Sampling, SolverSettings};
 use crate::model::frame::{Frame, LabScene};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::table_phase::TableOutcome;
+use nalgebra::Vector3;
 
 /// The outcome of a scene, with the lab-frame motions for lab scenes.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,7 +49,7 @@ pub fn run_scene(
             } else {
                 dp / collision.scales.impulse
             };
-            let throw = frame.throw_angle_deg(&(b.velocity - lab.b.velocity));
+            let throw = throw_angle_deg(&outcome.result, &frame, &lab.b.velocity, &b.velocity);
             let table = table_phase(scene, lab, (a, b), collision.scales.speed)?;
             (Some((a, b)), throw, err, table)
         }
@@ -55,8 +57,10 @@ pub fn run_scene(
             if scene.effects.table {
                 return Err(table_needs_lab_scene());
             }
-            let du = out.u_cm - collision.incoming.u_cm;
-            (None, Frame::paper().throw_angle_deg(&-du), 0.0, None)
+            // B's velocity in the paper's frame is -U.
+            let (b_in, b_out) = (-collision.incoming.u_cm, -out.u_cm);
+            let throw = throw_angle_deg(&outcome.result, &Frame::paper(), &b_in, &b_out);
+            (None, throw, 0.0, None)
         }
     };
     // The lab momentum of both balls is conserved: fold its error into the check.
@@ -76,6 +80,22 @@ pub fn run_scene(
         throw_angle_deg: throw,
         table,
     })
+}
+
+/// The throw angle (degrees) of a collision in `frame` from B's velocity before and after
+/// (m/s, lab): [`Frame::throw_angle_deg`] of its change; `None` without a collision, where
+/// the change is the round-off of the change of frame, not a throw.
+pub(crate) fn throw_angle_deg(
+    result: &ContactResult,
+    frame: &Frame,
+    b_in: &Vector3<f64>,
+    b_out: &Vector3<f64>,
+) -> Option<f64> {
+    if result.collided() {
+        frame.throw_angle_deg(&(b_out - b_in))
+    } else {
+        None
+    }
 }
 
 /// The effect `table` of a lab scene: both balls from separation, with the outgoing lab

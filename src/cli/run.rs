@@ -1,8 +1,8 @@
 //! `billiard-contact run`: one scene, its report or summary on stdout, and optionally its
 //! trace, the balls' paths on the table and their top view.
 
-use super::choice::MethodChoice;
-use super::load_scene;
+use super::choice::{number, whole, MethodChoice};
+use super::{load_scene, solver_options_unused, warn};
 use billiard_contact::formats::atomic_file::AtomicFile;
 use billiard_contact::formats::ball_paths::{
     ball_path_rows, write_ball_paths, DEFAULT_BALL_PATH_SAMPLES,
@@ -11,7 +11,7 @@ use billiard_contact::formats::report::{summary, Report};
 use billiard_contact::formats::scene::SolverOverrides;
 use billiard_contact::formats::trace::CsvTrace;
 use billiard_contact::table_phase::TableOutcome;
-use billiard_contact::{run_scene, Error, Sampling, Scene, SceneOutcome};
+use billiard_contact::{run_scene, Error, Method, Sampling, Scene, SceneOutcome, SolverSettings};
 use clap::Args;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -27,21 +27,21 @@ pub struct RunArgs {
     /// Write a CSV trace (centre-of-mass frame) to this file.
     #[arg(long, value_name = "FILE.csv")]
     trace: Option<PathBuf>,
-    /// Trace rows at t = i duration / N, i = 0..N (plus the stick event), instead of one row
-    /// per accepted step.
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// Trace rows at t = i duration / N, i = 0..N (plus the stop of sliding), instead of a
+    /// row per step of the integrator (needs --trace).
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u64>)]
     samples: Option<u64>,
     /// Method (overrides the scene).
     #[arg(long, value_name = "M")]
     method: Option<MethodChoice>,
-    /// Relative tolerance (overrides the scene).
-    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    /// Relative tolerance of dopri5 and dop853 (overrides the scene).
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
     rtol: Option<f64>,
-    /// Absolute tolerance on the scaled variables (default: rtol).
-    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    /// Absolute tolerance of dopri5 and dop853 on the scaled variables (default: rtol).
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
     atol: Option<f64>,
-    /// RK4 steps over the contact (overrides the scene).
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// RK4 steps over the contact (overrides the scene; only with the method rk4).
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u32>)]
     steps: Option<u32>,
     /// Integrate hertz and fractional sine-power pulses in a smoothed time variable
     /// (default true; false: steps graded toward the ends instead). Overrides the scene.
@@ -51,8 +51,14 @@ pub struct RunArgs {
     /// (needs `[effects] table = true`).
     #[arg(long = "path", value_name = "FILE.csv")]
     ball_paths: Option<PathBuf>,
-    /// Uniform intervals of the path CSV (plus every change of phase; default 200).
-    #[arg(long = "path-samples", value_name = "N")]
+    /// Uniform intervals of the path CSV (plus every change of phase; default 200; needs
+    /// --path).
+    #[arg(
+        long = "path-samples",
+        value_name = "N",
+        allow_hyphen_values = true,
+        value_parser = whole::<u64>
+    )]
     ball_path_samples: Option<u64>,
     /// Draw a top view of both balls' paths with the line of centres (SVG, or PNG for a
     /// `.png` name; needs `[effects] table = true`).
@@ -72,10 +78,57 @@ impl RunArgs {
         }
     }
 
-    /// The checks of the options that need the scene.
-    fn validate(&self, scene: &Scene) -> Result<(), Error> {
-        if self.samples == Some(0) {
-            return Err(Error::invalid("--samples", 0, "at least 1"));
+    /// The checks of the options that need the scene and the settings: refused when they
+    /// could not act (exit code 2), a warning when an option has no effect on this run.
+    fn validate(&self, scene: &Scene, settings: &SolverSettings) -> Result<(), Error> {
+        if let Some(n) = self.samples {
+            if n == 0 {
+                return Err(Error::invalid("--samples", 0, "at least 1"));
+            }
+            if self.trace.is_none() {
+                return Err(Error::invalid(
+                    "--samples",
+                    n,
+                    "only with --trace FILE.csv (it sets the trace's rows)",
+                ));
+            }
+        }
+        if let Some(n) = self.ball_path_samples {
+            if self.ball_paths.is_none() {
+                return Err(Error::invalid(
+                    "--path-samples",
+                    n,
+                    "only with --path FILE.csv (it sets the path's rows)",
+                ));
+            }
+        }
+        if let Some(n) = self.steps {
+            if settings.method() != Method::Rk4 {
+                return Err(Error::invalid(
+                    "--steps",
+                    n,
+                    format!(
+                        "only with the method rk4 (this run's is {}, which {}): add --method rk4",
+                        settings.method(),
+                        if settings.method() == Method::ClosedForm {
+                            "does not step"
+                        } else {
+                            "chooses its own steps from --rtol"
+                        }
+                    ),
+                ));
+            }
+        }
+        let given = [
+            ("--rtol", self.rtol.is_some()),
+            ("--atol", self.atol.is_some()),
+            ("--time-transform", self.time_transform.is_some()),
+        ];
+        for w in solver_options_unused(&given, settings) {
+            warn(w);
+        }
+        if let Some(path) = &self.plot {
+            figure_format("--plot", path)?;
         }
         if (self.ball_paths.is_some() || self.plot.is_some()) && !scene.effects.table {
             return Err(Error::invalid(
@@ -100,7 +153,7 @@ impl RunArgs {
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
     let settings = args.solver_overrides().apply(&scene.solver)?;
-    args.validate(&scene)?;
+    args.validate(&scene, &settings)?;
     let sampling = match args.samples {
         Some(n) => Sampling::Uniform(n),
         None => Sampling::Steps,
@@ -137,6 +190,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             write_plot(path, table_phase, &scene)?;
         }
     }
+    for w in &outcome.outcome.warnings {
+        warn(w);
+    }
     let mut stdout = std::io::stdout().lock();
     stdout
         .write_all(text.as_bytes())
@@ -149,10 +205,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
 fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<(), Error> {
     use billiard_contact::plot::paths;
     let title = format!("{}: top view", scene.name);
-    let png = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if png {
+    if figure_format("--plot", path)? == Figure::Png {
         let file = AtomicFile::create(path)?;
         let name = path.file_name().unwrap_or_default().to_string_lossy();
         let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
@@ -170,5 +223,29 @@ fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<
         file.write_all(svg.as_bytes())
             .map_err(|e| Error::io(path, e))?;
         file.commit()
+    }
+}
+
+/// The formats a figure is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Figure {
+    Svg,
+    Png,
+}
+
+/// The format of the figure `option` writes, from its file's name: `.svg` or `.png` (any
+/// case); any other name is refused (a `.pdf` would otherwise hold SVG).
+fn figure_format(option: &str, path: &Path) -> Result<Figure, Error> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("svg") => Ok(Figure::Svg),
+        Some("png") => Ok(Figure::Png),
+        _ => Err(Error::invalid(
+            option,
+            path.display(),
+            "a file name ending in .svg or .png (the formats the figure is drawn in)",
+        )),
     }
 }
