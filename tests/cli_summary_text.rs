@@ -170,3 +170,39 @@ fn counts_in_words() {
     assert!(err.starts_with("1 row (1 collision, "), "{err}");
     assert!(err.contains(", 1 thread, "), "{err}");
 }
+
+/// The trace's rows as docs/formats.md#trace-csv words them: without a stop of sliding, the
+/// start and one row per accepted step; with one, the step that crossed it and the steps
+/// that locate it count as accepted but have no row, the stop has one (stun_cut_sticks with
+/// dop853: 10 accepted steps, 9 rows, the docs' example).
+#[test]
+fn trace_rows_as_documented() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("summary_text_trace");
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("t.csv");
+    let rows_and_steps = |name: &str| {
+        let out = bin(&[
+            "run",
+            &scene(name),
+            "--json",
+            "--trace",
+            trace.to_str().unwrap(),
+        ]);
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let rows = std::fs::read_to_string(&trace).unwrap().lines().count() - 1;
+        let accepted = j["solver"]["accepted_steps"].as_u64().unwrap() as usize;
+        (rows, accepted, j["stick_time"].as_f64())
+    };
+    let (rows, accepted, stop) = rows_and_steps("default.toml");
+    assert_eq!((rows, stop), (accepted + 1, None));
+    let (rows, accepted, stop) = rows_and_steps("stun_cut_sticks.toml");
+    assert_eq!((rows, accepted), (9, 10));
+    let stop = stop.unwrap();
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.lines()
+            .skip(1)
+            .any(|l| l.split(',').next().unwrap().parse::<f64>().unwrap() == stop),
+        "a row at the stop, t = {stop}"
+    );
+}
