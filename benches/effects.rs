@@ -5,7 +5,7 @@
 //!
 //! Scenes: `default.toml` (rolling cue ball, 30 degree cut: slides throughout) and
 //! `stun_cut_sticks.toml` (10 degree stun cut: sliding stops during contact, so `stick`
-//! adds the event location). `cargo bench --bench effects`; the README quotes the numbers.
+//! adds the event location). `cargo bench --bench effects`; docs/effects.md quotes the numbers.
 
 use billiard_contact::run_scene;
 use billiard_contact::table_phase::TableOutcome;

@@ -116,7 +116,7 @@ pub mod details {
     pub use crate::contact::check::{checks, state_error, Checks};
     pub use crate::contact::closed_form::ClosedFormBatch;
     pub use crate::integrator::{
-        integrate, sidi_order, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
+        integrate, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
     };
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
 }

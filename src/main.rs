@@ -33,7 +33,7 @@ enum Command {
     /// Work-precision study: error against time per contact for every profile and method;
     /// writes DIR/work_precision.csv, .svg, .png and .md (the cost tables).
     WorkPrecision(cli::work_precision::StudyArgs),
-    /// Resolve one collision per row of a CSV file (see README, "Batch").
+    /// Resolve one collision per row of a CSV file (docs/guide.md, "Batch").
     Batch(cli::batch::BatchArgs),
     /// Throw chart: one scene over a grid of cut angles, speeds and spins; writes
     /// DIR/sweep.csv, sweep.svg and sweep.png.

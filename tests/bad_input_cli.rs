@@ -4,7 +4,7 @@
 //! existing trace file keeps its bytes and modification time, no new trace file and no
 //! temporary file appears.
 //!
-//! Exit codes (README): 0 success, 1 a run that failed (integrator gave up, non-finite
+//! Exit codes (docs/formats.md): 0 success, 1 a run that failed (integrator gave up, non-finite
 //! result), 2 bad input (scene, profile table, options, unreadable or unwritable files).
 
 use std::collections::BTreeMap;

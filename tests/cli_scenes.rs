@@ -684,7 +684,7 @@ fn trace_csv_follows_the_contract() {
                         .collect();
                     assert_eq!(samples, want, "{what}: sample times");
                 } else if method == "closed-form" {
-                    // 100 samples without --samples (README).
+                    // 100 samples without --samples (docs/guide.md, "Trace CSV").
                     let extra = usize::from(stop.is_some_and(|x| x > 0.0));
                     assert_eq!(rows.len(), 101 + extra, "{what}");
                 }

@@ -101,7 +101,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         }
         true => (profile.breakpoints(), &[]),
     };
-    let mut segments = Segments::new([kinks, graded], sampling, time_map);
+    let mut segments = Segments::new([kinks, graded], sampling, time_map, profile);
     let mut x = 0.0;
     while x < 1.0 {
         let end = segments.end_after(x);
@@ -176,9 +176,11 @@ fn result<P: ForceProfile + ?Sized>(
 
 /// The ends of the segments: the breakpoints (the profile's kinks, the graded ends) and the
 /// sample times, given in scaled time and mapped to the integration variable.
-struct Segments<'a> {
+struct Segments<'a, P: ForceProfile + ?Sized> {
     /// Sorted lists of breakpoints in scaled time.
     lists: [&'a [f64]; 2],
+    /// The pulse, whose cumulative impulse the time map may follow.
+    profile: &'a P,
     /// Index, in each list, of the next breakpoint not yet passed.
     next: [usize; 2],
     /// The map from the integration variable to the scaled time.
@@ -192,10 +194,11 @@ struct Segments<'a> {
     sample_x: Option<f64>,
 }
 
-impl<'a> Segments<'a> {
-    fn new(lists: [&'a [f64]; 2], sampling: Sampling, time_map: TimeMap) -> Self {
+impl<'a, P: ForceProfile + ?Sized> Segments<'a, P> {
+    fn new(lists: [&'a [f64]; 2], sampling: Sampling, time_map: TimeMap, profile: &'a P) -> Self {
         Segments {
             lists,
+            profile,
             next: [0; 2],
             time_map,
             samples: match sampling {
@@ -213,15 +216,16 @@ impl<'a> Segments<'a> {
         let map = self.time_map;
         let mut end = 1.0_f64;
         for (list, next) in self.lists.iter().zip(self.next.iter_mut()) {
-            while *next < list.len() && map.at_time(list[*next]) <= x {
+            while *next < list.len() && map.at_time(self.profile, list[*next]) <= x {
                 *next += 1;
             }
             if let Some(&b) = list.get(*next) {
-                end = end.min(map.at_time(b));
+                end = end.min(map.at_time(self.profile, b));
             }
         }
-        self.sample_x =
-            (self.samples > 0).then(|| map.at_time(self.next_sample as f64 / self.samples as f64));
+        let profile = self.profile;
+        self.sample_x = (self.samples > 0)
+            .then(|| map.at_time(profile, self.next_sample as f64 / self.samples as f64));
         if let Some(xs) = self.sample_x {
             end = end.min(xs);
         }

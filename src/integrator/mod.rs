@@ -9,7 +9,7 @@
 //! | `stages` | the stages of the contact (sliding, frozen, normal) and why a stage's stepping stops |
 //! | `stepping` | one call of an `ode_solvers` method over a span, with the named step-control constants |
 //! | `stop_event` | location of the stop of sliding (regula falsi, Illinois) |
-//! | `time_map` | the integration variable: the scaled time, or Sidi's sin^m smoothing transform of it |
+//! | `time_map` | the integration variable: the scaled time, or the variable in which the impulse follows the half-sine's |
 //! | `units` | scaled states back to physical ones and trace rows |
 //! | `record` | trace rows, the first error, theta drift and slip consistency of a run |
 
@@ -25,4 +25,4 @@ mod units;
 
 pub use driver::{integrate, Integrated};
 pub use settings::{Method, Sampling, SolverSettings, Stats, DEFAULT_RTOL, DEFAULT_STEPS};
-pub use time_map::{sidi_order, TimeMap, GRADED_ENDS};
+pub use time_map::{TimeMap, GRADED_ENDS};

@@ -140,14 +140,6 @@ impl NormalState {
     }
 }
 
-/// The scaled time a stage evaluates the force at, kept inside the contact [0, 1]: the
-/// last stage of the last step can land a rounding error beyond s = 1, where a profile
-/// that does not vanish at its end (rectangle, tables) would read 0.
-#[inline]
-fn clamp_time(s: f64) -> f64 {
-    s.clamp(0.0, 1.0)
-}
-
 /// How the sliding right-hand side takes the friction direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Direction {
@@ -158,12 +150,11 @@ pub enum Direction {
     Frozen,
 }
 
-/// The scaled force n = pi phi(s) g'(x) at integration variable `x`: the profile's force
-/// at the scaled time s = g(x), times the rate ds/dx (1 without the time transform).
+/// The scaled force n = pi phi(s) g'(x) at integration variable `x`: the rate of the
+/// impulse in x ([`TimeMap::force`]).
 #[inline]
 fn scaled_force<P: ForceProfile + ?Sized>(profile: &P, map: &TimeMap, impulse: f64, x: f64) -> f64 {
-    let (s, rate) = map.time_and_rate(x);
-    impulse * profile.shape(clamp_time(s)) * rate
+    impulse * map.force(profile, x)
 }
 
 /// Eqs 14-19 (with 20-21 and 47) while the balls slide.

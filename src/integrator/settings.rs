@@ -156,8 +156,8 @@ impl SolverSettings {
     }
 
     /// Whether pulses with algebraic ends (`hertz`, `sine-power` with a fractional
-    /// exponent) are integrated in a smoothed time variable, s = g(x) with Sidi's sin^m
-    /// transform (default true); off, the steps are graded toward the ends instead (when
+    /// exponent) are integrated in a smoothed time variable, s = g(x) under which the
+    /// impulse follows the half-sine's (default true); off, the steps are graded toward the ends instead (when
     /// the breakpoints are on). No effect on other profiles
     /// (docs/model.md#the-smoothing-change-of-time-variable).
     pub fn time_transform(&self) -> bool {

@@ -27,7 +27,7 @@ const MAX_TRIALS: usize = 100;
 
 /// Locates the stop of sliding inside the step from `prev` (g > 0) to `cross` (g <= 0):
 /// regula falsi (Illinois) in q = Phi(g(x)), each trial re-integrated from `prev` to the
-/// integration variable x = g^-1(Phi^-1(q)).
+/// integration variable where the impulse fraction is q ([`TimeMap::at_impulse_fraction`]).
 ///
 /// The trials integrate with friction along e0 (the round-off branch of the right-hand
 /// side). Every trial is aimed at the stop, so its last stages evaluate the right-hand side
@@ -47,11 +47,11 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
     let map = rhs.time_map;
     let (x_lo0, x_hi0) = (prev.x(), cross.x());
     let mut lo = Bound {
-        q: profile.cumulative(map.time(x_lo0)),
+        q: map.impulse_fraction(profile, x_lo0),
         g: rhs.event(prev),
     };
     let mut hi = Bound {
-        q: profile.cumulative(map.time(x_hi0)),
+        q: map.impulse_fraction(profile, x_hi0),
         g: rhs.event(cross),
     };
     if hi.g >= 0.0 {
@@ -74,9 +74,7 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
             break;
         }
         let q = lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g));
-        let x = map
-            .at_time(profile.time_at_cumulative(q))
-            .clamp(x_lo0, x_hi0);
+        let x = map.at_impulse_fraction(profile, q).clamp(x_lo0, x_hi0);
         let adv = stepper.advance(&frozen, x_lo0, prev.0, x, x - x_lo0, &mut no_stop)?;
         let st = SlidingState(adv.y);
         let g = rhs.event(&st);

@@ -1,45 +1,35 @@
-//! The variable the integrator steps in: the scaled time s = t / tau itself, or a smoothing
-//! change of variable s = g(x) for pulses with algebraic ends
+//! The variable the integrator steps in: the scaled time s = t / tau itself, or, for pulses
+//! with algebraic ends, a change of variable under which the impulse follows the half-sine's
 //! (docs/model.md#the-smoothing-change-of-time-variable).
 //!
 //! A Hertz pulse and a sin^n pulse with fractional n grow like s^n from both ends of the
 //! contact: there the force's derivatives of order above n are infinite, so a step of size h
 //! at an end errs like h^(n+1) whatever the method's order (rk4 falls to order 2.5 on
-//! n = 1.5). With s = g(x), x in [0, 1], the right-hand side in x is the one in s times
-//! g'(x), and the force over an x-step is
+//! n = 1.5).
+//!
+//! Eqs 14-19 depend on time only through the force, and only as f(t) dt = dp: the state is
+//! carried along by the impulse. So any monotone change of variable t = tau g(x) gives the
+//! right-hand side in x as the one per unit impulse times dp/dx, and the smoothest choice
+//! makes dp/dx the same for every pulse: the impulse of the half-sine pulse,
 //!
 //! ```text
-//! f(t) dt = (P / tau) phi(g(x)) g'(x) dx
+//! p(x) / P = Phi_hs(x) = sin^2(pi x / 2),    dp/dx = P (pi / 2) sin(pi x),
+//! s = g(x) = Phi^-1(Phi_hs(x)),              x = g^-1(s) = Phi_hs^-1(Phi(s))
 //! ```
 //!
-//! The map is Sidi's sin^m transform, the normalised integral of sin^m:
-//!
-//! ```text
-//! g_m(x) = integral_0^x sin^m(pi u) du / integral_0^1 sin^m(pi u) du,      g_m(1 - x) = 1 - g_m(x)
-//! ```
-//!
-//! which is the cumulative impulse Phi of the `sine-power` pulse of exponent m (of the
-//! half-sine for m = 1): g = Phi, g' = phi, g^-1 = Phi^-1 of that pulse. Near an end
-//! g_m(x) ~ x^(m+1) and g_m'(x) ~ x^m, so phi(g(x)) g'(x) ~ x^((n+1)(m+1) - 1).
-//!
-//! - **m = 1**, g(x) = sin^2(pi x / 2) = (1 - cos(pi x)) / 2, when 2n is an integer (hertz:
-//!   n = 3/2; sine-power 0.5, 1.5, 2.5, ...). Then s^(1/2) = sin(pi x / 2) and
-//!   (1 - s)^(1/2) = cos(pi x / 2) are analytic, so every term of the pulse's expansion at an
-//!   end, powers of s^(1/2) (the exact Hertz pulse has s^(3/2), s^4, s^(13/2), ...; sin^n(pi
-//!   s) has s^n times a series in s^2), becomes analytic in x: the right-hand side in x is
-//!   smooth over the whole contact and every method keeps its order.
-//! - **other n**: the smallest m >= 1 with (n+1)(m+1) >= 9 ([`sidi_order`]). The transformed
-//!   force still behaves like x^beta at the ends with beta = (n+1)(m+1) - 1 >= 8 not an
-//!   integer, but the first step's error, of order h^(beta+1) <= h^9, is then no larger than
-//!   the local error of a smooth step of the highest-order method (dop853, order 8), so the
-//!   end no longer lowers any method's order.
+//! with Phi the pulse's cumulative impulse (exact for hertz and sine-power). In x the
+//! right-hand side is analytic over the whole contact whatever the pulse's ends, and the
+//! stepping is the half-sine's step for step: a Hertz or sin^1.5 pulse costs what a
+//! half-sine costs, and every method keeps its order. Near an end Phi(s) ~ s^(n+1) and
+//! Phi_hs(x) ~ x^2, so g(x) ~ x^(2/(n+1)): g' is not bounded for n > 1, but it never enters
+//! the stepping, only the force f(t(x)) g'(x) = dp/dx does.
 //!
 //! Everything the run reports stays in physical time: sample rows at t = i tau / N (the
-//! segment ends are mapped by g^-1), trace rows at t = tau g(x), and the stop of sliding from
-//! the profile's exact p(t).
+//! segment ends are mapped by g^-1), trace rows at t = tau g(x) with the force the profile's
+//! f(t), and the stop of sliding from the profile's exact p(t).
 
 use super::settings::SolverSettings;
-use crate::profile::{ForceProfile, HalfSine, SinePower};
+use crate::profile::{ForceProfile, HalfSine};
 
 /// Scaled times grading the steps toward both ends of a pulse with algebraic ends, used
 /// when the time transform is off: 2^-10 .. 2^-2 and 1 - 2^-2 .. 1 - 2^-10, so that no step
@@ -72,63 +62,30 @@ pub const GRADED_ENDS: [f64; 18] = [
     1.0 - 1.0 / 1024.0,
 ];
 
-/// The smallest integer with (n + 1)(m + 1) >= SIDI_SMOOTHNESS: the transformed force's
-/// end behaviour x^beta then has beta + 1 >= 9 (see the module docs).
-const SIDI_SMOOTHNESS: f64 = 9.0;
-
-/// The order m of the sin^m transform for ends that grow like s^`n` (n > 0, not an
-/// integer): 1 when 2n is an integer, else the smallest m >= 1 with (n + 1)(m + 1) >= 9.
-///
-/// ```text
-/// n      0.1  0.3  0.5  0.7  1.2  1.5  2.3  2.5  3.6  >= 3.5
-/// m        8    6    1    5    4    1    2    1    1       1
-/// ```
-pub fn sidi_order(n: f64) -> u32 {
-    if (2.0 * n).fract() == 0.0 {
-        return 1;
-    }
-    let m = (SIDI_SMOOTHNESS / (n + 1.0)).ceil() - 1.0;
-    m.max(1.0) as u32
-}
-
 /// The map from the integration variable x in [0, 1] to the scaled time s = g(x).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TimeMap {
     /// s = x: the integrator steps in the scaled time itself.
     Identity,
-    /// Sidi's sin^1 transform, g(x) = sin^2(pi x / 2): the half-sine's Phi.
-    SineSquared(HalfSine),
-    /// Sidi's sin^m transform, m >= 2: the Phi of the sine-power pulse of exponent m.
-    SinePower(SinePower),
+    /// s = Phi^-1(Phi_hs(x)): the impulse follows the unit half-sine pulse's cumulative
+    /// impulse Phi_hs, whatever the pulse.
+    HalfSineImpulse(HalfSine),
 }
 
 impl TimeMap {
-    /// The map of a run of `profile` with `settings`: a sin^m transform when the setting
-    /// `time_transform` is on and the profile has algebraic ends, else the identity.
+    /// The map of a run of `profile` with `settings`: the half-sine impulse when the
+    /// setting `time_transform` is on and the profile has algebraic ends, else the identity.
     pub fn for_run<P: ForceProfile + ?Sized>(profile: &P, settings: &SolverSettings) -> Self {
         match profile.end_power() {
-            Some(n) if settings.time_transform() => Self::sidi(sidi_order(n)),
+            Some(_) if settings.time_transform() => Self::half_sine_impulse(),
             _ => TimeMap::Identity,
         }
     }
 
-    /// Sidi's sin^m transform of order `m` >= 1.
-    pub fn sidi(m: u32) -> Self {
+    /// The map under which the impulse follows the half-sine's.
+    pub fn half_sine_impulse() -> Self {
         const UNIT: f64 = 1.0;
-        if m <= 1 {
-            TimeMap::SineSquared(HalfSine::new(UNIT).expect("a unit duration is valid"))
-        } else {
-            TimeMap::SinePower(SinePower::new(UNIT, f64::from(m)).expect("m in [2, 64] is valid"))
-        }
-    }
-
-    /// The order m of the sin^m transform (`None` for the identity).
-    pub fn order(&self) -> Option<u32> {
-        match self {
-            TimeMap::Identity => None,
-            TimeMap::SineSquared(_) => Some(1),
-            TimeMap::SinePower(p) => Some(p.exponent() as u32),
-        }
+        TimeMap::HalfSineImpulse(HalfSine::new(UNIT).expect("a unit duration is valid"))
     }
 
     /// Whether the integration variable is the scaled time itself.
@@ -136,36 +93,49 @@ impl TimeMap {
         *self == TimeMap::Identity
     }
 
-    /// The scaled time s = g(x), x clamped to [0, 1].
+    /// The scaled force at integration variable `x`: phi(g(x)) g'(x), the rate of the
+    /// impulse fraction in x (the pulse's phi(x) for the identity). x is clamped to [0, 1]:
+    /// the last stage of the last step can land a rounding error beyond the end, where a
+    /// profile that does not vanish there (rectangle, tables) would read 0.
     #[inline]
-    pub fn time(&self, x: f64) -> f64 {
+    pub fn force<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
         match self {
-            TimeMap::Identity => x,
-            TimeMap::SineSquared(p) => p.cumulative(x.clamp(0.0, 1.0)),
-            TimeMap::SinePower(p) => p.cumulative(x.clamp(0.0, 1.0)),
+            TimeMap::Identity => profile.shape(x.clamp(0.0, 1.0)),
+            TimeMap::HalfSineImpulse(hs) => hs.shape(x.clamp(0.0, 1.0)),
         }
     }
 
-    /// The scaled time s = g(x) and the rate ds/dx = g'(x), x clamped to [0, 1]; (x, 1)
-    /// for the identity.
-    #[inline]
-    pub fn time_and_rate(&self, x: f64) -> (f64, f64) {
+    /// The impulse fraction p / P = Phi(g(x)) reached at integration variable `x`.
+    pub fn impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
         match self {
-            TimeMap::Identity => (x, 1.0),
-            TimeMap::SineSquared(p) => p.cumulative_and_shape(x.clamp(0.0, 1.0)),
-            TimeMap::SinePower(p) => {
-                let x = x.clamp(0.0, 1.0);
-                (p.cumulative(x), p.shape(x))
+            TimeMap::Identity => profile.cumulative(x),
+            TimeMap::HalfSineImpulse(hs) => hs.cumulative(x),
+        }
+    }
+
+    /// The integration variable at which the impulse fraction reaches `q` in [0, 1].
+    pub fn at_impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, q: f64) -> f64 {
+        match self {
+            TimeMap::Identity => profile.time_at_cumulative(q),
+            TimeMap::HalfSineImpulse(hs) => hs.time_at_cumulative(q),
+        }
+    }
+
+    /// The scaled time s = g(x) (for the half-sine impulse, x clamped to [0, 1]).
+    pub fn time<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
+        match self {
+            TimeMap::Identity => x,
+            TimeMap::HalfSineImpulse(hs) => {
+                profile.time_at_cumulative(hs.cumulative(x.clamp(0.0, 1.0)))
             }
         }
     }
 
     /// The integration variable x = g^-1(s) at scaled time s in [0, 1].
-    pub fn at_time(&self, s: f64) -> f64 {
+    pub fn at_time<P: ForceProfile + ?Sized>(&self, profile: &P, s: f64) -> f64 {
         match self {
             TimeMap::Identity => s,
-            TimeMap::SineSquared(p) => p.time_at_cumulative(s),
-            TimeMap::SinePower(p) => p.time_at_cumulative(s),
+            TimeMap::HalfSineImpulse(hs) => hs.time_at_cumulative(profile.cumulative(s)),
         }
     }
 }
@@ -174,77 +144,38 @@ impl TimeMap {
 mod tests {
     use super::*;
     use crate::integrator::Method;
-    use crate::profile::{Hertz, Rectangle};
+    use crate::profile::{Hertz, Rectangle, SinePower};
     use std::f64::consts::PI;
 
-    /// The orders of the table in [`sidi_order`]'s docs, from (n + 1)(m + 1) >= 9 worked by
-    /// hand: n = 0.3 needs m + 1 >= 9 / 1.3 = 6.9, so m = 6; n = 1.2: 9 / 2.2 = 4.1, m = 4.
+    /// The half-sine impulse map on a sin^1.5 pulse: the force in x is (pi / 2) sin(pi x),
+    /// the impulse fraction sin^2(pi x / 2), whatever the pulse (written out here, not read
+    /// from the half-sine profile); the time goes there and back, and the impulse reached at
+    /// time g(x) is the fraction at x. The sin^1.5 pulse's own cumulative impulse is
+    /// checked against its Beta-function formula in the profile's tests.
     #[test]
-    fn orders() {
-        let table = [
-            (0.1, 8),
-            (0.3, 6),
-            (0.5, 1),
-            (0.7, 5),
-            (1.2, 4),
-            (1.5, 1),
-            (2.3, 2),
-            (2.5, 1),
-            (3.6, 1),
-            (7.3, 1),
-        ];
-        for (n, m) in table {
-            assert_eq!(sidi_order(n), m, "n = {n}");
-            if (2.0 * n).fract() != 0.0 {
-                let m = f64::from(m);
-                assert!((n + 1.0) * (m + 1.0) >= 9.0 || m == 1.0, "n = {n}");
-                assert!(
-                    (n + 1.0) * m < 9.0 || m == 1.0,
-                    "n = {n}: m not the smallest"
-                );
-            }
-        }
-    }
-
-    /// m = 1 is g(x) = sin^2(pi x / 2), g'(x) = (pi / 2) sin(pi x); its inverse
-    /// x = (2 / pi) asin(sqrt(s)).
-    #[test]
-    fn sine_squared_map() {
-        let map = TimeMap::sidi(1);
-        assert_eq!(map.order(), Some(1));
+    fn half_sine_impulse_map() {
+        let map = TimeMap::half_sine_impulse();
+        let pulse = SinePower::new(1.0, 1.5).unwrap();
         for i in 0..=64 {
             let x = i as f64 / 64.0;
-            let (s, rate) = map.time_and_rate(x);
-            let want = (PI * x / 2.0).sin().powi(2);
-            assert!((s - want).abs() < 4e-16, "x = {x}: {s} vs {want}");
-            assert!((rate - PI / 2.0 * (PI * x).sin()).abs() < 1e-15, "x = {x}");
-            assert_eq!(map.time(x), s);
-            let back = map.at_time(want);
-            assert!((back - x).abs() < 1e-14, "x = {x}: {back}");
-        }
-        assert_eq!(map.time_and_rate(-0.1), (0.0, 0.0));
-        assert_eq!(map.time(1.0 + 1e-12), 1.0);
-    }
-
-    /// m = 2 is g(x) = x - sin(2 pi x) / (2 pi), g'(x) = 2 sin^2(pi x) (the integral of
-    /// sin^2 over [0, 1] is 1/2).
-    #[test]
-    fn sine_power_map() {
-        let map = TimeMap::sidi(2);
-        assert_eq!(map.order(), Some(2));
-        for i in 0..=32 {
-            let x = i as f64 / 32.0;
-            let (s, rate) = map.time_and_rate(x);
-            let want = x - (2.0 * PI * x).sin() / (2.0 * PI);
-            assert!((s - want).abs() < 1e-14, "x = {x}: {s} vs {want}");
+            let want_force = PI / 2.0 * (PI * x).sin();
+            assert!((map.force(&pulse, x) - want_force).abs() < 1e-15, "x = {x}");
+            let want_q = (PI * x / 2.0).sin().powi(2);
+            let q = map.impulse_fraction(&pulse, x);
+            assert!((q - want_q).abs() < 4e-16, "x = {x}: {q} vs {want_q}");
+            let s = map.time(&pulse, x);
             assert!(
-                (rate - 2.0 * (PI * x).sin().powi(2)).abs() < 1e-14,
+                (pulse.cumulative(s) - want_q).abs() < 1e-13,
+                "x = {x}: s = {s}"
+            );
+            assert!((map.at_time(&pulse, s) - x).abs() < 1e-9, "x = {x}");
+            assert!(
+                (map.at_impulse_fraction(&pulse, q) - x).abs() < 1e-12,
                 "x = {x}"
             );
-            if x > 0.0 && x < 1.0 {
-                assert!((map.at_time(want) - x).abs() < 1e-12, "x = {x}");
-            }
         }
+        assert_eq!(map.force(&pulse, -0.1), 0.0);
+        assert_eq!(map.time(&pulse, 1.0 + 1e-12), 1.0);
     }
 
     /// The transform applies to profiles with algebraic ends when the setting is on.
@@ -253,10 +184,10 @@ mod tests {
         let on = SolverSettings::new(Method::Dop853, 1e-10, 1e-10, 1000).unwrap();
         let off = on.with_time_transform(false);
         let hertz = Hertz::new(1.0).unwrap();
-        assert_eq!(TimeMap::for_run(&hertz, &on).order(), Some(1));
+        assert!(!TimeMap::for_run(&hertz, &on).is_identity());
         assert!(TimeMap::for_run(&hertz, &off).is_identity());
         let sp = SinePower::new(1.0, 0.3).unwrap();
-        assert_eq!(TimeMap::for_run(&sp, &on).order(), Some(6));
+        assert!(!TimeMap::for_run(&sp, &on).is_identity());
         let sp2 = SinePower::new(1.0, 2.0).unwrap();
         assert!(TimeMap::for_run(&sp2, &on).is_identity());
         assert!(TimeMap::for_run(&Rectangle::new(1.0).unwrap(), &on).is_identity());
@@ -267,9 +198,12 @@ mod tests {
     #[test]
     fn identity() {
         let map = TimeMap::Identity;
-        for x in [0.0, 0.3, 1.0 + 1e-16, -1e-300] {
-            assert_eq!(map.time_and_rate(x), (x, 1.0));
-            assert_eq!(map.at_time(x), x);
+        let pulse = Hertz::new(1.0).unwrap();
+        for x in [0.0, 0.3, 1.0, 1.0 + 1e-16] {
+            assert_eq!(map.time(&pulse, x), x);
+            assert_eq!(map.at_time(&pulse, x), x);
+            assert_eq!(map.force(&pulse, x), pulse.shape(x));
+            assert_eq!(map.impulse_fraction(&pulse, x), pulse.cumulative(x));
         }
     }
 }

@@ -68,7 +68,7 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
     /// The trace row of `y` at `time` (s; default the scaled time of its integration
     /// variable times the duration), with slip angle `theta` (rad).
     pub(super) fn row(&self, y: &SlidingState, time: Option<f64>, theta: Option<f64>) -> TraceRow {
-        let s = self.time_map.time(y.x());
+        let s = self.time_map.time(self.profile, y.x());
         let tau = self.profile.duration();
         let p = self.c.impulse;
         let slip = y.slip();
@@ -76,7 +76,7 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
         TraceRow {
             t: time.unwrap_or(s * tau),
             force: p / tau * self.profile.shape(s),
-            impulse: p * self.profile.cumulative(s),
+            impulse: p * self.time_map.impulse_fraction(self.profile, y.x()),
             state: self.state(y),
             slip_speed: sign * slip.x.hypot(slip.y) * self.v,
             theta,
