@@ -52,6 +52,15 @@ fn a_missing_option_is_named() {
         ],
     );
     assert!(line.ends_with("(see --help)"), "{line}");
+    // Two missing arguments: both named.
+    refused(
+        &bin(&["batch"]),
+        &["not provided: --out <OUTPUT.csv>, <INPUT>; usage:"],
+    );
+    refused(
+        &bin(&["batch", "no_such_input.csv", "--out", "o.csv"]),
+        &["no_such_input.csv: cannot read the batch input"],
+    );
     refused(
         &bin(&["run", "--tarce", "t.csv"]),
         &["unexpected argument '--tarce'", "did you mean '--trace'?"],

@@ -224,7 +224,7 @@ fn implausible_values_warn_with_the_unit_slip() {
         (
             "radius = 0.028575",
             "radius = 28.575",
-            "balls.radius = 28.575 m lies far outside the range of any ball game (0.002 to 0.5 \
+            "balls.radius = 28.575 m lies far outside the range of any ball game (0.005 to 0.5 \
              m): millimetres meant? (28.575 mm = 0.028575 m)",
         ),
         (

@@ -79,7 +79,8 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
         return Err(Error::invalid("--chunk", 0, "at least 1"));
     }
     let setup = BatchSetup::from_scene(&scene, settings);
-    let input = std::fs::File::open(&args.input).map_err(|e| Error::io(&args.input, e))?;
+    let input = std::fs::File::open(&args.input)
+        .map_err(|e| Error::io_doing(&args.input, "cannot read the batch input", e))?;
     let size = input.metadata().map(|m| m.len()).unwrap_or(0);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = args.threads {

@@ -87,17 +87,26 @@ pub fn one_line(e: &clap::Error) -> String {
     }
     let text = e.to_string();
     let mut line = String::new();
-    for part in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+    // Inside a list (indented lines after a line ending in ':'): items joined by ", ".
+    let mut in_list = false;
+    for raw in text.lines().filter(|l| !l.trim().is_empty()) {
+        let part = raw.trim();
         if part.starts_with("For more information") {
             continue;
         }
+        let item = raw.starts_with(' ') && (in_list || line.ends_with(':'));
         let part = match part.strip_prefix("tip: a similar argument exists: ") {
             Some(name) => format!("did you mean {name}?"),
             None => part.replacen("Usage:", "usage:", 1),
         };
         if !line.is_empty() {
-            line.push_str(if line.ends_with(':') { " " } else { "; " });
+            line.push_str(match (item, in_list) {
+                (true, true) => ", ",
+                _ if line.ends_with(':') => " ",
+                _ => "; ",
+            });
         }
+        in_list = item;
         line.push_str(&part);
     }
     if line.is_empty() {

@@ -130,17 +130,16 @@ impl RunArgs {
         if let Some(path) = &self.plot {
             figure_format("--plot", path)?;
         }
-        if (self.ball_paths.is_some() || self.plot.is_some()) && !scene.effects.table {
-            return Err(Error::invalid(
-                if self.ball_paths.is_some() {
-                    "--path"
-                } else {
-                    "--plot"
-                },
-                "given",
-                "the table effect: set `table = true` under [effects] in the scene (lab frame, \
-                 horizontal line of centres)",
-            ));
+        let table_options = [("--path", &self.ball_paths), ("--plot", &self.plot)];
+        if let Some((option, Some(path))) = table_options.iter().find(|(_, p)| p.is_some()) {
+            if !scene.effects.table {
+                return Err(Error::invalid(
+                    *option,
+                    path.display(),
+                    "only with the table effect: set `table = true` under [effects] in the \
+                     scene (lab frame, horizontal line of centres)",
+                ));
+            }
         }
         if self.ball_path_samples == Some(0) {
             return Err(Error::invalid("--path-samples", 0, "at least 1"));

@@ -35,7 +35,7 @@ pub struct StudyArgs {
     #[arg(long)]
     no_sticking: bool,
     /// Only redraw the figure and the cost tables from DIR/work_precision.csv (e.g. after
-    /// the peers' script appended its rows).
+    /// benches/peers/scipy_contact.py appended scipy's rows).
     #[arg(long)]
     replot: bool,
 }

@@ -34,11 +34,11 @@ pub const MASS: Plausible = Plausible {
     slips: &[("grams", "g", 1e-3)],
 };
 
-/// `balls.radius`: a marble's is about 6 mm, a basketball's 0.12 m.
+/// `balls.radius`: a small marble's is about 6 mm, a basketball's 0.12 m.
 pub const RADIUS: Plausible = Plausible {
     field: "balls.radius",
     unit: "m",
-    range: (2e-3, 0.5),
+    range: (5e-3, 0.5),
     slips: LENGTH_SLIPS,
 };
 
@@ -83,7 +83,7 @@ impl Plausible {
     /// assert_eq!(RADIUS.warning(0.028575), None);
     /// assert_eq!(
     ///     RADIUS.warning(28.575).unwrap(),
-    ///     "balls.radius = 28.575 m lies far outside the range of any ball game (0.002 to \
+    ///     "balls.radius = 28.575 m lies far outside the range of any ball game (0.005 to \
     ///      0.5 m): millimetres meant? (28.575 mm = 0.028575 m)"
     /// );
     /// ```
