@@ -68,6 +68,20 @@ fn run(
     (rd.records().map(|r| r.unwrap()).collect(), header)
 }
 
+/// The error of a batch of `text` (named `in.csv`), read in chunks of 2 rows.
+fn batch_error(setup: &BatchSetup, text: &str) -> String {
+    run_csv(
+        setup,
+        text.as_bytes(),
+        Path::new("in.csv"),
+        Vec::new(),
+        2,
+        |_, _| {},
+    )
+    .unwrap_err()
+    .to_string()
+}
+
 fn col(header: &csv::StringRecord, name: &str) -> usize {
     header
         .iter()
@@ -305,18 +319,7 @@ fn dop853_slice_agrees_with_closed_form() {
 #[test]
 fn errors_name_the_line() {
     let s = setup(Method::ClosedForm);
-    let e = |text: &str| {
-        run_csv(
-            &s,
-            text.as_bytes(),
-            Path::new("in.csv"),
-            Vec::new(),
-            2,
-            |_, _| {},
-        )
-        .unwrap_err()
-        .to_string()
-    };
+    let e = |text: &str| batch_error(&s, text);
     let msg = e("u_x,u_y,u_z\n1,0,0\n1,0.1,0\n1,0.2,0\n1,abc,0\n");
     assert!(msg.starts_with("in.csv:5:") && msg.contains("u_y"), "{msg}");
     let msg = e("u_x,u_y,u_z,mass\n1,0,0,-2\n");
@@ -464,16 +467,7 @@ fn crlf_input_keeps_its_line_numbers() {
     assert_eq!(lines, ["2", "3", "5"]);
     assert_eq!(&rows_crlf[0][col(&h, "id")], "a, b");
     let bad = "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,x,0\r\n";
-    let e = run_csv(
-        &s,
-        bad.as_bytes(),
-        Path::new("in.csv"),
-        Vec::new(),
-        8,
-        |_, _| {},
-    )
-    .unwrap_err()
-    .to_string();
+    let e = batch_error(&s, bad);
     assert!(e.starts_with("in.csv:4: u_y"), "{e}");
 }
 
@@ -507,18 +501,7 @@ fn no_throw_without_a_collision() {
 #[test]
 fn unknown_columns_are_refused() {
     let s = setup(Method::ClosedForm);
-    let e = |text: &str| {
-        run_csv(
-            &s,
-            text.as_bytes(),
-            Path::new("in.csv"),
-            Vec::new(),
-            2,
-            |_, _| {},
-        )
-        .unwrap_err()
-        .to_string()
-    };
+    let e = |text: &str| batch_error(&s, text);
     let msg = e("u_x,u_y,u_z,omega_a_xx\n1,0.2,0,5\n");
     assert!(
         msg.starts_with("in.csv:1: column `omega_a_xx`: unknown column, expected one of `id`,")
@@ -549,16 +532,7 @@ fn short_rows_name_their_line() {
         "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,0\r\n",
         "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,0",
     ] {
-        let e = run_csv(
-            &s,
-            text.as_bytes(),
-            Path::new("in.csv"),
-            Vec::new(),
-            8,
-            |_, _| {},
-        )
-        .unwrap_err()
-        .to_string();
+        let e = batch_error(&s, text);
         assert_eq!(e, "in.csv:4: 2 cells where the header has 3", "{text:?}");
     }
 }

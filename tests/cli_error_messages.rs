@@ -3,41 +3,12 @@
 //! did-you-mean, a file that is not a scene says so, balls that do not touch name a radius
 //! in millimetres; `help --help` and every subcommand's `--help` work.
 
+mod cli_common;
+use cli_common::{bin, bin_in, fresh_dir, refused};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn bin_in(dir: Option<&Path>, args: &[&str]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_billiard-contact"));
-    if let Some(d) = dir {
-        c.current_dir(d);
-    }
-    c.args(args).output().unwrap()
-}
-
-fn bin(args: &[&str]) -> Output {
-    bin_in(None, args)
-}
 
 fn dir(tag: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("error_messages_{tag}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Exit code 2, nothing on stdout, one line on stderr starting `error: ` with every piece
-/// of `want`; returns the line.
-fn refused(out: &Output, want: &[&str]) -> String {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(out.stdout.is_empty());
-    let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "not one line:\n{stderr}");
-    assert!(lines[0].starts_with("error: "), "{stderr}");
-    for w in want {
-        assert!(lines[0].contains(w), "`{w}` missing in: {}", lines[0]);
-    }
-    lines[0].to_string()
+    fresh_dir(&format!("error_messages_{tag}"))
 }
 
 /// `batch in.csv` without `--out` named no argument (only clap's first line was kept):

@@ -4,63 +4,16 @@
 //! (`warning: ...`) says what is not used while the run succeeds. Values far outside any
 //! ball game warn with the likely unit slip.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod cli_common;
+use cli_common::{bin, fresh_dir, refused, scene, warned};
+use std::path::Path;
 
-fn bin(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn scene(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
-
-fn dir(tag: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("nothing_ignored_{tag}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+fn dir(tag: &str) -> std::path::PathBuf {
+    fresh_dir(&format!("nothing_ignored_{tag}"))
 }
 
 fn path(d: &Path, name: &str) -> String {
     d.join(name).to_string_lossy().into_owned()
-}
-
-/// Exit code 2, nothing on stdout, one line on stderr starting `error: ` and containing
-/// every piece of `want`.
-fn refused(out: &Output, want: &[&str]) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(
-        out.stdout.is_empty(),
-        "{}",
-        String::from_utf8_lossy(&out.stdout)
-    );
-    let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "not one line:\n{stderr}");
-    assert!(lines[0].starts_with("error: "), "{stderr}");
-    for w in want {
-        assert!(lines[0].contains(w), "`{w}` missing in: {}", lines[0]);
-    }
-}
-
-/// Exit code 0, output on stdout, and on stderr a line `warning: ...` containing every
-/// piece of `want`.
-fn warned(out: &Output, want: &[&str]) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{stderr}");
-    let line = stderr
-        .lines()
-        .find(|l| want.iter().all(|w| l.contains(w)))
-        .unwrap_or_else(|| panic!("no warning with {want:?} in:\n{stderr}"));
-    assert!(line.starts_with("warning: "), "{line}");
 }
 
 /// `--samples` shapes the trace and `--path-samples` the path: without the file they are

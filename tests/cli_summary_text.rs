@@ -3,28 +3,20 @@
 //! says there was no sliding, the table summary agrees with the ball path CSV, numbers
 //! carry SI prefixes or plain decimals without `e0`, and counts have their plural right.
 
+mod cli_common;
+use cli_common::scene;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
+/// Runs the binary with `args`; the run must succeed.
 fn bin(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .args(args)
-        .output()
-        .unwrap();
+    let out = cli_common::bin(args);
     assert!(
         out.status.success(),
         "{args:?}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
     out
-}
-
-fn scene(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
 }
 
 fn text(out: &Output) -> String {

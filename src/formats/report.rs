@@ -479,12 +479,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         );
         return s;
     }
-    // The size of the energy's round-off in this run (J): the energy balance check's,
-    // and at least a few ulps of the energy scale.
-    let heat_round_off = scene.collision().map_or(0.0, |(c, _)| {
-        o.check.energy_balance_error.max(HEAT_ROUND_OFF) * c.scales.energy
-    });
-    s.push_str(&contact_summary(r, o.stick_time, heat_round_off));
+    s.push_str(&contact_summary(r, o.stick_time, heat_round_off(scene, so)));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     let _ = writeln!(s, "  centre-of-mass frame, out:");
     let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
@@ -527,6 +522,14 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
 /// The least round-off of a heat, relative to the energy scale m v_ref^2: a few ulps of the
 /// kinetic energies whose difference it is (eq 38).
 const HEAT_ROUND_OFF: f64 = 16.0 * f64::EPSILON;
+
+/// The size of the energy's round-off in a run (J): the energy balance check's, and at
+/// least a few ulps of the energy scale m v_ref^2.
+fn heat_round_off(scene: &Scene, so: &SceneOutcome) -> f64 {
+    scene.collision().map_or(0.0, |(c, _)| {
+        so.outcome.check.energy_balance_error.max(HEAT_ROUND_OFF) * c.scales.energy
+    })
+}
 
 /// A heat (J) for people: 0 within `round_off` (J) of zero, where its sign and digits are
 /// the round-off of the difference of two kinetic energies.
