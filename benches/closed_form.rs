@@ -47,7 +47,7 @@ fn bench(c: &mut Criterion) {
     let input = states(n);
     let (c0, _) = scene.collision().unwrap();
     let mut out = vec![
-        ClosedFormBatch::new(c0.ball, c0.contact, c0.effects)
+        ClosedFormBatch::new(c0.balls, c0.contact, c0.effects)
             .resolve(&c0.incoming)
             .unwrap();
         n
@@ -95,7 +95,7 @@ fn cpu_time() {
     let setup = BatchSetup::from_scene(&scene, SolverSettings::default());
     let input = states(4096);
     let (c0, _) = scene.collision().unwrap();
-    let first = ClosedFormBatch::new(c0.ball, c0.contact, c0.effects)
+    let first = ClosedFormBatch::new(c0.balls, c0.contact, c0.effects)
         .resolve(&c0.incoming)
         .unwrap();
     let mut out = vec![first; input.len()];

@@ -84,7 +84,7 @@ fn bench(c: &mut Criterion) {
         s.effects.table = true;
         let so = run_scene(&s, &SolverSettings::default(), None).unwrap();
         let t = so.table.expect("table on");
-        let (ball, table) = (s.ball, t.table);
+        let (balls, table) = (s.balls, t.table);
         let (a, b) = (t.a.start, t.b.start);
         let (incoming, scale) = (t.incoming, 1.0);
         let mut group = c.benchmark_group(format!("{tag} / table"));
@@ -94,7 +94,7 @@ fn bench(c: &mut Criterion) {
             .sample_size(30);
         group.bench_function("table phase (both balls, with checks)", |bch| {
             bch.iter(|| {
-                TableOutcome::new(&ball, table, black_box(&a), black_box(&b), incoming, scale)
+                TableOutcome::new(&balls, table, black_box(&a), black_box(&b), incoming, scale)
                     .unwrap()
             })
         });

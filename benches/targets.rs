@@ -42,7 +42,7 @@ fn main() {
     );
     let input = states(4096);
     let (c0, _) = scene.collision().unwrap();
-    let first = ClosedFormBatch::new(c0.ball, c0.contact, c0.effects)
+    let first = ClosedFormBatch::new(c0.balls, c0.contact, c0.effects)
         .resolve(&c0.incoming)
         .unwrap();
     let mut out = vec![first; input.len()];

@@ -28,27 +28,30 @@ pub enum Error {
         expected: String,
     },
 
-    /// A lab-frame scene whose balls do not touch: the distance of the centres is not 2r
-    /// within a relative `tolerance` (the message names the field
-    /// `incoming.lab.b.position`, and a unit slip that explains the distance: a radius or
-    /// positions in millimetres).
+    /// A lab-frame scene whose balls do not touch: the distance of the centres is not
+    /// r_A + r_B (2r for identical balls) within a relative `tolerance` (the message names
+    /// the field `incoming.lab.b.position`, and a unit slip that explains the distance: a
+    /// radius or positions in millimetres).
     #[error(
         "incoming.lab.b.position = [{}, {}, {}] (|p_B - p_A| = {distance} m): the balls must \
-         touch: |p_B - p_A| = 2r = {contact_distance} m within a relative {tolerance:e}{}",
+         touch: |p_B - p_A| = {contact_term} = {contact_distance} m within a relative \
+         {tolerance:e}{}",
         .position_b[0], .position_b[1], .position_b[2],
-        crate::formats::plausible::not_touching_hint(*.distance, *.contact_distance)
+        crate::formats::plausible::not_touching_hint(*.distance, *.contact_distance, .contact_term)
     )]
     NotTouching {
         /// Position of ball B (m, lab frame), as given.
         position_b: [f64; 3],
         /// |p_B - p_A| (m).
         distance: f64,
-        /// 2r (m), the distance of touching balls.
+        /// r_A + r_B (m), the distance of touching balls.
         contact_distance: f64,
-        /// |p_B - p_A| - 2r (m): positive when the balls are apart, negative when they
-        /// overlap.
+        /// How the message names that distance: "2r" for identical balls, "r_A + r_B".
+        contact_term: &'static str,
+        /// |p_B - p_A| - (r_A + r_B) (m): positive when the balls are apart, negative when
+        /// they overlap.
         gap: f64,
-        /// Accepted relative difference of the distance from 2r.
+        /// Accepted relative difference of the distance from r_A + r_B.
         tolerance: f64,
     },
 

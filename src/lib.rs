@@ -103,8 +103,8 @@ pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::material::{HertzContact, Material};
 pub use model::params::{
-    Ball, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN, ALPHA_SOLID,
-    MU_MAX,
+    Ball, BallPair, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN,
+    ALPHA_SOLID, MU_MAX,
 };
 pub use model::state::{CmState, LabBall, LabMotion};
 pub use nalgebra;

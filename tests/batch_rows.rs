@@ -203,8 +203,8 @@ fn paper_special_case_row() {
     let s = setup(Method::ClosedForm);
     // mu 0.1 as a row override (the scene has 0.06): still sliding throughout (eq 57:
     // u / sqrt(u^2 + v^2) = 0.894 < 1 / (7 mu) = 1.43).
-    let (m, r, mu) = (s.ball.mass(), s.ball.radius(), 0.1);
-    assert_eq!(s.ball.mass(), 0.17);
+    let (m, r, mu) = (s.balls.a.mass(), s.balls.a.radius(), 0.1);
+    assert_eq!(s.balls.a.mass(), 0.17);
     let (u, v) = (1.0, 0.5);
     let text = format!(
         "u_x,u_y,u_z,omega_a_x,omega_a_y,omega_a_z,mu\n{},{},0,{},{},0,{mu}\n",

@@ -1,5 +1,6 @@
-//! The per-profile examples' own checks (the default scene's outgoing state against the
-//! closed form, theta constant while sliding) run here, so that `cargo test` fails when an
+//! The examples' own checks (the default scene's outgoing state against the closed form,
+//! theta constant while sliding; the bar-table scene of unequal balls against the closed
+//! form and the lab momentum) run here, so that `cargo test` fails when an
 //! example's check would: each example's `run` is the one `cargo run --example` calls.
 
 // Each example is a program of its own and declares `mod common;` itself, so the shared
@@ -24,3 +25,4 @@ example!(default_hertz, "../examples/default_hertz.rs");
 example!(default_rectangle, "../examples/default_rectangle.rs");
 example!(default_sine_power, "../examples/default_sine_power.rs");
 example!(default_tabulated, "../examples/default_tabulated.rs");
+example!(unequal_balls, "../examples/unequal_balls.rs");

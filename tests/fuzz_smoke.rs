@@ -86,7 +86,7 @@ fn regressions_run_with_finite_output() {
         // 7e-3 m/s off (the graded breakpoints used to force 27 steps).
         let v = scene.collision().unwrap().0.scales.speed;
         let (a, b) = (&cf.result.out, &d.result.out);
-        let w = v / scene.ball.radius();
+        let w = v / scene.balls.a.radius();
         let err = ((a.u_cm - b.u_cm).amax() / v)
             .max((a.omega_a - b.omega_a).amax() / w)
             .max((a.omega_b - b.omega_b).amax() / w);

@@ -533,7 +533,7 @@ proptest! {
         };
         let scene = |l: LabScene| Scene {
             name: "rotation".into(),
-            ball: Ball::new(case.m, r, case.alpha).unwrap(),
+            balls: Ball::new(case.m, r, case.alpha).unwrap().into(),
             material: None,
             contact: Contact { friction: case.friction(), impulse: case.rule() },
             profile: case.profile(),

@@ -76,7 +76,7 @@ fn random_collision(rng: &mut Rng) -> Collision {
 /// Independent drift measurements over the rows before the stop: the slip recomputed from
 /// the state, and the (S, theta) columns, against e0; both over v_ref.
 fn row_drift(c: &Collision, rows: &[TraceRow], stop: Option<f64>) -> (f64, f64) {
-    let r = c.ball.radius();
+    let r = c.balls.a.radius();
     let v_ref = c.scales.speed;
     let e0 = c.direction.expect("sliding");
     let th0 = c.theta().unwrap();

@@ -7,8 +7,9 @@ SI units throughout (kg, m, s, m/s, rad/s, N s, J).
 - ``run(path, ...)`` / ``run_toml(text, ...)``: a scene, as ``billiard-contact run SCENE
   --json``; returns the same JSON object as a dict (``report["trace"]`` with ``samples``).
 - ``BallBall(mass=, radius=, alpha=0.4, mu=, restitution=1.0)``: two identical balls;
-  ``model.resolve_lab(pa, va, wa, pb, vb, wb, up=(0, 0, 1))`` resolves one collision or N
-  (arrays of shape (3,) or (N, 3)).
+  ``BallBall(a=Ball(mass, radius, alpha), b=Ball(...), mu=, ...)``: balls of different
+  mass, size or inertia; ``model.resolve_lab(pa, va, wa, pb, vb, wb, up=(0, 0, 1))``
+  resolves one collision or N (arrays of shape (3,) or (N, 3)).
 - ``SpeedDependentFriction(a=, b=, c=)``: mu(S) = a + b exp(-c S).
 - ``billiard_contact.pooltool``: a ball-ball model for pooltool's ``Resolver.ball_ball``.
 
@@ -18,6 +19,7 @@ value, what is accepted); a failed run raises ``RuntimeError``.
 
 from billiard_contact._core import (
     TRACE_COLUMNS,
+    Ball,
     BallBall,
     SpeedDependentFriction,
     __version__,
@@ -27,6 +29,7 @@ from billiard_contact._core import (
 
 __all__ = [
     "TRACE_COLUMNS",
+    "Ball",
     "BallBall",
     "SpeedDependentFriction",
     "__version__",

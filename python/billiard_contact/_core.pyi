@@ -83,6 +83,25 @@ class SpeedDependentFriction:
     def mu(self, s: float) -> float:
         """mu at sliding speed s (m/s)."""
 
+class Ball:
+    """One ball: mass (kg), radius (m), alpha (I = alpha m r^2, in [1e-12, 2/3]; 0.4 a
+    solid ball). Give two to BallBall(a=..., b=...) for balls of different mass, size or
+    inertia.
+
+    Bad values raise ValueError with the library's message, e.g. "ball.mass = -1: > 0 kg".
+    """
+
+    def __init__(self, mass: float, radius: float, alpha: float = 0.4) -> None: ...
+    @property
+    def mass(self) -> float:
+        """Mass (kg)."""
+    @property
+    def radius(self) -> float:
+        """Radius (m)."""
+    @property
+    def alpha(self) -> float:
+        """I = alpha m r^2."""
+
 class LabResult(TypedDict):
     """Outgoing state of resolve_lab. For N collisions: arrays of shape (N, 3) and (N,);
     for one: arrays of shape (3,) and numpy scalars (shape ())."""
@@ -107,11 +126,14 @@ class LabResult(TypedDict):
     velocity change vanishes, or the line of centres is vertical)."""
 
 class BallBall:
-    """Two identical balls and their contact.
+    """Two balls and their contact.
 
-    mass (kg), radius (m), alpha (I = alpha m r^2, in [1e-12, 2/3]; 0.4 a solid ball),
-    mu (ball-ball friction: a number >= 0, or SpeedDependentFriction), restitution e in
-    [0, 1] (normal impulse P = (1 + e) m U(0)); profile ("half-sine", "hertz",
+    Two identical balls: mass (kg), radius (m), alpha (I = alpha m r^2, in [1e-12, 2/3];
+    0.4 a solid ball). Balls of different mass, size or inertia: a=Ball(...) and
+    b=Ball(...) instead (not both forms). mu (ball-ball friction: a number >= 0, or
+    SpeedDependentFriction), restitution e in [0, 1] (normal impulse P = (1 + e) m* v_n,
+    m* = m_A m_B / (m_A + m_B) the reduced mass and v_n the relative approach speed:
+    (1 + e) m U(0) for identical balls); profile ("half-sine", "hertz",
     "sine-power", "rectangle") and duration (s) of the normal force, used by the
     time-stepping methods (the closed form does not depend on them); friction and stick
     switch those effects.
@@ -123,9 +145,11 @@ class BallBall:
     def __init__(
         self,
         *,
-        mass: float,
-        radius: float,
-        alpha: float = 0.4,
+        mass: Optional[float] = None,
+        radius: Optional[float] = None,
+        alpha: Optional[float] = None,
+        a: Optional[Ball] = None,
+        b: Optional[Ball] = None,
         mu: Union[float, SpeedDependentFriction],
         restitution: float = 1.0,
         profile: Literal["half-sine", "hertz", "sine-power", "rectangle"] = "half-sine",
@@ -134,14 +158,20 @@ class BallBall:
         stick: bool = True,
     ) -> None: ...
     @property
-    def mass(self) -> float:
-        """Mass (kg)."""
+    def mass(self) -> Optional[float]:
+        """Mass (kg) of both balls; None when A and B differ."""
     @property
-    def radius(self) -> float:
-        """Radius (m)."""
+    def radius(self) -> Optional[float]:
+        """Radius (m) of both balls; None when A and B differ."""
     @property
-    def alpha(self) -> float:
-        """I = alpha m r^2."""
+    def alpha(self) -> Optional[float]:
+        """I = alpha m r^2, alpha of both balls; None when A and B differ."""
+    @property
+    def a(self) -> Ball:
+        """Ball A."""
+    @property
+    def b(self) -> Ball:
+        """Ball B."""
     @property
     def mu(self) -> Union[float, SpeedDependentFriction]: ...
     @property
@@ -163,7 +193,7 @@ class BallBall:
         pa, va, wa, pb, vb, wb: positions (m), velocities (m/s), spins (rad/s) of balls A
         and B, each of shape (3,) or (N, 3), any memory order (lists work too; a (3,) input
         is used for every row). up: away from the table, default (0, 0, 1). The centres must
-        touch: |pb - pa| = 2 radius within a relative 1e-9.
+        touch: |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
 
         method None is the closed form; "rk4", "dopri5", "dop853" integrate (rtol, default
         1e-10, sets atol too). N >= 2048 rows run on all cores without the GIL.

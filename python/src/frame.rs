@@ -10,7 +10,7 @@
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{CmState, Error, LabMotion};
 
-/// Relative tolerance on |p_B - p_A| = 2r (the library's, for lab scenes and rows).
+/// Relative tolerance on |p_B - p_A| = r_A + r_B (the library's, for lab scenes and rows).
 pub const TOUCH_TOLERANCE: f64 = 1e-9;
 
 /// One row of lab-frame input.
@@ -35,19 +35,27 @@ pub struct Frame {
     ez: Vector3<f64>,
     /// Velocity of the centre of mass (m/s).
     v_cm: Vector3<f64>,
+    /// 2 m_B / (m_A + m_B) and 2 m_A / (m_A + m_B): A moves with the first times u
+    /// relative to the centre of mass, B with minus the second (both 1 for identical
+    /// balls).
+    shares: [f64; 2],
     /// Unit `up`.
     up: Vector3<f64>,
 }
 
 impl Frame {
-    /// The frame of a row whose balls touch (|p_B - p_A| = 2r within [`TOUCH_TOLERANCE`]).
+    /// The frame of a row whose balls, of radii `radii` = [r_A, r_B] (m), touch
+    /// (|p_B - p_A| = r_A + r_B within [`TOUCH_TOLERANCE`]); the centre of mass moves with
+    /// the mass weights `weights` = [m_A, m_B] / (m_A + m_B).
     #[inline(always)]
-    pub fn new(row: &LabRow, radius: f64) -> Result<Self, Error> {
+    pub fn new(row: &LabRow, radii: [f64; 2], weights: [f64; 2]) -> Result<Self, Error> {
         let d = row.pb - row.pa;
         let dist = d.norm();
-        let touching = (dist - 2.0 * radius).abs() <= TOUCH_TOLERANCE * 2.0 * radius;
+        // r + r = 2r exactly for identical balls.
+        let contact = radii[0] + radii[1];
+        let touching = (dist - contact).abs() <= TOUCH_TOLERANCE * contact;
         if !touching {
-            return Err(not_touching(row, dist, radius));
+            return Err(not_touching(row, dist, radii));
         }
         let up_norm = row.up.norm();
         if !(up_norm > 0.0 && up_norm.is_finite()) {
@@ -72,7 +80,8 @@ impl Frame {
             ex,
             ey,
             ez,
-            v_cm: 0.5 * (row.va + row.vb),
+            v_cm: weights[0] * row.va + weights[1] * row.vb,
+            shares: [2.0 * weights[1], 2.0 * weights[0]],
             up,
         })
     }
@@ -92,11 +101,11 @@ impl Frame {
         let u = out(&cm.u_cm);
         (
             LabMotion {
-                velocity: self.v_cm + u,
+                velocity: self.v_cm + u * self.shares[0],
                 spin: out(&cm.omega_a),
             },
             LabMotion {
-                velocity: self.v_cm - u,
+                velocity: self.v_cm - u * self.shares[1],
                 spin: out(&cm.omega_b),
             },
         )
@@ -132,7 +141,12 @@ fn zero_up(row: &LabRow) -> Error {
 
 #[cold]
 #[inline(never)]
-fn not_touching(row: &LabRow, dist: f64, radius: f64) -> Error {
+fn not_touching(row: &LabRow, dist: f64, radii: [f64; 2]) -> Error {
+    let term = if radii[0] == radii[1] {
+        "2r"
+    } else {
+        "r_A + r_B"
+    };
     Error::invalid(
         "pb",
         format!(
@@ -140,8 +154,9 @@ fn not_touching(row: &LabRow, dist: f64, radius: f64) -> Error {
             row.pb.x, row.pb.y, row.pb.z
         ),
         format!(
-            "the balls must touch: |pb - pa| = 2r = {} m within a relative {TOUCH_TOLERANCE:e}",
-            2.0 * radius
+            "the balls must touch: |pb - pa| = {term} = {} m within a relative \
+             {TOUCH_TOLERANCE:e}",
+            radii[0] + radii[1]
         ),
     )
 }

@@ -1,12 +1,13 @@
 //! `BallBall`, `SpeedDependentFriction` and `BallBall.resolve_lab`: many lab-frame
 //! collisions from numpy arrays, in Rust, without the GIL.
 
+use crate::ball::Ball;
 use crate::errors::to_py;
 use crate::frame::{Frame, LabRow};
 use crate::settings;
 use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
 use billiard_contact::nalgebra::Vector3;
-use billiard_contact::{Error, Friction, Incoming, Scene};
+use billiard_contact::{BallPair, Error, Friction, Incoming, Scene};
 use numpy::npyffi::{npy_intp, NPY_ARRAY_CARRAY, NPY_TYPES, PY_ARRAY_API};
 use numpy::{
     PyArray1, PyArray2, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
@@ -127,6 +128,37 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Mu {
     }
 }
 
+impl BallBall {
+    /// The ball both A and B are, when they are identical.
+    fn shared(&self) -> Option<billiard_contact::Ball> {
+        let BallPair { a, b } = self.scene.balls;
+        (a == b).then_some(a)
+    }
+}
+
+/// The scene's balls as TOML: `[balls]` with the keys given (mass, radius, alpha: two
+/// identical balls) and `[balls.a]`, `[balls.b]` for the balls given; the library refuses
+/// a mix of the two forms, or one ball without the other, naming the keys.
+fn balls_toml(shared: [Option<f64>; 3], own: [Option<Ball>; 2]) -> String {
+    let mut text = String::from("[balls]\n");
+    for (key, value) in ["mass", "radius", "alpha"].iter().zip(shared) {
+        if let Some(x) = value {
+            text += &format!("{key} = {}\n", toml_f64(x));
+        }
+    }
+    for (name, ball) in ["a", "b"].iter().zip(own) {
+        if let Some(Ball { ball }) = ball {
+            text += &format!(
+                "[balls.{name}]\nmass = {}\nradius = {}\nalpha = {}\n",
+                toml_f64(ball.mass()),
+                toml_f64(ball.radius()),
+                toml_f64(ball.alpha())
+            );
+        }
+    }
+    text
+}
+
 /// A TOML number the library reads back to the same f64 (inf and nan included, so the
 /// library's own validation names them).
 fn toml_f64(x: f64) -> String {
@@ -139,9 +171,12 @@ fn toml_f64(x: f64) -> String {
     }
 }
 
-/// Two identical balls and their contact: mass (kg), radius (m), alpha (I = alpha m r^2),
-/// ball-ball friction mu (a number, or SpeedDependentFriction), restitution e
-/// (P = (1 + e) m U(0)), the normal-force profile and its duration (s; used by the
+/// Two balls and their contact: two identical balls of mass (kg), radius (m) and alpha
+/// (I = alpha m r^2, default 0.4), or balls of their own, a=Ball(...) and b=Ball(...)
+/// (different mass, size or inertia); ball-ball friction mu (a number, or
+/// SpeedDependentFriction), restitution e (P = (1 + e) m* v_n with the reduced mass
+/// m* = m_A m_B / (m_A + m_B) and the relative approach speed v_n; (1 + e) m U(0) for
+/// identical balls), the normal-force profile and its duration (s; used by the
 /// time-stepping methods and for stick times; the closed form does not depend on them),
 /// and the effects `friction` and `stick`.
 ///
@@ -152,9 +187,11 @@ pub struct BallBall {
     scene: Scene,
     /// The closed form over this model (resolve_lab's default).
     closed_form: BatchSetup,
-    mass: f64,
-    radius: f64,
-    alpha: f64,
+    /// Given as a=Ball(...), b=Ball(...) (else mass, radius, alpha).
+    by_ball: bool,
+    /// [r_A, r_B] (m) and the mass weights [m_A, m_B] / (m_A + m_B), for the lab frame.
+    radii: [f64; 2],
+    weights: [f64; 2],
     mu: Mu,
     restitution: f64,
     profile: String,
@@ -327,7 +364,7 @@ impl BallBall {
         i: usize,
     ) -> Result<RowOut, Error> {
         let row = inputs.row(i)?;
-        let frame = Frame::new(&row, self.radius)?;
+        let frame = Frame::new(&row, self.radii, self.weights)?;
         let cm = frame.to_cm(&row);
         let input = match frozen {
             None => BatchInput::cm(cm),
@@ -335,7 +372,7 @@ impl BallBall {
             Some(f) => BatchInput {
                 incoming: Incoming::Cm(cm),
                 overrides: Overrides {
-                    mu: Some(f.mu(cm.sliding_speed(self.radius))),
+                    mu: Some(f.mu(cm.sliding_speed_of(&self.scene.balls))),
                     ..Overrides::default()
                 },
             },
@@ -704,13 +741,16 @@ fn result_dict(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 #[pymethods]
 impl BallBall {
     #[new]
-    #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0,
-                        profile = "half-sine", duration = 2.5e-4, friction = true, stick = true))]
+    #[pyo3(signature = (*, mass = None, radius = None, alpha = None, a = None, b = None, mu,
+                        restitution = 1.0, profile = "half-sine", duration = 2.5e-4,
+                        friction = true, stick = true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        mass: f64,
-        radius: f64,
-        alpha: f64,
+        mass: Option<f64>,
+        radius: Option<f64>,
+        alpha: Option<f64>,
+        a: Option<&Bound<'_, Ball>>,
+        b: Option<&Bound<'_, Ball>>,
         mu: Mu,
         restitution: f64,
         profile: &str,
@@ -730,16 +770,15 @@ impl BallBall {
             ),
         };
         let profile_toml = serde_json::to_string(profile).expect("a string serialises");
+        let (a, b) = (a.map(|x| *x.get()), b.map(|x| *x.get()));
+        let balls_toml = balls_toml([mass, radius, alpha], [a, b]);
         let text = format!(
             "name = \"BallBall\"\n\
-             [balls]\nmass = {}\nradius = {}\nalpha = {}\n\
+             {balls_toml}\
              [contact]\nmu = {mu_toml}\nrestitution = {}\n\
              [contact.profile]\nshape = {profile_toml}\nduration = {}\n\
              [incoming.cm]\nu = [1.0, 0.0, 0.0]\n\
              [effects]\nfriction = {friction}\nstick = {stick}\n",
-            toml_f64(mass),
-            toml_f64(radius),
-            toml_f64(alpha),
             toml_f64(restitution),
             toml_f64(duration),
         );
@@ -748,12 +787,13 @@ impl BallBall {
             .map_err(to_py)?;
         let closed_form =
             BatchSetup::from_scene(&scene, settings::for_batch(None, None).map_err(to_py)?);
+        let balls = scene.balls;
         Ok(BallBall {
             scene,
             closed_form,
-            mass,
-            radius,
-            alpha,
+            by_ball: a.is_some() || b.is_some(),
+            radii: balls.radii(),
+            weights: balls.mass_weights(),
             mu,
             restitution,
             profile: profile.to_string(),
@@ -769,7 +809,7 @@ impl BallBall {
     /// balls A and B, each of shape (3,) or (N, 3) (any memory order; lists work too; a
     /// (3,) array is used for every row). up: the direction away from the table (need
     /// not be unit), (3,) or (N, 3), default (0, 0, 1). The centres must touch:
-    /// |pb - pa| = 2 radius within a relative 1e-9.
+    /// |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
     ///
     /// method: None (the closed form), "closed-form", "rk4", "dopri5" or "dop853";
     /// rtol: relative tolerance of the adaptive methods (atol = rtol), default 1e-10.
@@ -860,22 +900,38 @@ impl BallBall {
         out.into_dict(py)
     }
 
-    /// Mass m (kg).
+    /// Mass m (kg) of both balls; None when A and B differ.
     #[getter]
-    fn mass(&self) -> f64 {
-        self.mass
+    fn mass(&self) -> Option<f64> {
+        self.shared().map(|b| b.mass())
     }
 
-    /// Radius r (m).
+    /// Radius r (m) of both balls; None when A and B differ.
     #[getter]
-    fn radius(&self) -> f64 {
-        self.radius
+    fn radius(&self) -> Option<f64> {
+        self.shared().map(|b| b.radius())
     }
 
-    /// I = alpha m r^2.
+    /// I = alpha m r^2, alpha of both balls; None when A and B differ.
     #[getter]
-    fn alpha(&self) -> f64 {
-        self.alpha
+    fn alpha(&self) -> Option<f64> {
+        self.shared().map(|b| b.alpha())
+    }
+
+    /// Ball A.
+    #[getter]
+    fn a(&self) -> Ball {
+        Ball {
+            ball: self.scene.balls.a,
+        }
+    }
+
+    /// Ball B.
+    #[getter]
+    fn b(&self) -> Ball {
+        Ball {
+            ball: self.scene.balls.b,
+        }
     }
 
     /// Ball-ball friction: a number or SpeedDependentFriction.
@@ -898,12 +954,18 @@ impl BallBall {
             Mu::Constant(x) => format!("{x:?}"),
             Mu::Speed(s) => s.__repr__(),
         };
+        let balls = match self.shared() {
+            Some(ball) if !self.by_ball => format!(
+                "mass={:?}, radius={:?}, alpha={:?}",
+                ball.mass(),
+                ball.radius(),
+                ball.alpha()
+            ),
+            _ => format!("a={}, b={}", self.a().__repr__(), self.b().__repr__()),
+        };
         format!(
-            "BallBall(mass={:?}, radius={:?}, alpha={:?}, mu={mu}, restitution={:?}, \
+            "BallBall({balls}, mu={mu}, restitution={:?}, \
              profile=\"{}\", duration={:?}, friction={}, stick={})",
-            self.mass,
-            self.radius,
-            self.alpha,
             self.restitution,
             self.profile,
             self.duration,

@@ -1,6 +1,7 @@
 //! The Python extension `billiard_contact._core` (PyO3): scenes as the command line runs
 //! them, and batches of lab-frame collisions from numpy arrays.
 
+mod ball;
 mod errors;
 mod frame;
 mod lab;
@@ -11,6 +12,7 @@ use pyo3::prelude::*;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<ball::Ball>()?;
     m.add_class::<lab::BallBall>()?;
     m.add_class::<lab::SpeedDependentFriction>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;

@@ -49,7 +49,7 @@ use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::LabScene;
 use crate::model::material::{HertzContact, Material, YOUNGS_MODULUS_FIELD};
-use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
+use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::profile::{ForceProfile, Profile};
 use nalgebra::Vector3;
@@ -63,8 +63,8 @@ pub const DEFAULT_CHUNK_ROWS: usize = 16_384;
 /// What every row shares: the scene's parameters and the method.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BatchSetup {
-    /// The balls.
-    pub ball: Ball,
+    /// The balls (every row's, see [`Overrides`]).
+    pub balls: BallPair,
     /// Friction and impulse rule.
     pub contact: Contact,
     /// Effects.
@@ -82,7 +82,7 @@ impl BatchSetup {
     /// The parameters of `scene`, solved with `settings`.
     pub fn from_scene(scene: &Scene, settings: SolverSettings) -> Self {
         BatchSetup {
-            ball: scene.ball,
+            balls: scene.balls,
             contact: scene.contact,
             effects: scene.effects,
             profile: scene.profile.clone(),
@@ -92,7 +92,9 @@ impl BatchSetup {
     }
 }
 
-/// Per-row overrides of the setup (`None`: the setup's value).
+/// Per-row overrides of the setup (`None`: the setup's value). `mass`, `radius` and `alpha`
+/// change both balls of a setup of identical balls; a setup of unequal balls refuses them
+/// (which ball they would change is ambiguous).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Overrides {
     /// Mass (kg).
@@ -152,16 +154,28 @@ pub struct BatchOutput {
 }
 
 /// The ball and contact of a row: the setup's, or with the row's overrides.
-fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error> {
+fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(BallPair, Contact), Error> {
     if o.is_empty() {
-        return Ok((setup.ball, setup.contact));
+        return Ok((setup.balls, setup.contact));
     }
-    let b = setup.ball;
-    let ball = Ball::new(
-        o.mass.unwrap_or(b.mass()),
-        o.radius.unwrap_or(b.radius()),
-        o.alpha.unwrap_or(b.alpha()),
-    )?;
+    let b = setup.balls.a;
+    let ball_keys = [("mass", o.mass), ("radius", o.radius), ("alpha", o.alpha)];
+    let balls = match ball_keys.iter().find_map(|(k, v)| v.map(|v| (k, v))) {
+        None => setup.balls,
+        Some((key, value)) if !setup.balls.is_identical() => {
+            return Err(Error::invalid(
+                *key,
+                value,
+                "no mass, radius or alpha column with a scene of unequal balls ([balls.a] and \
+                 [balls.b] apply to every row)",
+            ))
+        }
+        Some(_) => BallPair::identical(Ball::new(
+            o.mass.unwrap_or(b.mass()),
+            o.radius.unwrap_or(b.radius()),
+            o.alpha.unwrap_or(b.alpha()),
+        )?),
+    };
     let friction = match o.mu {
         Some(mu) => Friction::constant(mu)?,
         None => setup.contact.friction,
@@ -171,16 +185,16 @@ fn params_of(setup: &BatchSetup, o: &Overrides) -> Result<(Ball, Contact), Error
     if let Some(d) = o.duration {
         crate::model::params::positive("duration", d, "s")?;
     }
-    Ok((ball, Contact { friction, impulse }))
+    Ok((balls, Contact { friction, impulse }))
 }
 
 /// The contact duration of a row (s): its `duration` column, else the Hertz contact time of
-/// the setup's material for the row's ball and approach speed (balls that approach), else
+/// the setup's material for the row's balls and approach speed (balls that approach), else
 /// the profile's.
 fn row_duration(
     setup: &BatchSetup,
     o: &Overrides,
-    ball: &Ball,
+    balls: &BallPair,
     cm: &CmState,
 ) -> Result<f64, Error> {
     match (o.duration, &setup.material) {
@@ -195,7 +209,7 @@ fn row_duration(
         )),
         (Some(d), None) => Ok(d),
         (None, Some(m)) if cm.u_cm.x > 0.0 => {
-            Ok(HertzContact::identical(ball, m, cm.u_cm.x)?.duration)
+            Ok(HertzContact::of_pair(balls, m, cm.u_cm.x)?.duration)
         }
         (None, _) => Ok(setup.profile.duration()),
     }
@@ -211,7 +225,7 @@ pub fn resolve(setup: &BatchSetup, input: &BatchInput) -> Result<BatchOutput, Er
 /// The closed-form kernel of the setup's own parameters, when the method is the closed form.
 fn shared_kernel(setup: &BatchSetup) -> Option<ClosedFormBatch> {
     (setup.settings.method() == Method::ClosedForm)
-        .then(|| ClosedFormBatch::new(setup.ball, setup.contact, setup.effects))
+        .then(|| ClosedFormBatch::new(setup.balls, setup.contact, setup.effects))
 }
 
 fn resolve_with(
@@ -219,16 +233,16 @@ fn resolve_with(
     shared: Option<&ClosedFormBatch>,
     input: &BatchInput,
 ) -> Result<BatchOutput, Error> {
-    let (ball, contact) = params_of(setup, &input.overrides)?;
-    let (cm, lab) = input.incoming.to_cm(ball.radius())?;
+    let (balls, contact) = params_of(setup, &input.overrides)?;
+    let (cm, lab) = input.incoming.to_cm(&balls)?;
     let profile = &setup.profile;
-    let time_scale = row_duration(setup, &input.overrides, &ball, &cm)?;
+    let time_scale = row_duration(setup, &input.overrides, &balls, &cm)?;
     let mut out = if setup.settings.method() == Method::ClosedForm {
         let own;
         let kernel = match shared {
             Some(k) if input.overrides.is_empty() => k,
             _ => {
-                own = ClosedFormBatch::new(ball, contact, setup.effects);
+                own = ClosedFormBatch::new(balls, contact, setup.effects);
                 &own
             }
         };
@@ -245,7 +259,7 @@ fn resolve_with(
             rhs_evaluations: 0,
         }
     } else {
-        let c = Collision::new(ball, contact, setup.effects, cm)?;
+        let c = Collision::new(balls, contact, setup.effects, cm)?;
         let o = solve(&c, profile, &setup.settings, None)?;
         BatchOutput {
             result: o.result,
@@ -290,7 +304,7 @@ pub fn resolve_slice(setup: &BatchSetup, inputs: &[BatchInput]) -> Vec<Result<Ba
         .collect()
 }
 
-/// Closed form of centre-of-mass states sharing the setup's ball and contact, one core, into
+/// Closed form of centre-of-mass states sharing the setup's balls and contact, one core, into
 /// `out` (same length as `states`): the fast path the 50 ns target is measured on (the
 /// outgoing state, impulse, S(0), theta, stick flag and p_stick; `benches/closed_form.rs`).
 pub fn closed_form_into(
@@ -305,7 +319,7 @@ pub fn closed_form_into(
             "one result per state",
         ));
     }
-    let kernel = ClosedFormBatch::new(setup.ball, setup.contact, setup.effects);
+    let kernel = ClosedFormBatch::new(setup.balls, setup.contact, setup.effects);
     for (s, o) in states.iter().zip(out.iter_mut()) {
         *o = kernel.resolve(s)?;
     }

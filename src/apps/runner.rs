@@ -42,8 +42,14 @@ pub fn run_scene(
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
             let (a, b) = frame.to_lab(&out);
-            let m = scene.ball.mass();
-            let dp = (m * (a.velocity + b.velocity) - m * (lab.a.velocity + lab.b.velocity)).amax();
+            // m_A (v_A + (m_B/m_A) v_B): m (v_A + v_B) exactly for identical balls.
+            let (m, ratio) = (
+                scene.balls.a.mass(),
+                scene.balls.b.mass() / scene.balls.a.mass(),
+            );
+            let dp = (m * (a.velocity + ratio * b.velocity)
+                - m * (lab.a.velocity + ratio * lab.b.velocity))
+                .amax();
             let err = if dp == 0.0 {
                 0.0
             } else {
@@ -115,7 +121,7 @@ fn table_phase(
         spin: m.spin,
     };
     Ok(Some(TableOutcome::new(
-        &scene.ball,
+        &scene.balls,
         table,
         &start(&lab.a, a),
         &start(&lab.b, b),

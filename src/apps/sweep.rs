@@ -8,7 +8,9 @@
 //! (the lab-frame scenes' geometry turned so that A travels along +y). A's spin is
 //! k v / r of topspin about -x (k = 0 stun, 1 natural roll, -1 draw) plus
 //! side · sign(cut) · v / r about +z (sign(0) = +1): positive side spin is inside English,
-//! which adds to the throw of the cut.
+//! which adds to the throw of the cut. Balls of different radii both rest on the cloth:
+//! B's centre is then A + 2 sqrt(r_A r_B) (sin(cut), cos(cut), 0) + (r_B - r_A) e_z, and
+//! r is A's radius in the spins (docs/unequal-balls.md).
 
 use crate::apps::runner::run_scene;
 use crate::error::Error;
@@ -16,7 +18,7 @@ use crate::formats::number::{finite_output, shortest};
 use crate::formats::scene::{Incoming, Scene};
 use crate::integrator::SolverSettings;
 use crate::model::frame::{horizontal, LabScene};
-use crate::model::params::Ball;
+use crate::model::params::BallPair;
 use crate::model::state::LabBall;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -250,9 +252,13 @@ pub struct Shot {
 }
 
 impl Shot {
-    /// The lab scene of this shot for balls `ball` (module documentation).
-    pub fn lab_scene(&self, ball: &Ball) -> LabScene {
-        let r = ball.radius();
+    /// The lab scene of this shot for the balls `balls` (module documentation; one
+    /// [`crate::Ball`] for two identical balls).
+    pub fn lab_scene(&self, balls: impl Into<BallPair>) -> LabScene {
+        let balls = balls.into();
+        let (r, rb) = (balls.a.radius(), balls.b.radius());
+        // 2 sqrt(r r) is 2r exactly (a correctly rounded square root of a square).
+        let reach = 2.0 * (r * rb).sqrt();
         let v = self.speed;
         let (sin, cos) = self.cut_deg.to_radians().sin_cos();
         let a = Vector3::new(0.0, 0.0, r);
@@ -265,7 +271,7 @@ impl Shot {
                 spin: Vector3::new(-self.spin.factor() * w, 0.0, self.side * side_sign * w),
             },
             b: LabBall {
-                position: a + 2.0 * r * Vector3::new(sin, cos, 0.0),
+                position: a + reach * Vector3::new(sin, cos, 0.0) + Vector3::new(0.0, 0.0, rb - r),
                 velocity: Vector3::zeros(),
                 spin: Vector3::zeros(),
             },
@@ -320,7 +326,7 @@ pub fn run_sweep(
 
 /// One shot: the scene with the shot's lab set-up, run, and its row.
 pub fn run_shot(scene: &Scene, settings: &SolverSettings, shot: Shot) -> Result<SweepRow, Error> {
-    let lab = shot.lab_scene(&scene.ball);
+    let lab = shot.lab_scene(scene.balls);
     let mut s = scene.clone();
     s.incoming = Incoming::Lab(lab);
     let run = run_scene(&s, settings, None)?;
@@ -458,6 +464,7 @@ pub fn largest_difference(a: &[SweepRow], b: &[SweepRow]) -> Option<(f64, Shot)>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::Ball;
 
     #[test]
     fn grid_order_is_spin_speed_side_cut() {
@@ -487,7 +494,7 @@ mod tests {
             side: 0.5,
             cut_deg: -30.0,
         };
-        let lab = shot.lab_scene(&ball);
+        let lab = shot.lab_scene(ball);
         let d = lab.b.position - lab.a.position;
         assert!((d.norm() - 2.0 * ball.radius()).abs() < 1e-15);
         assert!((d.x / d.norm() + 0.5).abs() < 1e-15);

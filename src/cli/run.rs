@@ -208,7 +208,7 @@ fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<
         let file = AtomicFile::create(path)?;
         let name = path.file_name().unwrap_or_default().to_string_lossy();
         let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
-        let drawn = paths::png(table_phase, scene.ball.radius(), &title, &temp);
+        let drawn = paths::png(table_phase, scene.balls.radii(), &title, &temp);
         let moved =
             drawn.and_then(|_| std::fs::rename(&temp, path).map_err(|e| Error::io(path, e)));
         if moved.is_err() {
@@ -217,7 +217,7 @@ fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<
         drop(file);
         moved
     } else {
-        let svg = paths::svg(table_phase, scene.ball.radius(), &title)?;
+        let svg = paths::svg(table_phase, scene.balls.radii(), &title)?;
         let mut file = AtomicFile::create(path)?;
         file.write_all(svg.as_bytes())
             .map_err(|e| Error::io(path, e))?;

@@ -16,12 +16,13 @@ pub struct Checks {
     /// Largest component difference of the outgoing state from the closed form: velocities
     /// over v_ref, spins over v_ref / r.
     pub closed_form_error: f64,
-    /// Ball A's momentum change against the applied impulses -P e_x - J e, over m v_ref.
+    /// Ball A's momentum change against the applied impulses -P e_x - J e, over m v_ref
+    /// (M u for the pair mass M of unequal balls).
     pub momentum_error: f64,
     /// Change of the angular momentum of eq 36, over m v_ref r.
     pub angular_momentum_error: f64,
     /// |(H - H_sfr) - (2 U(0) P - P^2/m)| over m v_ref^2 (eq 50), H from the kinetic
-    /// energies (eq 38).
+    /// energies (eq 38); m the pair mass M for unequal balls.
     pub energy_balance_error: f64,
     /// The carried slip against (2V + r Omega_z, 2W - r Omega_y) recomputed, over v_ref
     /// (time stepping only).
@@ -48,12 +49,12 @@ pub fn checks(
 ) -> Checks {
     let sc = c.scales;
     let ratio = |d: f64, r: f64| if d == 0.0 { 0.0 } else { d / r };
-    let m = c.ball.mass();
+    let m = c.balls.pair_mass();
     let e = c.direction.unwrap_or_default();
     let applied = -Vector3::new(c.impulse, j * e.x, j * e.y);
     let momentum = (m * (out.u_cm - c.incoming.u_cm) - applied).amax();
-    let angular = (out.angular_momentum(&c.ball) - c.incoming.angular_momentum(&c.ball)).amax();
-    let heat = c.incoming.kinetic_energy(&c.ball) - out.kinetic_energy(&c.ball);
+    let angular = (out.angular_momentum(&c.balls) - c.incoming.angular_momentum(&c.balls)).amax();
+    let heat = c.incoming.kinetic_energy(&c.balls) - out.kinetic_energy(&c.balls);
     let u0 = c.incoming.u_cm.x;
     let p = c.impulse;
     let balance = (heat - heat_sliding) - p * (2.0 * u0 - p / m);

@@ -16,13 +16,18 @@
 //!
 //! While sliding, the state at time t is this solution at P = p(t)
 //! (docs/model.md#the-exact-state-during-the-contact); [`ClosedForm::at_impulse`] gives it.
+//!
+//! For balls of different mass, radius or alpha (docs/unequal-balls.md) m is the pair mass
+//! M = 2 m_A m_B / (m_A + m_B), the slip rate k is K = 1/m_A + 1/m_B + r_A^2/I_A + r_B^2/I_B,
+//! and each ball's spin changes with its own 1 / (alpha m r); for identical balls every one
+//! of these equals the paper's coefficient bit for bit ([`BallPair`]).
 
 use crate::contact::friction::{Sliding, SlidingLaw};
 use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::model::collision::Collision;
 use crate::model::effects::Effects;
-use crate::model::params::{Ball, Contact, Friction, FrictionLaw, ImpulseRule};
+use crate::model::params::{BallPair, Contact, Friction, FrictionLaw, ImpulseRule};
 use crate::model::state::{planar_length, slip_angle, CmState};
 use nalgebra::Vector2;
 
@@ -44,7 +49,7 @@ pub struct ClosedForm {
     incoming: CmState,
     direction: Vector2<f64>,
     mass: f64,
-    spin_per_impulse: f64,
+    spin_per_impulse: [f64; 2],
     u0: f64,
 }
 
@@ -69,13 +74,13 @@ impl ClosedForm {
     /// ```
     #[inline]
     pub fn new(c: &Collision) -> Self {
-        let ball = c.ball;
-        let m = ball.mass();
+        let balls = c.balls;
+        let m = balls.pair_mass();
         let law = match (c.collides(), c.active_friction()) {
             (true, Some(f)) => Some(SlidingLaw::new(
                 f,
                 c.s0,
-                ball.slip_rate_per_friction_impulse(),
+                balls.slip_rate_per_friction_impulse(),
                 c.effects.stick,
             )),
             _ => None,
@@ -97,7 +102,7 @@ impl ClosedForm {
             incoming: c.incoming,
             direction: c.direction.unwrap_or_else(Vector2::zeros),
             mass: m,
-            spin_per_impulse: 1.0 / (ball.alpha() * m * ball.radius()),
+            spin_per_impulse: [balls.spin_per_impulse_a(), balls.spin_per_impulse_b()],
             u0: c.incoming.u_cm.x,
         };
         if !c.collides() {
@@ -148,26 +153,32 @@ impl ClosedForm {
 }
 
 /// Eqs 24-26 and 31-33: the state after normal impulse `p` and tangential impulse `j`
-/// (N s) along -e on A (m/s, rad/s).
+/// (N s) along -e on A (m/s, rad/s); `m` the pair mass, `spin_per_impulse` the
+/// 1 / (alpha m r) of A and of B.
 #[inline]
 fn apply_impulses(
     mut s: CmState,
     e: Vector2<f64>,
     m: f64,
-    spin_per_impulse: f64,
+    spin_per_impulse: [f64; 2],
     p: f64,
     j: f64,
 ) -> CmState {
     s.u_cm.x -= p / m;
     s.u_cm.y -= j / m * e.x;
     s.u_cm.z -= j / m * e.y;
-    let dy = j * spin_per_impulse * e.y;
-    let dz = -j * spin_per_impulse * e.x;
-    s.omega_a.y += dy;
-    s.omega_b.y += dy;
-    s.omega_a.z += dz;
-    s.omega_b.z += dz;
+    apply_spin_changes(&mut s, e, spin_per_impulse, j);
     s
+}
+
+/// Eqs 32-33 for each ball: Omega' - Omega = -J r (e_x x e) / I = J (e_z, -e_y) / (alpha m r).
+#[inline(always)]
+fn apply_spin_changes(s: &mut CmState, e: Vector2<f64>, spin_per_impulse: [f64; 2], j: f64) {
+    let [ka, kb] = spin_per_impulse;
+    s.omega_a.y += j * ka * e.y;
+    s.omega_a.z += -j * ka * e.x;
+    s.omega_b.y += j * kb * e.y;
+    s.omega_b.z += -j * kb * e.x;
 }
 
 /// The closed form of many centre-of-mass states that share balls, contact and effects:
@@ -192,44 +203,52 @@ fn apply_impulses(
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClosedFormBatch {
-    ball: Ball,
+    balls: BallPair,
+    /// r_A (m) and r_B / r_A, for the slip.
+    radius_a: f64,
+    radius_ratio: f64,
     rule: ImpulseRule,
     /// The friction acting (`None`: off, or mu = 0).
     friction: Option<Friction>,
     stick: bool,
     contact: Contact,
     effects: Effects,
-    /// k = 2 (1 + 1/alpha) / m (1/kg).
+    /// k = 2 (1 + 1/alpha) / m (1/kg), K for unequal balls.
     k: f64,
     /// 1 / k (kg).
     inv_k: f64,
     /// 1 / (k mu) for constant mu (kg); infinite for mu = 0.
     inv_k_mu: f64,
-    /// 1 / m (1/kg).
+    /// 1 / m (1/kg), 1 / M for unequal balls.
     inv_m: f64,
-    /// 1 / (alpha m r).
-    spin_per_impulse: f64,
+    /// 1 / (alpha m r) of A and of B.
+    spin_per_impulse: [f64; 2],
 }
 
 impl ClosedFormBatch {
-    /// The shared parameters of a batch.
-    pub fn new(ball: Ball, contact: Contact, effects: Effects) -> Self {
+    /// The shared parameters of a batch: `balls` is one [`crate::Ball`] (two identical
+    /// balls) or a [`BallPair`].
+    pub fn new(balls: impl Into<BallPair>, contact: Contact, effects: Effects) -> Self {
+        let balls = balls.into();
         let f = contact.friction;
+        let k = balls.slip_rate_per_friction_impulse();
         ClosedFormBatch {
-            ball,
+            balls,
+            radius_a: balls.a.radius(),
+            radius_ratio: balls.radius_ratio(),
             rule: contact.impulse,
             friction: (effects.friction && !f.is_zero()).then_some(f),
             stick: effects.stick,
             contact,
             effects,
-            k: ball.slip_rate_per_friction_impulse(),
-            inv_k: 1.0 / ball.slip_rate_per_friction_impulse(),
+            k,
+            inv_k: 1.0 / k,
             inv_k_mu: match f.law() {
-                FrictionLaw::Constant(mu) => 1.0 / (ball.slip_rate_per_friction_impulse() * mu),
+                FrictionLaw::Constant(mu) => 1.0 / (k * mu),
                 FrictionLaw::SpeedDependent { .. } => f64::INFINITY,
             },
-            inv_m: 1.0 / ball.mass(),
-            spin_per_impulse: 1.0 / (ball.alpha() * ball.mass() * ball.radius()),
+            inv_m: 1.0 / balls.pair_mass(),
+            spin_per_impulse: [balls.spin_per_impulse_a(), balls.spin_per_impulse_b()],
         }
     }
 
@@ -239,13 +258,13 @@ impl ClosedFormBatch {
         if !s.is_finite() {
             return Err(self.invalid(s));
         }
-        let m = self.ball.mass();
+        let m = self.balls.pair_mass();
         let u0 = s.u_cm.x;
         let p = self.rule.impulse(m, u0)?;
         if let (Some(FrictionLaw::Constant(mu)), true) = (self.friction.map(|f| f.law()), p > 0.0) {
             return Ok(self.resolve_constant_mu(s, mu, p));
         }
-        let slip = s.slip(self.ball.radius());
+        let slip = s.slip_with(self.radius_a, self.radius_ratio);
         let s0 = planar_length(slip);
         let theta = (s0 > 0.0).then(|| slip_angle(slip));
         let law = match self.friction {
@@ -298,7 +317,7 @@ impl ClosedFormBatch {
     /// reciprocals of m, k and k mu precomputed (multiplications instead of divisions).
     #[inline(always)]
     fn resolve_constant_mu(&self, s: &CmState, mu: f64, p: f64) -> ContactResult {
-        let slip = s.slip(self.ball.radius());
+        let slip = s.slip_with(self.radius_a, self.radius_ratio);
         let s0 = planar_length(slip);
         let (theta, e, p_stick) = if s0 > 0.0 {
             (
@@ -321,12 +340,7 @@ impl ClosedFormBatch {
         out.u_cm.x -= p * inv_m;
         out.u_cm.y -= j * inv_m * e.x;
         out.u_cm.z -= j * inv_m * e.y;
-        let dy = j * self.spin_per_impulse * e.y;
-        let dz = -j * self.spin_per_impulse * e.x;
-        out.omega_a.y += dy;
-        out.omega_b.y += dy;
-        out.omega_a.z += dz;
-        out.omega_b.z += dz;
+        apply_spin_changes(&mut out, e, self.spin_per_impulse, j);
         ContactResult {
             out,
             impulse: p,
@@ -344,7 +358,7 @@ impl ClosedFormBatch {
     #[cold]
     #[inline(never)]
     fn invalid(&self, s: &CmState) -> Error {
-        match Collision::new(self.ball, self.contact, self.effects, *s) {
+        match Collision::new(self.balls, self.contact, self.effects, *s) {
             Err(e) => e,
             Ok(_) => Error::invalid("incoming.cm", "a non-finite state", "finite components"),
         }
@@ -354,6 +368,7 @@ impl ClosedFormBatch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::Ball;
     use nalgebra::Vector3;
 
     /// State number `i` of a varied sweep: approaching and separating, cut angles, spins;

@@ -121,7 +121,7 @@ fn time_step<P: ForceProfile + ?Sized>(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<(), Error> {
     let run = integrate(c, profile, settings, trace)?;
-    let m = c.ball.mass();
+    let m = c.balls.pair_mass();
     let e = c.direction.unwrap_or_else(Vector2::zeros);
     let du = run.out.u_cm - c.incoming.u_cm;
     let j = -m * (du.y * e.x + du.z * e.y);
@@ -136,7 +136,7 @@ fn time_step<P: ForceProfile + ?Sized>(
     }
     r.tangential_impulse = j.max(0.0);
     r.heat_sliding = run.heat_sliding;
-    r.heat = c.incoming.kinetic_energy(&c.ball) - run.out.kinetic_energy(&c.ball);
+    r.heat = c.incoming.kinetic_energy(&c.balls) - run.out.kinetic_energy(&c.balls);
     r.out = run.out;
     outcome.stats = run.stats;
     outcome.check = checks(c, &outcome.exact, &run.out, j, run.heat_sliding);

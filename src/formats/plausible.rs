@@ -113,9 +113,21 @@ impl Plausible {
     }
 }
 
-/// The warnings of a scene's values (balls, material, contact duration), one line each.
+/// The warnings of a scene's values (balls, material, contact duration), one line each;
+/// unequal balls (`[balls.a]`, `[balls.b]`) are named by their own fields.
 pub fn scene_warnings(scene: &Scene) -> Vec<String> {
-    let mut checks = vec![(MASS, scene.ball.mass()), (RADIUS, scene.ball.radius())];
+    let (a, b) = (&scene.balls.a, &scene.balls.b);
+    let mut checks = if a == b {
+        vec![(MASS, a.mass()), (RADIUS, a.radius())]
+    } else {
+        let named = |p: Plausible, field| Plausible { field, ..p };
+        vec![
+            (named(MASS, "balls.a.mass"), a.mass()),
+            (named(RADIUS, "balls.a.radius"), a.radius()),
+            (named(MASS, "balls.b.mass"), b.mass()),
+            (named(RADIUS, "balls.b.radius"), b.radius()),
+        ]
+    };
     match &scene.material {
         // The duration follows from the material (and the checked mass and radius).
         Some(m) => checks.push((YOUNGS_MODULUS, m.youngs_modulus())),
@@ -127,13 +139,19 @@ pub fn scene_warnings(scene: &Scene) -> Vec<String> {
         .collect()
 }
 
-/// For balls that do not touch (|p_B - p_A| = `distance`, 2r = `contact_distance`, m): the
-/// unit slip that explains it, as a clause to append to the error (empty when none does):
-/// a radius that looks like millimetres, or positions that do.
-pub(crate) fn not_touching_hint(distance: f64, contact_distance: f64) -> String {
+/// For balls that do not touch (|p_B - p_A| = `distance`, r_A + r_B = `contact_distance`,
+/// m, named `contact_term`: "2r" for identical balls): the unit slip that explains it, as a
+/// clause to append to the error (empty when none does): the radius of identical balls that
+/// looks like millimetres, or positions that do.
+pub(crate) fn not_touching_hint(
+    distance: f64,
+    contact_distance: f64,
+    contact_term: &str,
+) -> String {
     let r = contact_distance / 2.0;
     let near = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-2;
-    if let Some((name, symbol, size)) = RADIUS.slip(r) {
+    let identical = contact_term == "2r";
+    if let Some((name, symbol, size)) = RADIUS.slip(r).filter(|_| identical) {
         let fits = if near(distance, contact_distance * size) {
             ": the positions fit that radius"
         } else {
@@ -146,7 +164,9 @@ pub(crate) fn not_touching_hint(distance: f64, contact_distance: f64) -> String 
     }
     for (name, _, size) in RADIUS.slips {
         if near(distance * size, contact_distance) {
-            return format!("; the positions look like {name} (|p_B - p_A| is 2r in {name})");
+            return format!(
+                "; the positions look like {name} (|p_B - p_A| is {contact_term} in {name})"
+            );
         }
     }
     String::new()
@@ -188,14 +208,18 @@ mod tests {
     /// 0.05715; positions in mm with the radius in metres: the other way round.
     #[test]
     fn not_touching_names_the_slip() {
-        let h = not_touching_hint(0.05715, 57.15);
+        let h = not_touching_hint(0.05715, 57.15, "2r");
         assert!(
             h.contains("balls.radius = 28.575 m looks like millimetres")
                 && h.contains("positions fit"),
             "{h}"
         );
-        let h = not_touching_hint(57.15, 0.05715);
+        let h = not_touching_hint(57.15, 0.05715, "2r");
         assert!(h.contains("the positions look like millimetres"), "{h}");
-        assert_eq!(not_touching_hint(0.07, 0.06), "");
+        assert_eq!(not_touching_hint(0.07, 0.06, "2r"), "");
+        // Unequal balls: no single radius to blame; positions in mm still show.
+        assert_eq!(not_touching_hint(0.05715, 57.15, "r_A + r_B"), "");
+        let h = not_touching_hint(57.15, 0.05715, "r_A + r_B");
+        assert!(h.contains("is r_A + r_B in millimetres"), "{h}");
     }
 }

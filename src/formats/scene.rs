@@ -50,7 +50,7 @@ use crate::model::collision::Collision;
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
 use crate::model::material::{HertzContact, Material, POISSON_RATIO_FIELD, YOUNGS_MODULUS_FIELD};
-use crate::model::params::{Ball, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
+use crate::model::params::{Ball, BallPair, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings};
@@ -83,13 +83,13 @@ pub struct LabFrame<'a> {
 }
 
 impl Incoming {
-    /// The paper's centre-of-mass state of balls of radius `radius` (m); for lab input also
-    /// the lab scene with its frame (the balls must touch, see [`Frame::new`]).
-    pub fn to_cm(&self, radius: f64) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
+    /// The paper's centre-of-mass state of the balls `balls`; for lab input also the lab
+    /// scene with its frame (the balls must touch, see [`Frame::of_pair`]).
+    pub fn to_cm(&self, balls: &BallPair) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
         Ok(match self {
             Incoming::Cm(cm) => (*cm, None),
             Incoming::Lab(lab) => {
-                let frame = Frame::new(lab, radius)?;
+                let frame = Frame::of_pair(lab, balls)?;
                 (frame.to_cm(lab), Some(LabFrame { frame, lab }))
             }
         })
@@ -101,10 +101,12 @@ impl Incoming {
 pub struct Scene {
     /// Name shown in reports.
     pub name: String,
-    /// The balls.
-    pub ball: Ball,
-    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`), when given: the
-    /// profile's duration then follows from it ([`Scene::hertz`]).
+    /// The balls: `[balls]` (identical; `Ball::into()` makes the pair) or `[balls.a]` and
+    /// `[balls.b]`.
+    pub balls: BallPair,
+    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`, the same for
+    /// both balls), when given: the profile's duration then follows from it
+    /// ([`Scene::hertz`]).
     pub material: Option<Material>,
     /// Friction and impulse rule.
     pub contact: Contact,
@@ -218,11 +220,65 @@ impl RawTable {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawBalls {
-    mass: f64,
-    radius: f64,
+    mass: Option<f64>,
+    radius: Option<f64>,
     alpha: Option<f64>,
     youngs_modulus: Option<f64>,
     poisson_ratio: Option<f64>,
+    a: Option<RawBall>,
+    b: Option<RawBall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBall {
+    mass: f64,
+    radius: f64,
+    alpha: Option<f64>,
+}
+
+impl RawBalls {
+    /// `[balls]` with mass, radius (and alpha): two identical balls; `[balls.a]` and
+    /// `[balls.b]`: balls of their own; never both forms.
+    fn build(&self) -> Result<BallPair, Error> {
+        let shared = self.mass.is_some() || self.radius.is_some() || self.alpha.is_some();
+        let own = |section: &str, b: &RawBall| {
+            Ball::in_section(section, b.mass, b.radius, b.alpha.unwrap_or(ALPHA_SOLID))
+        };
+        match (&self.a, &self.b) {
+            (Some(a), Some(b)) if !shared => {
+                Ok(BallPair::new(own("balls.a", a)?, own("balls.b", b)?))
+            }
+            (None, None) => {
+                let missing = |key: &str| {
+                    Error::invalid(
+                        format!("balls.{key}"),
+                        "missing",
+                        "[balls] with mass and radius (two identical balls), or [balls.a] and \
+                         [balls.b]",
+                    )
+                };
+                let mass = self.mass.ok_or_else(|| missing("mass"))?;
+                let radius = self.radius.ok_or_else(|| missing("radius"))?;
+                let ball = Ball::new(mass, radius, self.alpha.unwrap_or(ALPHA_SOLID))?;
+                Ok(BallPair::identical(ball))
+            }
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "balls.mass/radius/alpha",
+                "given together with [balls.a] and [balls.b]",
+                "one form: [balls] keys for two identical balls, or [balls.a] and [balls.b]",
+            )),
+            (Some(_), None) | (None, Some(_)) => Err(Error::invalid(
+                if self.a.is_some() {
+                    "balls.b"
+                } else {
+                    "balls.a"
+                },
+                "missing",
+                "[balls.a] and [balls.b] together (or [balls] keys for identical balls)",
+            )),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -413,11 +469,7 @@ impl Scene {
                 path: shown.clone(),
                 message: explain_toml_error(text, &e),
             })?;
-        let ball = Ball::new(
-            raw.balls.mass,
-            raw.balls.radius,
-            raw.balls.alpha.unwrap_or(ALPHA_SOLID),
-        )?;
+        let balls = raw.balls.build()?;
         let material = material_of(&raw.balls)?;
         let friction = raw.contact.mu.build()?;
         let impulse =
@@ -440,9 +492,9 @@ impl Scene {
         let profile = match (given, &material) {
             (Some(p), _) => p,
             (None, Some(mat)) => {
-                let (cm, _) = incoming.to_cm(ball.radius())?;
-                let c = Collision::new(ball, contact, effects, cm)?;
-                let hertz = HertzContact::identical(&ball, mat, c.incoming.u_cm.x)?;
+                let (cm, _) = incoming.to_cm(&balls)?;
+                let c = Collision::new(balls, contact, effects, cm)?;
+                let hertz = HertzContact::of_pair(&balls, mat, c.incoming.u_cm.x)?;
                 raw.contact.profile.build_with(base, Some(hertz.duration))?
             }
             (None, None) => unreachable!("without the material the profile is built above"),
@@ -454,7 +506,7 @@ impl Scene {
                     .map(|s| s.to_string_lossy().into_owned())
                     .unwrap_or_else(|| "scene".into())
             }),
-            ball,
+            balls,
             material,
             contact,
             profile,
@@ -489,9 +541,8 @@ impl Scene {
         Table::new(
             self.table.unwrap_or_default(),
             lab.up,
-            lab.a.position,
-            lab.b.position,
-            self.ball.radius(),
+            [lab.a.position, lab.b.position],
+            [self.balls.a.radius(), self.balls.b.radius()],
         )
         .map(Some)
     }
@@ -499,9 +550,9 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
-        let (cm, lab) = self.incoming.to_cm(self.ball.radius())?;
+        let (cm, lab) = self.incoming.to_cm(&self.balls)?;
         Ok((
-            Collision::new(self.ball, self.contact, self.effects, cm)?,
+            Collision::new(self.balls, self.contact, self.effects, cm)?,
             lab,
         ))
     }
@@ -513,7 +564,7 @@ impl Scene {
             return Ok(None);
         };
         let (c, _) = self.collision()?;
-        HertzContact::identical(&self.ball, material, c.incoming.u_cm.x).map(Some)
+        HertzContact::of_pair(&self.balls, material, c.incoming.u_cm.x).map(Some)
     }
 }
 

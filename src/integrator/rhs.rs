@@ -17,6 +17,14 @@
 //! dH_sfr/ds   = mu n (slip . e)               (47, signed)
 //! ```
 //!
+//! For unequal balls (docs/unequal-balls.md) the scales use the pair mass M and r_A, the
+//! carried "Omega" is (r_A Omega^A + r_B Omega^B) / r_A, and 2 / alpha becomes
+//! i_A + i_B with i = M / (alpha m) per ball (each 1/alpha for identical balls):
+//!
+//! ```text
+//! dOmega_y/ds = (i_A + i_B) mu n sin(theta),  d slip/ds = -(2 + i_A + i_B) mu n e
+//! ```
+//!
 //! Eq 17 (Omega_x constant) needs no integration. The velocity and spin components are
 //! carried as changes from the incoming state, so the outgoing spins of the two balls are
 //! Omega^{A,B}(0) + Delta Omega / 2 (eq 11) without cancellation. The slip
@@ -170,8 +178,9 @@ pub struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
     pub friction: Friction,
     /// v_ref (m/s), to evaluate a speed-dependent mu.
     pub speed_scale: f64,
-    /// 1 / alpha.
-    pub inv_alpha: f64,
+    /// M / (alpha_A m_A) and M / (alpha_B m_B) ([`crate::BallPair::scaled_inverse_alphas`]):
+    /// both 1 / alpha for identical balls.
+    pub inv_alpha: [f64; 2],
     /// Initial sliding direction e0 (unit).
     pub e0: Vector2<f64>,
     /// Direction rule.
@@ -231,8 +240,11 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
             Direction::Frozen => (self.e0, speed),
         };
         let fr = self.friction.mu_continued(s_mu * self.speed_scale) * n;
-        let spin = 2.0 * fr * self.inv_alpha;
-        let slip_rate = 2.0 * fr * (1.0 + self.inv_alpha);
+        // For identical balls (ia = ib = 1/alpha) these are 2 fr / alpha and
+        // 2 fr (1 + 1/alpha) bit for bit: both sums are exact doublings.
+        let [ia, ib] = self.inv_alpha;
+        let spin = fr * (ia + ib);
+        let slip_rate = fr * ((1.0 + ia) + (1.0 + ib));
         *dy = SVector::from([
             1.0,
             -n,
@@ -282,7 +294,7 @@ mod tests {
             impulse: 1.3,
             friction: Friction::constant(0.2).unwrap(),
             speed_scale: 1.0,
-            inv_alpha: 2.5,
+            inv_alpha: [2.5, 2.5],
             e0: Vector2::new(0.6, 0.8),
             direction: Direction::CurrentSlip,
             slip_floor: 0.0,

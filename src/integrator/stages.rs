@@ -71,7 +71,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
     /// variable of `time_map`.
     pub(super) fn new(c: &'a Collision, profile: &'a P, time_map: TimeMap) -> Self {
         let sc = c.scales;
-        let slip0 = c.incoming.slip(c.ball.radius()) / sc.speed;
+        let slip0 = c.incoming.slip_of(&c.balls) / sc.speed;
         Problem {
             c,
             profile,
@@ -92,7 +92,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
             impulse: self.pi,
             friction: self.c.active_friction().unwrap_or(self.c.contact.friction),
             speed_scale: self.c.scales.speed,
-            inv_alpha: 1.0 / self.c.ball.alpha(),
+            inv_alpha: self.c.balls.scaled_inverse_alphas(),
             e0: self.e0,
             direction,
             slip_floor: SLIP_ROUND_OFF * self.slip0.norm(),

@@ -17,8 +17,11 @@ pub(super) struct Units<'a, P: ForceProfile + ?Sized> {
     time_map: TimeMap,
     /// v_ref (m/s).
     v: f64,
-    /// v_ref / r (rad/s).
-    w: f64,
+    /// The change of each ball's spin per unit change of the scaled Omega (rad/s): half of
+    /// v_ref / r for identical balls (eq 11); for balls of different size or inertia A takes
+    /// the share i_A / (i_A + i_B) of the change of r_A Omega^A + r_B Omega^B and B the
+    /// rest, over r_B (v_ref / r_A the spin scale).
+    spin_share: [f64; 2],
     /// m v_ref^2 (J).
     e: f64,
     /// Initial sliding direction e0 (unit; zero without sliding): the sign of the slip
@@ -36,7 +39,13 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
             profile,
             time_map,
             v: sc.speed,
-            w: sc.spin,
+            spin_share: {
+                let [ia, ib] = c.balls.scaled_inverse_alphas();
+                [
+                    ia / (ia + ib) * sc.spin,
+                    ib / (ia + ib) * (sc.spin / c.balls.radius_ratio()),
+                ]
+            },
             e: sc.energy,
             e0: c.direction.unwrap_or_else(Vector2::zeros),
         }
@@ -48,10 +57,11 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
         let [du, dv, dw] = y.delta_u();
         let [doy, doz] = y.delta_omega_yz();
         s.u_cm += Vector3::new(du, dv, dw) * self.v;
-        // Eq 11: both balls' spins change by half the change of Omega.
-        let half = Vector3::new(0.0, doy, doz) * (0.5 * self.w);
-        s.omega_a += half;
-        s.omega_b += half;
+        // Eq 11: both balls' spins change by half the change of Omega (the shares of unequal
+        // balls: `spin_share`).
+        let change = Vector3::new(0.0, doy, doz);
+        s.omega_a += change * self.spin_share[0];
+        s.omega_b += change * self.spin_share[1];
         s
     }
 

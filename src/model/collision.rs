@@ -3,7 +3,7 @@
 
 use crate::error::Error;
 use crate::model::effects::Effects;
-use crate::model::params::{Ball, Contact, Friction};
+use crate::model::params::{BallPair, Contact, Friction};
 use crate::model::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
@@ -12,24 +12,24 @@ use nalgebra::Vector2;
 /// dimensionless.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
-    /// Reference speed v_ref = max(|U(0)|, S(0), |U(0)| (vector), r |Omega^A(0)|,
-    /// r |Omega^B(0)|) (m/s); 0 only for balls at rest.
+    /// Reference speed v_ref = max(|U(0)|, S(0), |U(0)| (vector), r_A |Omega^A(0)|,
+    /// r_B |Omega^B(0)|) (m/s); 0 only for balls at rest.
     pub speed: f64,
-    /// Reference spin v_ref / r (rad/s).
+    /// Reference spin v_ref / r_A (rad/s).
     pub spin: f64,
-    /// Reference impulse m v_ref (N s).
+    /// Reference impulse M v_ref (N s), M the pair mass (m for identical balls).
     pub impulse: f64,
-    /// Reference energy m v_ref^2 (J).
+    /// Reference energy M v_ref^2 (J).
     pub energy: f64,
-    /// Reference angular momentum m v_ref r (kg m^2 / s).
+    /// Reference angular momentum M v_ref r_A (kg m^2 / s).
     pub angular_momentum: f64,
 }
 
 /// A validated collision problem in the centre-of-mass frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Collision {
-    /// The two (identical) balls.
-    pub ball: Ball,
+    /// Balls A and B (two identical balls in the paper's case).
+    pub balls: BallPair,
     /// Friction and the impulse rule.
     pub contact: Contact,
     /// Simulated effects.
@@ -48,7 +48,9 @@ pub struct Collision {
 
 impl Collision {
     /// Validates the incoming state (finite) and fixes the impulse P from the contact's
-    /// rule (an explicit impulse needs approaching balls and m U(0) <= P <= 2 m U(0)).
+    /// rule (an explicit impulse needs approaching balls and m U(0) <= P <= 2 m U(0), with
+    /// the pair mass M in place of m for unequal balls). `balls` is one [`crate::Ball`] (two
+    /// identical balls) or a [`BallPair`].
     ///
     /// ```
     /// use billiard_contact::{Ball, Collision, CmState, Contact, Effects, Friction, ImpulseRule};
@@ -63,20 +65,23 @@ impl Collision {
     /// ```
     #[inline]
     pub fn new(
-        ball: Ball,
+        balls: impl Into<BallPair>,
         contact: Contact,
         effects: Effects,
         incoming: CmState,
     ) -> Result<Self, Error> {
+        let balls = balls.into();
         if !incoming.is_finite() {
             return Err(non_finite_component(&incoming));
         }
         let u0 = incoming.u_cm.x;
-        let impulse = contact.impulse.impulse(ball.mass(), u0)?;
-        let slip = incoming.slip(ball.radius());
+        let m = balls.pair_mass();
+        let impulse = contact.impulse.impulse(m, u0)?;
+        let slip = incoming.slip_of(&balls);
         let s0 = planar_length(slip);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
-        let r = ball.radius();
+        let r = balls.a.radius();
+        let rb = balls.b.radius();
         // One square root for the three norms (sqrt is monotone, so the maximum is the
         // same); |U(0)| <= |U| needs no term of its own. Where the squares overflow (above
         // ~1e154) the norms are taken with hypot instead.
@@ -85,7 +90,7 @@ impl Collision {
                 .u_cm
                 .norm_squared()
                 .max(r * r * incoming.omega_a.norm_squared())
-                .max(r * r * incoming.omega_b.norm_squared())
+                .max(rb * rb * incoming.omega_b.norm_squared())
                 .sqrt(),
         );
         if !speed.is_finite() {
@@ -93,9 +98,8 @@ impl Collision {
             speed = s0
                 .max(norm(&incoming.u_cm))
                 .max(r * norm(&incoming.omega_a))
-                .max(r * norm(&incoming.omega_b));
+                .max(rb * norm(&incoming.omega_b));
         }
-        let m = ball.mass();
         // Every scale the checks and the integrator divide by must be finite and, for balls
         // in motion, normal (the fuzz harness found r = 1e308 with m v r = inf, and r = 1e-300
         // with v / r overflowing, both giving NaN checks).
@@ -105,7 +109,10 @@ impl Collision {
         if !(speed.is_finite() && scales_ok && impulse.is_finite()) {
             return Err(Error::invalid(
                 "incoming",
-                format!("speeds and r |Omega| up to {speed:e} m/s (m = {m} kg, r = {r} m)"),
+                format!(
+                    "speeds and r |Omega| up to {speed:e} m/s ({})",
+                    balls.describe()
+                ),
                 format!(
                     "magnitudes whose scales v/r, m v, m v^2 and m v r are finite, normal \
                      double-precision numbers (here speeds below {:.1e} m/s)",
@@ -116,7 +123,7 @@ impl Collision {
             ));
         }
         Ok(Collision {
-            ball,
+            balls,
             contact,
             effects,
             incoming,
@@ -153,7 +160,7 @@ impl Collision {
 
     /// Sliding direction theta (rad) in (-pi, pi]; `None` when S(0) = 0.
     pub fn theta(&self) -> Option<f64> {
-        self.incoming.theta(self.ball.radius())
+        self.incoming.theta_of(&self.balls)
     }
 }
 

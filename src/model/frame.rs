@@ -4,12 +4,17 @@
 //! removed, normalised (any perpendicular when `up` is parallel to e_x), e_y = e_z x e_x.
 //! The centre-of-mass frame translates with V_cm = (v_A + v_B)/2 and its axes are the basis;
 //! spins are the same in both frames (the frames do not rotate relative to each other).
+//! For balls of different mass V_cm = (m_A v_A + m_B v_B) / (m_A + m_B); the state's u is
+//! half the relative velocity (v_A - v_B) / 2 in every case, and A moves with
+//! 2 m_B / (m_A + m_B) u, B with -2 m_A / (m_A + m_B) u relative to the centre of mass
+//! (docs/unequal-balls.md).
 
 use crate::error::Error;
+use crate::model::params::BallPair;
 use crate::model::state::{CmState, LabBall, LabMotion};
 use nalgebra::{Matrix3, Vector3};
 
-/// Relative tolerance on |p_B - p_A| = 2r.
+/// Relative tolerance on |p_B - p_A| = 2r (r_A + r_B for balls of different radii).
 pub const TOUCH_TOLERANCE: f64 = 1e-9;
 
 /// The horizontal part of `v`: v - up (v . up), its part perpendicular to the unit vector
@@ -37,6 +42,8 @@ pub struct Frame {
     basis: Matrix3<f64>,
     v_cm: Vector3<f64>,
     up: Vector3<f64>,
+    /// m_A / (m_A + m_B) and m_B / (m_A + m_B) (both 1/2 for identical balls).
+    weights: [f64; 2],
 }
 
 impl Frame {
@@ -47,21 +54,46 @@ impl Frame {
             basis: Matrix3::identity(),
             v_cm: Vector3::zeros(),
             up: Vector3::z(),
+            weights: [0.5, 0.5],
         }
     }
 
-    /// The frame of a lab scene whose balls touch: |p_B - p_A| = 2r within
-    /// [`TOUCH_TOLERANCE`] relative; `up` must be a non-zero finite vector.
+    /// The frame of a lab scene of two identical balls of radius `radius` (m), see
+    /// [`Frame::of_pair`].
     pub fn new(scene: &LabScene, radius: f64) -> Result<Self, Error> {
+        // The weights of identical balls are 1/2 whatever their mass.
+        Frame::build(scene, [radius, radius], [0.5, 0.5])
+    }
+
+    /// The frame of a lab scene whose balls touch: |p_B - p_A| = r_A + r_B within
+    /// [`TOUCH_TOLERANCE`] relative; `up` must be a non-zero finite vector.
+    pub fn of_pair(scene: &LabScene, balls: &BallPair) -> Result<Self, Error> {
+        Frame::build(
+            scene,
+            [balls.a.radius(), balls.b.radius()],
+            balls.mass_weights(),
+        )
+    }
+
+    /// The frame of balls of radii `radii` touching in `scene`, whose centre of mass moves
+    /// with the mass weights `weights`.
+    fn build(scene: &LabScene, radii: [f64; 2], weights: [f64; 2]) -> Result<Self, Error> {
         let d = scene.b.position - scene.a.position;
         let dist = d.norm();
-        let touching = (dist - 2.0 * radius).abs() <= TOUCH_TOLERANCE * 2.0 * radius;
+        // r + r = 2r exactly: identical balls keep the paper's test bit for bit.
+        let contact = radii[0] + radii[1];
+        let touching = (dist - contact).abs() <= TOUCH_TOLERANCE * contact;
         if !touching {
             return Err(Error::NotTouching {
                 position_b: scene.b.position.into(),
                 distance: dist,
-                contact_distance: 2.0 * radius,
-                gap: dist - 2.0 * radius,
+                contact_distance: contact,
+                contact_term: if radii[0] == radii[1] {
+                    "2r"
+                } else {
+                    "r_A + r_B"
+                },
+                gap: dist - contact,
                 tolerance: TOUCH_TOLERANCE,
             });
         }
@@ -89,8 +121,9 @@ impl Frame {
         let ey = ez.cross(&ex);
         Ok(Frame {
             basis: Matrix3::from_columns(&[ex, ey, ez]),
-            v_cm: 0.5 * (scene.a.velocity + scene.b.velocity),
+            v_cm: weights[0] * scene.a.velocity + weights[1] * scene.b.velocity,
             up,
+            weights,
         })
     }
 
@@ -122,13 +155,14 @@ impl Frame {
     /// Lab-frame motions of A and B for a centre-of-mass state.
     pub fn to_lab(&self, cm: &CmState) -> (LabMotion, LabMotion) {
         let u = self.basis * cm.u_cm;
+        let [wa, wb] = self.weights;
         (
             LabMotion {
-                velocity: self.v_cm + u,
+                velocity: self.v_cm + u * (2.0 * wb),
                 spin: self.basis * cm.omega_a,
             },
             LabMotion {
-                velocity: self.v_cm - u,
+                velocity: self.v_cm - u * (2.0 * wa),
                 spin: self.basis * cm.omega_b,
             },
         )

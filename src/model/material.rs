@@ -26,7 +26,7 @@
 //! to the collision's impulse.
 
 use crate::error::{finite, Error};
-use crate::model::params::{positive, Ball};
+use crate::model::params::{positive, Ball, BallPair};
 use crate::profile::beta::beta;
 use serde::Serialize;
 
@@ -185,7 +185,14 @@ impl HertzContact {
     /// # Ok::<(), billiard_contact::Error>(())
     /// ```
     pub fn identical(ball: &Ball, material: &Material, u0: f64) -> Result<Self, Error> {
-        HertzContact::between((ball, material), (ball, material), 2.0 * u0)
+        HertzContact::of_pair(&BallPair::identical(*ball), material, u0)
+    }
+
+    /// Balls A and B of `balls`, both of `material`, with incoming centre-of-mass normal
+    /// velocity `u0` = U(0) (m/s), half the relative approach speed v = 2 U(0)
+    /// (docs/unequal-balls.md); [`HertzContact::identical`] for two identical balls.
+    pub fn of_pair(balls: &BallPair, material: &Material, u0: f64) -> Result<Self, Error> {
+        HertzContact::between((&balls.a, material), (&balls.b, material), 2.0 * u0)
     }
 }
 

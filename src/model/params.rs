@@ -40,19 +40,25 @@ impl Ball {
     /// assert!(billiard_contact::Ball::new(0.17, 0.028575, 0.7).is_err());
     /// ```
     pub fn new(mass: f64, radius: f64, alpha: f64) -> Result<Self, Error> {
-        positive("balls.mass", mass, "kg")?;
-        positive("balls.radius", radius, "m")?;
-        finite("balls.alpha", alpha)?;
+        Ball::in_section("balls", mass, radius, alpha)
+    }
+
+    /// [`Ball::new`] with errors naming the fields of the scene section `section`
+    /// (`balls`, `balls.a`, `balls.b`).
+    pub fn in_section(section: &str, mass: f64, radius: f64, alpha: f64) -> Result<Self, Error> {
+        positive(&format!("{section}.mass"), mass, "kg")?;
+        positive(&format!("{section}.radius"), radius, "m")?;
+        finite(&format!("{section}.alpha"), alpha)?;
         if !(alpha > 0.0 && alpha <= ALPHA_MAX) {
             return Err(Error::invalid(
-                "balls.alpha",
+                format!("{section}.alpha"),
                 alpha,
                 "in (0, 2/3]: I = alpha m r^2, and a sphere cannot exceed the thin shell's 2/3",
             ));
         }
         if alpha < ALPHA_MIN {
             return Err(Error::invalid(
-                "balls.alpha",
+                format!("{section}.alpha"),
                 alpha,
                 format!(
                     "at least {ALPHA_MIN:e}: the spins change like 1/alpha, and a smaller \
@@ -69,7 +75,7 @@ impl Ball {
             && (alpha * mass * radius * 1e6).is_finite())
         {
             return Err(Error::invalid(
-                "balls",
+                section,
                 format!("mass = {mass} kg, radius = {radius} m, alpha = {alpha}"),
                 "values whose m, 1/m, I = alpha m r^2 and 1/(alpha m r) are normal double-precision \
                  numbers (SI units)",
@@ -108,7 +114,138 @@ impl Ball {
     /// The factor k = 2 (1 + 1/alpha) / m (1/kg) of eq 22: dS/dt = -mu f k.
     #[inline]
     pub fn slip_rate_per_friction_impulse(&self) -> f64 {
-        2.0 * (1.0 + 1.0 / self.alpha) / self.mass
+        BallPair::identical(*self).slip_rate_per_friction_impulse()
+    }
+}
+
+/// The two balls of a collision: A (at -r_A along the line of centres from the contact
+/// point) and B (at +r_B), each with its own mass, radius and alpha
+/// (docs/unequal-balls.md).
+///
+/// Every coefficient of the contact is computed here, once, so that for identical balls
+/// (A == B) it equals the paper's value bit for bit: the ratios m_A/m_B, r_B/r_A, I_B/I_A
+/// are then exactly 1 and the weights m_A/(m_A + m_B) exactly 1/2.
+///
+/// ```
+/// use billiard_contact::{Ball, BallPair};
+/// let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+/// let same = BallPair::identical(ball);
+/// assert_eq!(same.pair_mass(), 0.17);
+/// assert_eq!(same.slip_rate_per_friction_impulse(), 2.0 * (1.0 + 1.0 / 0.4) / 0.17);
+/// let cue = Ball::new(0.184, 0.030163, 0.4).unwrap();
+/// let pair = BallPair::new(cue, ball);
+/// let reduced = 0.184 * 0.17 / (0.184 + 0.17);
+/// assert!((pair.reduced_mass() - reduced).abs() < 1e-16);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BallPair {
+    /// Ball A.
+    pub a: Ball,
+    /// Ball B.
+    pub b: Ball,
+}
+
+impl From<Ball> for BallPair {
+    fn from(ball: Ball) -> Self {
+        BallPair::identical(ball)
+    }
+}
+
+impl BallPair {
+    /// Two balls A and B.
+    pub fn new(a: Ball, b: Ball) -> Self {
+        BallPair { a, b }
+    }
+
+    /// Two identical balls (the paper's case).
+    pub fn identical(ball: Ball) -> Self {
+        BallPair { a: ball, b: ball }
+    }
+
+    /// True when A and B have the same mass, radius and alpha.
+    pub fn is_identical(&self) -> bool {
+        self.a == self.b
+    }
+
+    /// The pair mass M = 2 m* = 2 m_A m_B / (m_A + m_B) (kg), computed as
+    /// m_A 2 / (1 + m_A/m_B): exactly m for identical balls. The centre-of-mass state's u
+    /// (half the relative velocity) changes by -P/M under the normal impulse P, and its
+    /// tangential part by -J/M under the tangential impulse J.
+    #[inline]
+    pub fn pair_mass(&self) -> f64 {
+        self.a.mass * (2.0 / (1.0 + self.a.mass / self.b.mass))
+    }
+
+    /// The reduced mass m* = m_A m_B / (m_A + m_B) (kg), M / 2.
+    #[inline]
+    pub fn reduced_mass(&self) -> f64 {
+        0.5 * self.pair_mass()
+    }
+
+    /// K = 1/m_A + 1/m_B + r_A^2/I_A + r_B^2/I_B (1/kg): the slip falls by K J under a
+    /// tangential impulse J. Computed as (1 + 1/alpha_A)/m_A + (1 + 1/alpha_B)/m_B, which is
+    /// the paper's k = 2 (1 + 1/alpha)/m (eq 22) bit for bit for identical balls.
+    #[inline]
+    pub fn slip_rate_per_friction_impulse(&self) -> f64 {
+        // For A == B this is x/m + x/m = 2 (x/m), the correctly rounded 2 x / m of eq 22.
+        (1.0 + 1.0 / self.a.alpha) / self.a.mass + (1.0 + 1.0 / self.b.alpha) / self.b.mass
+    }
+
+    /// Spin change of A per unit tangential impulse, r_A / I_A = 1 / (alpha_A m_A r_A).
+    #[inline]
+    pub fn spin_per_impulse_a(&self) -> f64 {
+        1.0 / (self.a.alpha * self.a.mass * self.a.radius)
+    }
+
+    /// Spin change of B per unit tangential impulse, r_B / I_B = 1 / (alpha_B m_B r_B).
+    #[inline]
+    pub fn spin_per_impulse_b(&self) -> f64 {
+        1.0 / (self.b.alpha * self.b.mass * self.b.radius)
+    }
+
+    /// M / (alpha_A m_A) and M / (alpha_B m_B): the rate at which r_A Omega^A and
+    /// r_B Omega^B change per unit J / M; both 1/alpha for identical balls (the time
+    /// stepping's scaled spin rates).
+    #[inline]
+    pub fn scaled_inverse_alphas(&self) -> [f64; 2] {
+        let m = self.pair_mass();
+        [
+            1.0 / self.a.alpha * (m / self.a.mass),
+            1.0 / self.b.alpha * (m / self.b.mass),
+        ]
+    }
+
+    /// The radii [r_A, r_B] (m).
+    #[inline]
+    pub fn radii(&self) -> [f64; 2] {
+        [self.a.radius, self.b.radius]
+    }
+
+    /// r_B / r_A (1 for identical balls).
+    #[inline]
+    pub fn radius_ratio(&self) -> f64 {
+        self.b.radius / self.a.radius
+    }
+
+    /// The weights m_A / (m_A + m_B) and m_B / (m_A + m_B) (both 1/2 for identical balls):
+    /// the centre-of-mass velocity is w_A v_A + w_B v_B, and A moves with 2 w_B u, B with
+    /// -2 w_A u in the centre-of-mass frame.
+    #[inline]
+    pub fn mass_weights(&self) -> [f64; 2] {
+        let total = self.a.mass + self.b.mass;
+        [self.a.mass / total, self.b.mass / total]
+    }
+
+    /// The balls' masses and radii, for error messages.
+    pub(crate) fn describe(&self) -> String {
+        if self.is_identical() {
+            format!("m = {} kg, r = {} m", self.a.mass, self.a.radius)
+        } else {
+            format!(
+                "m_A = {} kg, r_A = {} m, m_B = {} kg, r_B = {} m",
+                self.a.mass, self.a.radius, self.b.mass, self.b.radius
+            )
+        }
     }
 }
 
@@ -368,7 +505,9 @@ impl ImpulseRule {
         }
     }
 
-    /// The impulse P (N s) for normal approach speed `u0` (m/s) and mass `m` (kg).
+    /// The impulse P (N s) for normal approach speed `u0` (m/s) and mass `m` (kg): the
+    /// ball mass for identical balls, the pair mass M = 2 m* ([`BallPair::pair_mass`]) in
+    /// general, where u0 is half the relative approach speed and P = (1 + e) m* v_n.
     ///
     /// Returns 0 for balls that do not approach (u0 <= 0) under a restitution rule;
     /// an explicit impulse requires u0 > 0 and m u0 <= P <= 2 m u0 (eq 56), with a

@@ -1,6 +1,6 @@
 //! States of the two balls: the centre-of-mass state of the paper and a lab-frame ball.
 
-use crate::model::params::Ball;
+use crate::model::params::BallPair;
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -8,7 +8,9 @@ use serde::{Deserialize, Serialize};
 /// centres along +x, contact at the origin.
 ///
 /// Ball A moves with `u_cm` = (U, V, W), ball B with -(U, V, W); U > 0 means the balls
-/// approach.
+/// approach. For balls of different mass or size (A at x = -r_A, B at x = +r_B) `u_cm` is
+/// half the relative velocity (v_A - v_B) / 2, which is A's velocity when the balls are
+/// identical (docs/unequal-balls.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CmState {
     /// Velocity of ball A, (U, V, W) (m/s).
@@ -38,11 +40,26 @@ impl CmState {
     /// The slip (S cos theta, S sin theta) = (2V + r Omega_z, 2W - r Omega_y) of eqs 5-6 (m/s):
     /// the surface of B slides relative to A along -slip (eq 3).
     pub fn slip(&self, radius: f64) -> Vector2<f64> {
-        let o = self.omega_sum();
+        self.slip_with(radius, 1.0)
+    }
+
+    /// The slip of balls of radii r_A = `radius_a` and r_B = `ratio` r_A: the tangential part
+    /// of (v_A - v_B) + Omega^A x (r_A e_x) + Omega^B x (r_B e_x),
+    /// (2V + r_A (Omega^A_z + ratio Omega^B_z), 2W - r_A (Omega^A_y + ratio Omega^B_y))
+    /// (docs/unequal-balls.md); `ratio` = 1 gives eqs 5-6 bit for bit.
+    #[inline]
+    pub fn slip_with(&self, radius_a: f64, ratio: f64) -> Vector2<f64> {
+        let (a, b) = (self.omega_a, self.omega_b);
         Vector2::new(
-            2.0 * self.u_cm.y + radius * o.z,
-            2.0 * self.u_cm.z - radius * o.y,
+            2.0 * self.u_cm.y + radius_a * (a.z + ratio * b.z),
+            2.0 * self.u_cm.z - radius_a * (a.y + ratio * b.y),
         )
+    }
+
+    /// The slip of the pair `balls` ([`CmState::slip_with`]).
+    #[inline]
+    pub fn slip_of(&self, balls: &BallPair) -> Vector2<f64> {
+        self.slip_with(balls.a.radius(), balls.radius_ratio())
     }
 
     /// Sliding speed S >= 0 (m/s), eqs 5-6.
@@ -52,29 +69,39 @@ impl CmState {
 
     /// Sliding direction theta (rad, in (-pi, pi]) of eqs 5-6; `None` when S = 0.
     pub fn theta(&self, radius: f64) -> Option<f64> {
-        let s = self.slip(radius);
-        if s.x == 0.0 && s.y == 0.0 {
-            None
-        } else {
-            Some(slip_angle(s))
-        }
+        direction_angle(self.slip(radius))
     }
 
-    /// Kinetic energy of both balls (J), eq 37.
-    pub fn kinetic_energy(&self, ball: &Ball) -> f64 {
-        let i = ball.inertia();
-        ball.mass() * self.u_cm.norm_squared()
-            + 0.5 * i * (self.omega_a.norm_squared() + self.omega_b.norm_squared())
+    /// Sliding speed S >= 0 (m/s) of the pair `balls`.
+    pub fn sliding_speed_of(&self, balls: &BallPair) -> f64 {
+        planar_length(self.slip_of(balls))
     }
 
-    /// Angular momentum about the centre of mass (kg m^2/s), eq 36.
-    pub fn angular_momentum(&self, ball: &Ball) -> Vector3<f64> {
-        let r = ball.radius();
-        let m = ball.mass();
+    /// Sliding direction theta (rad) of the pair `balls`; `None` when S = 0.
+    pub fn theta_of(&self, balls: &BallPair) -> Option<f64> {
+        direction_angle(self.slip_of(balls))
+    }
+
+    /// Kinetic energy of both balls in the centre-of-mass frame (J), eq 37: M |u|^2 (M the
+    /// pair mass, m for identical balls) plus (I_A |Omega^A|^2 + I_B |Omega^B|^2) / 2.
+    pub fn kinetic_energy(&self, balls: &BallPair) -> f64 {
+        let i = balls.a.inertia();
+        let ratio = balls.b.inertia() / i;
+        balls.pair_mass() * self.u_cm.norm_squared()
+            + 0.5 * i * (self.omega_a.norm_squared() + ratio * self.omega_b.norm_squared())
+    }
+
+    /// Angular momentum about the contact point (kg m^2/s), eq 36; the total momentum is
+    /// zero in this frame, so it is the same about every point. A at -r_A e_x carries
+    /// momentum M u, B at +r_B e_x carries -M u.
+    pub fn angular_momentum(&self, balls: &BallPair) -> Vector3<f64> {
+        let (ra, rb) = (balls.a.radius(), balls.b.radius());
+        let m = balls.pair_mass();
         let ex = Vector3::x();
-        ball.inertia() * (self.omega_a + self.omega_b)
-            + (-r * ex).cross(&(m * self.u_cm))
-            + (r * ex).cross(&(-m * self.u_cm))
+        let ratio = balls.b.inertia() / balls.a.inertia();
+        balls.a.inertia() * (self.omega_a + ratio * self.omega_b)
+            + (-ra * ex).cross(&(m * self.u_cm))
+            + (rb * ex).cross(&(-m * self.u_cm))
     }
 
     /// True when every component is finite. Branch-free: x * 0 is 0 for a finite x and NaN
@@ -113,6 +140,15 @@ pub fn slip_angle(v: Vector2<f64>) -> f64 {
         std::f64::consts::PI
     } else {
         t
+    }
+}
+
+/// The angle of a slip ([`slip_angle`]); `None` for a zero slip.
+fn direction_angle(s: Vector2<f64>) -> Option<f64> {
+    if s.x == 0.0 && s.y == 0.0 {
+        None
+    } else {
+        Some(slip_angle(s))
     }
 }
 

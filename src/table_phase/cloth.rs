@@ -31,16 +31,19 @@ pub struct Table {
 }
 
 impl Table {
-    /// The cloth under balls of radius `radius` (m) touching at `pos_a`, `pos_b` (m, lab):
-    /// the line of centres must be horizontal (perpendicular to `up`) and, when the
-    /// parameters give a height, both centres must be r above it.
+    /// The cloth under balls of radii `radii` = [r_A, r_B] (m) touching at
+    /// `positions` = [p_A, p_B] (m, lab): both must rest on one plane, so the centres'
+    /// heights differ by r_B - r_A ((p_B - p_A).up = r_B - r_A; a horizontal line of centres
+    /// for identical balls) and, when the parameters give a height, each centre is its own
+    /// radius above it.
     pub fn new(
         params: TableParams,
         up: Vector3<f64>,
-        pos_a: Vector3<f64>,
-        pos_b: Vector3<f64>,
-        radius: f64,
+        positions: [Vector3<f64>; 2],
+        radii: [f64; 2],
     ) -> Result<Self, Error> {
+        let [pos_a, pos_b] = positions;
+        let [radius, radius_b] = radii;
         let norm = up.norm();
         if !(norm > 0.0 && norm.is_finite()) {
             return Err(Error::invalid(
@@ -50,23 +53,23 @@ impl Table {
             ));
         }
         let n = up / norm;
-        let tol = LEVEL_TOLERANCE * 2.0 * radius;
+        let tol = LEVEL_TOLERANCE * (radius + radius_b);
         let rise = (pos_b - pos_a).dot(&n);
-        if rise.abs() > tol {
+        if (rise - (radius_b - radius)).abs() > tol {
             return Err(Error::invalid(
                 "incoming.lab.b.position",
                 format!(
                     "[{}, {}, {}] ((p_B - p_A).up = {rise:e} m)",
                     pos_b.x, pos_b.y, pos_b.z
                 ),
-                "a horizontal line of centres for the table effect: both balls on the cloth, \
-                 (p_B - p_A) perpendicular to up",
+                "both balls on the cloth for the table effect: (p_B - p_A).up = r_B - r_A \
+                 (0, a horizontal line of centres, for balls of one radius)",
             ));
         }
         let height = match params.height() {
             None => pos_a.dot(&n) - radius,
             Some(h) => {
-                both_centres_r_above(h, &n, [pos_a, pos_b], radius, tol)?;
+                both_centres_r_above(h, &n, positions, radii, tol)?;
                 h
             }
         };
@@ -84,18 +87,19 @@ impl Table {
     }
 }
 
-/// Checks that the centres `[pos_a, pos_b]` (m, lab) lie `radius` (m) above the cloth at
-/// height `h` (m along the unit `n`), within `tol` (m).
+/// Checks that the centres `[pos_a, pos_b]` (m, lab) lie their radii `[r_A, r_B]` (m)
+/// above the cloth at height `h` (m along the unit `n`), within `tol` (m).
 fn both_centres_r_above(
     h: f64,
     n: &Vector3<f64>,
     positions: [Vector3<f64>; 2],
-    radius: f64,
+    radii: [f64; 2],
     tol: f64,
 ) -> Result<(), Error> {
-    for (field, p) in ["incoming.lab.a.position", "incoming.lab.b.position"]
+    for ((field, p), radius) in ["incoming.lab.a.position", "incoming.lab.b.position"]
         .into_iter()
         .zip(positions)
+        .zip(radii)
     {
         let above = p.dot(n) - h;
         if (above - radius).abs() > tol {

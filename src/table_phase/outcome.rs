@@ -4,7 +4,7 @@
 use super::cloth::{horizontal, Table};
 use super::roll_out::{roll_out, RollOut};
 use crate::error::Error;
-use crate::model::params::Ball;
+use crate::model::params::{Ball, BallPair};
 use crate::model::state::LabBall;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -52,17 +52,17 @@ pub struct TableOutcome {
 impl TableOutcome {
     /// Runs the table phase for balls starting at `a`, `b` (lab, at separation) with
     /// incoming velocities `incoming` (m/s, before the collision); `speed_scale` (m/s)
-    /// scales the checks.
+    /// scales the checks. Each ball rolls out with its own mass, radius and alpha.
     pub fn new(
-        ball: &Ball,
+        balls: &BallPair,
         table: Table,
         a: &LabBall,
         b: &LabBall,
         incoming: [Vector3<f64>; 2],
         speed_scale: f64,
     ) -> Result<Self, Error> {
-        let ra = roll_out(ball, &table, a)?;
-        let rb = roll_out(ball, &table, b)?;
+        let ra = roll_out(&balls.a, &table, a)?;
+        let rb = roll_out(&balls.b, &table, b)?;
         let line = horizontal(&(b.position - a.position), &table.up).normalize();
         let mut out = TableOutcome {
             table,
@@ -72,7 +72,7 @@ impl TableOutcome {
             incoming,
             check: TableChecks::default(),
         };
-        out.check = out.checks(ball, speed_scale);
+        out.check = out.checks(balls, speed_scale);
         Ok(out)
     }
 
@@ -106,19 +106,21 @@ impl TableOutcome {
         self.angle_deg(&self.incoming[which], &r.rolling.velocity)
     }
 
-    fn checks(&self, ball: &Ball, speed_scale: f64) -> TableChecks {
+    /// The checks, scaled by the pair mass M (m for identical balls) and `speed_scale`.
+    fn checks(&self, balls: &BallPair, speed_scale: f64) -> TableChecks {
         let n = self.table.up;
-        let m = ball.mass();
         let g = self.table.params.g();
         let mut increase: f64 = 0.0;
         let mut momentum: f64 = 0.0;
-        for r in [&self.a, &self.b] {
+        for (ball, r) in [(&balls.a, &self.a), (&balls.b, &self.b)] {
+            let m = ball.mass();
             increase = increase.max(self.largest_energy_increase(ball, r));
             let (_, end) = r.at(&n, r.end_time, true);
             let dp = m * (end.velocity - r.start.velocity)
                 - (r.table_impulse - n * (m * g * r.end_time));
             momentum = momentum.max(dp.amax());
         }
+        let m = balls.pair_mass();
         let ev = m * speed_scale * speed_scale;
         let pv = m * speed_scale;
         TableChecks {

@@ -132,18 +132,18 @@ struct Layout {
 }
 
 impl Layout {
-    /// The layout of `t`'s figure, balls of radius `radius` (m).
-    fn new(t: &TableOutcome, radius: f64, proj: &Projection) -> Self {
+    /// The layout of `t`'s figure, balls A and B of radii `radii` (m).
+    fn new(t: &TableOutcome, radii: [f64; 2], proj: &Projection) -> Self {
         let up = t.table.up;
         let end = t.end_time();
         let runs = [runs(&t.a, &up, end, proj), runs(&t.b, &up, end, proj)];
-        let outlines = [&t.a, &t.b].into_iter().flat_map(|r| {
+        let outlines = [&t.a, &t.b].into_iter().zip(radii).flat_map(|(r, radius)| {
             let (x, y) = proj.xy(&r.start.position);
             [(x - radius, y - radius), (x + radius, y + radius)]
         });
         let paths = runs.iter().flatten().flat_map(|(_, p)| p.iter().copied());
         let mut bounds = Bounds::of(paths.chain(outlines));
-        let span = bounds.span(radius);
+        let span = bounds.span(larger(radii));
         let arrows = final_arrows(t, proj, end, 0.2 * span);
         let vin = horizontal(&t.incoming[0], &up);
         let incoming_from = (vin.norm() > 0.0).then(|| {
@@ -221,31 +221,36 @@ fn equal_scale(b: &Bounds, radius: f64, dims: (u32, u32)) -> (Range<f64>, Range<
     )
 }
 
-/// Draws the figure of the table phase `t` on `root` with title `title`, the balls of
-/// radius `radius` (m); an error carries the backend's message.
+/// The larger of two radii (m): what the figure's margins are measured in.
+fn larger(radii: [f64; 2]) -> f64 {
+    radii[0].max(radii[1])
+}
+
+/// Draws the figure of the table phase `t` on `root` with title `title`, balls A and B of
+/// radii `radii` (m); an error carries the backend's message.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
 ) -> Result<(), String>
 where
     DB::ErrorType: 'static,
 {
     super::register_fonts();
-    draw_figure(root, t, radius, title).map_err(|e| e.to_string())
+    draw_figure(root, t, radii, title).map_err(|e| e.to_string())
 }
 
 /// The figure, element by element (in this order, so later ones are on top).
 fn draw_figure<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
 ) -> Drawn<DB> {
     let proj = Projection::new(&t.table.up);
-    let layout = Layout::new(t, radius, &proj);
-    let (x, y) = equal_scale(&layout.bounds, radius, root.dim_in_pixel());
+    let layout = Layout::new(t, radii, &proj);
+    let (x, y) = equal_scale(&layout.bounds, larger(radii), root.dim_in_pixel());
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(root)
         .caption(title, (FONT, 22))
@@ -254,8 +259,7 @@ fn draw_figure<DB: DrawingBackend>(
         .y_label_area_size(LABEL_Y)
         .build_cartesian_2d(x.clone(), y.clone())?;
     draw_axes(&mut chart, &proj)?;
-    let reach = 2.0 * ((x.end - x.start) + (y.end - y.start));
-    draw_line_of_centres(&mut chart, t, &proj, reach)?;
+    draw_line_of_centres(&mut chart, t, &proj, (&x, &y))?;
     if let Some(from) = layout.incoming_from {
         draw_incoming(&mut chart, from, proj.xy(&t.a.start.position))?;
     }
@@ -263,7 +267,7 @@ fn draw_figure<DB: DrawingBackend>(
         ("A (cue ball)", &t.a, COLOR_A),
         ("B (object ball)", &t.b, COLOR_B),
     ];
-    for ((name, r, color), runs) in balls.into_iter().zip(&layout.runs) {
+    for (((name, r, color), runs), radius) in balls.into_iter().zip(&layout.runs).zip(radii) {
         draw_outline(&mut chart, proj.xy(&r.start.position), radius, color)?;
         draw_path(&mut chart, name, runs, color)?;
         draw_markers(&mut chart, r, &t.table.up, &proj, color, x.end - x.start)?;
@@ -291,21 +295,22 @@ fn draw_axes<'a, DB: DrawingBackend + 'a>(
         .draw()
 }
 
-/// The line of centres at contact (dashed, grey), `reach` (m) beyond both balls: across
-/// the figure.
+/// The line of centres at contact (dashed, grey) across the figure, whose axes span
+/// `ranges` (m).
 fn draw_line_of_centres<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     t: &TableOutcome,
     proj: &Projection,
-    reach: f64,
+    ranges: (&Range<f64>, &Range<f64>),
 ) -> Drawn<DB> {
     let ca = proj.xy(&t.a.start.position);
-    let cb = proj.xy(&t.b.start.position);
     let l = proj.xy(&t.line);
-    let line = [
-        (ca.0 - reach * l.0, ca.1 - reach * l.1),
-        (cb.0 + reach * l.0, cb.1 + reach * l.1),
-    ];
+    // The backend moves a point outside the axes onto the border coordinate by coordinate,
+    // which turns a slanted line towards a corner: draw only the part inside the axes.
+    let Some((from, to)) = clip_line(ca, l, ranges) else {
+        return Ok(());
+    };
+    let line = [from, to];
     chart
         .draw_series(DashedLineSeries::new(
             line,
@@ -335,6 +340,28 @@ fn draw_incoming<'a, DB: DrawingBackend + 'a>(
         .label("A incoming")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_A.mix(0.6).stroke_width(2)));
     Ok(())
+}
+
+/// The part inside the box `ranges` of the line through `p` along `d`: its two ends, or
+/// `None` when the line misses the box (or `d` is zero). Each axis bounds the line
+/// parameter s of p + s d; the part inside is the intersection of the two intervals.
+fn clip_line(p: Point, d: Point, ranges: (&Range<f64>, &Range<f64>)) -> Option<(Point, Point)> {
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (start, dir, range) in [(p.0, d.0, ranges.0), (p.1, d.1, ranges.1)] {
+        if dir == 0.0 {
+            if start < range.start || start > range.end {
+                return None;
+            }
+        } else {
+            let (a, b) = ((range.start - start) / dir, (range.end - start) / dir);
+            lo = lo.max(a.min(b));
+            hi = hi.min(a.max(b));
+        }
+    }
+    (lo < hi && lo.is_finite() && hi.is_finite()).then_some((
+        (p.0 + lo * d.0, p.1 + lo * d.1),
+        (p.0 + hi * d.0, p.1 + hi * d.1),
+    ))
 }
 
 /// A ball's outline at contact: the circle of `radius` (m) about `centre`.
@@ -459,31 +486,56 @@ fn draw_legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> Drawn<
         .draw()
 }
 
-/// The figure of `t` (balls of radius `radius`, m) as SVG text.
-pub fn svg(t: &TableOutcome, radius: f64, title: &str) -> Result<String, Error> {
+/// The figure of `t` (balls A and B of radii `radii`, m) as SVG text.
+pub fn svg(t: &TableOutcome, radii: [f64; 2], title: &str) -> Result<String, Error> {
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(&root, t, radius, title).map_err(plot_error)?;
+        draw(&root, t, radii, title).map_err(plot_error)?;
     }
     Ok(out)
 }
 
-/// Renders the figure of `t` (balls of radius `radius`, m) as PNG at `path` (written
+/// Renders the figure of `t` (balls A and B of radii `radii`, m) as PNG at `path` (written
 /// directly; the CLI renames it into place).
 pub fn png(
     t: &TableOutcome,
-    radius: f64,
+    radii: [f64; 2],
     title: &str,
     path: &std::path::Path,
 ) -> Result<(), Error> {
     let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-    draw(&root, t, radius, title).map_err(plot_error)
+    draw(&root, t, radii, title).map_err(plot_error)
 }
 
 fn plot_error(message: String) -> Error {
     Error::Plot {
         path: "plot".into(),
         message: format!("drawing the path figure: {message}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clip_line;
+
+    #[test]
+    fn the_line_of_centres_is_clipped_to_the_axes_along_itself() {
+        let (x, y) = (-1.0..3.0, -1.0..1.0);
+        // Horizontal through (0.5, 0.25): from x = -1 to x = 3 at y = 0.25.
+        let h = clip_line((0.5, 0.25), (2.0, 0.0), (&x, &y)).unwrap();
+        assert_eq!(h, ((-1.0, 0.25), (3.0, 0.25)));
+        // Slope 1/2 through the origin: y reaches -1 and 1 at x = -2 and 2, outside x's
+        // -1 on the left, so the part inside runs from (-1, -0.5) to (2, 1).
+        let (a, b) = clip_line((0.0, 0.0), (0.8, 0.4), (&x, &y)).unwrap();
+        let close = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).abs().max((p.1 - q.1).abs()) < 1e-15;
+        assert!(
+            close(a, (-1.0, -0.5)) && close(b, (2.0, 1.0)),
+            "{a:?} {b:?}"
+        );
+        // A line that passes above the box, and a vertical one beside it.
+        assert!(clip_line((0.0, 2.0), (1.0, 0.0), (&x, &y)).is_none());
+        assert!(clip_line((4.0, 0.0), (0.0, 1.0), (&x, &y)).is_none());
+        assert!(clip_line((0.0, 0.0), (0.0, 0.0), (&x, &y)).is_none());
     }
 }
