@@ -66,6 +66,41 @@ fn work_precision_writes_csv_svg_png_md() {
         md,
         "--replot rewrites the same tables from the CSV"
     );
+
+    // A peer's row appended (as benches/peers/scipy_contact.py does) survives a new run
+    // of the study into the same directory; one of a profile not run now is dropped.
+    // The built-in default scene's name, quoted as the CSV writes it.
+    let scene = "\"rolling cue ball, 30 degree cut\"";
+    assert!(csv.contains(scene));
+    let peer = format!("half-sine,scipy-RK45,1e-06,,2e-07,,120,20,0.0001,true,{scene},,,,,true");
+    let gone = format!("hertz,scipy-RK45,1e-06,,2e-07,,120,20,0.0001,true,{scene},,,,,true");
+    std::fs::write(
+        dir.join("work_precision.csv"),
+        format!("{csv}{peer}\n{gone}\n"),
+    )
+    .unwrap();
+    let again = bin()
+        .args([
+            "work-precision",
+            "--profiles",
+            "half-sine,rectangle",
+            "--repeats",
+            "1",
+        ])
+        .args(["--no-sticking", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(again.status.success());
+    let text = String::from_utf8_lossy(&again.stdout);
+    assert!(
+        text.contains("kept 1 peer rows") && text.contains("dropped 1"),
+        "{text}"
+    );
+    let csv2 = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
+    assert_eq!(csv2.lines().count(), 1 + 2 * (1 + 12 + 22) + 1);
+    assert!(csv2.lines().any(|l| l.starts_with("half-sine,scipy-RK45,")));
+    assert!(!csv2.contains("hertz,scipy-RK45"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -542,6 +542,7 @@ proptest! {
             effects: Effects::default(),
             source: None,
             table: None,
+            table_size: None,
         };
         let s0 = scene(lab);
         let s1 = scene(turned);

@@ -327,46 +327,62 @@ fn a_material_scene_of_unequal_balls_takes_the_two_spheres_contact_time() {
 }
 
 /// The path figure (SVG) draws each ball's outline at contact with its own radius, and the
-/// line of centres through both outlines' centres. The outlines are the polylines of 73
-/// points in A's and B's colours; their widths in pixels are 2 r times one scale, to a
-/// pixel of rounding each.
+/// line of centres through both outlines' centres. Every line is drawn segment by segment
+/// (two-point polylines in pixels); an outline is the one chain of segments in its ball's
+/// colour that closes on itself (the paths are open chains). Its width in pixels is 2 r times
+/// one scale, to a pixel of rounding each.
 #[test]
 fn the_path_figure_draws_each_ball_with_its_own_radius() {
     let (_, text) = run_bar_table_writing("plot", "paths.svg");
-    let polylines = |colour: &str| -> Vec<Vec<(f64, f64)>> {
+    type Px = (i64, i64);
+    let segments = |colour: &str| -> Vec<(Px, Px)> {
         text.split("<polyline")
             .skip(1)
             .filter(|p| p.contains(&format!("stroke=\"{colour}\"")))
-            .map(|p| {
-                let pts = p
-                    .split("points=\"")
-                    .nth(1)
-                    .unwrap()
-                    .split('"')
-                    .next()
-                    .unwrap();
-                pts.split_whitespace()
+            .filter_map(|p| {
+                let pts = p.split("points=\"").nth(1)?.split('"').next()?;
+                let xy: Vec<Px> = pts
+                    .split_whitespace()
                     .map(|xy| {
                         let (x, y) = xy.split_once(',').unwrap();
                         (x.parse().unwrap(), y.parse().unwrap())
                     })
-                    .collect()
+                    .collect();
+                (xy.len() == 2).then(|| (xy[0], xy[1]))
             })
             .collect()
     };
-    // (width, centre) of the outline drawn in `colour`.
+    // (width, centre) of the closed chain drawn in `colour`.
     let outline = |colour: &str| {
-        let all = polylines(colour);
-        let ring: Vec<_> = all.iter().filter(|p| p.len() == 73).collect();
-        assert_eq!(ring.len(), 1, "{colour}");
-        let (xs, ys): (Vec<f64>, Vec<f64>) = ring[0].iter().copied().unzip();
+        let segs = segments(colour);
+        let next: std::collections::HashMap<Px, Px> = segs.iter().copied().collect();
+        let ring: Vec<Px> = segs
+            .iter()
+            .find_map(|&(start, _)| {
+                let mut chain = vec![start];
+                let mut at = start;
+                while let Some(&to) = next.get(&at) {
+                    if to == start {
+                        return (chain.len() >= 24).then(|| chain.clone());
+                    }
+                    if chain.len() > 400 {
+                        return None;
+                    }
+                    chain.push(to);
+                    at = to;
+                }
+                None
+            })
+            .unwrap_or_else(|| panic!("no closed outline in {colour}"));
+        let xs = ring.iter().map(|p| p.0 as f64);
+        let ys = ring.iter().map(|p| p.1 as f64);
         let (x0, x1) = (
-            xs.iter().cloned().fold(f64::MAX, f64::min),
-            xs.iter().cloned().fold(f64::MIN, f64::max),
+            xs.clone().fold(f64::MAX, f64::min),
+            xs.fold(f64::MIN, f64::max),
         );
         let (y0, y1) = (
-            ys.iter().cloned().fold(f64::MAX, f64::min),
-            ys.iter().cloned().fold(f64::MIN, f64::max),
+            ys.clone().fold(f64::MAX, f64::min),
+            ys.fold(f64::MIN, f64::max),
         );
         (x1 - x0, (0.5 * (x0 + x1), 0.5 * (y0 + y1)))
     };
@@ -377,15 +393,20 @@ fn the_path_figure_draws_each_ball_with_its_own_radius() {
         wa > wb && (wa / wb - ratio).abs() <= 2.0 / wb,
         "{wa} {wb} against {ratio}"
     );
-    // The dashed line of centres: its first and last dash span it (the legend's sample, in
-    // the same colour, is drawn last); both centres lie on it within two pixels.
-    let dashes = polylines("#5A5A5A");
-    let (p, q) = (dashes[0][0], dashes[dashes.len() - 2][1]);
-    let off = |c: (f64, f64)| {
-        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-        ((c.0 - p.0) * dy - (c.1 - p.1) * dx).abs() / dx.hypot(dy)
-    };
-    assert!(off(ca) <= 2.0 && off(cb) <= 2.0, "{} {}", off(ca), off(cb));
+    // The dashed line of centres (grey): the line through both outlines' centres carries
+    // dashes on both sides beyond them, each within two pixels of it.
+    let (dx, dy) = (cb.0 - ca.0, cb.1 - ca.1);
+    let len = dx.hypot(dy);
+    let along = |p: Px| ((p.0 as f64 - ca.0) * dx + (p.1 as f64 - ca.1) * dy) / len;
+    let off = |p: Px| ((p.0 as f64 - ca.0) * dy - (p.1 as f64 - ca.1) * dx).abs() / len;
+    let on_line: Vec<f64> = segments("#5A5A5A")
+        .into_iter()
+        .filter(|&(p, q)| off(p) <= 2.0 && off(q) <= 2.0)
+        .map(|(p, _)| along(p))
+        .collect();
+    assert!(on_line.len() >= 10, "{} dashes on the line", on_line.len());
+    assert!(on_line.iter().any(|&s| s < -wa), "no dash beyond A");
+    assert!(on_line.iter().any(|&s| s > len + wb), "no dash beyond B");
 }
 
 /// A throw chart's shot with the bar-table balls: B stands on the cloth beside A (centres

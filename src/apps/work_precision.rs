@@ -481,6 +481,30 @@ pub fn write_csv<W: Write>(out: W, rows: &[StudyRow]) -> Result<W, Error> {
         .map_err(|e| Error::io("work_precision.csv", e.into_error()))
 }
 
+/// Whether `method` is a peer's (e.g. `scipy-DOP853`, from `benches/peers/`), not one of
+/// this crate's methods.
+pub fn is_peer_method(method: &str) -> bool {
+    !Method::ALL.iter().any(|m| m.name() == method)
+}
+
+/// The study's own `rows` followed by the peers' rows of `existing` (an earlier CSV of the
+/// same directory) for the scenes and profiles `rows` has, so that a new run of the study
+/// keeps the rows a peer's script appended; also how many peer rows were dropped (their
+/// scene or profile is not in this run).
+pub fn with_peers_of(rows: Vec<StudyRow>, existing: Vec<StudyRow>) -> (Vec<StudyRow>, usize) {
+    let ours = |r: &StudyRow| {
+        rows.iter()
+            .any(|o| o.scene == r.scene && o.profile == r.profile)
+    };
+    let (kept, dropped): (Vec<StudyRow>, Vec<StudyRow>) = existing
+        .into_iter()
+        .filter(|r| is_peer_method(&r.method))
+        .partition(ours);
+    let mut out = rows;
+    out.extend(kept);
+    (out, dropped.len())
+}
+
 /// Reads a study CSV (ours, possibly with rows appended by a peer's script). The columns of
 /// [`COLUMNS`] are required (by name); of the extra columns, missing ones or empty cells
 /// read as breakpoints = true, scene = "", zero counts, no note, time transform = true (the
@@ -556,6 +580,59 @@ pub fn read_csv<R: Read>(input: R, path: &Path) -> Result<Vec<StudyRow>, Error> 
     Ok(rows)
 }
 
+/// How far (factor) a run may lie from the fitted line on the straight part of a line.
+pub const STRAIGHT: f64 = 3.0;
+
+/// The highest order of the methods studied (LSODA's Adams formulas go to 12; dop853 is 8):
+/// a steeper fit is not an order.
+pub const MAX_ORDER: f64 = 12.0;
+
+/// Why a line has no observed order ([`Series::order_fit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoOrder {
+    /// Fewer than two runs with error in [1e-13, 1e-2].
+    TooFewRuns,
+    /// Runs with the same evaluations and errors more than a factor 2 apart: the
+    /// tolerance, not the work, sets the error.
+    NotSetByWork,
+    /// No three runs within a factor [`STRAIGHT`] of a line over a factor 1.5 in work.
+    NoStraightPart,
+    /// A slope steeper than [`MAX_ORDER`]: the error falls faster than any method's order
+    /// allows (equal steps on the smoothed pulse, whose errors cancel as for a periodic
+    /// integrand, or an error the tolerance sets).
+    FasterThanAnyOrder,
+}
+
+impl NoOrder {
+    /// A few words for legends and tables.
+    pub fn text(&self) -> &'static str {
+        match self {
+            NoOrder::TooFewRuns => "too few runs",
+            NoOrder::NotSetByWork => "error not set by work",
+            NoOrder::NoStraightPart => "no straight part",
+            NoOrder::FasterThanAnyOrder => "steeper than any order",
+        }
+    }
+}
+
+/// The least-squares line through `pts`: its slope and the largest distance (in y) of a
+/// point from it; `None` when the x are all equal.
+fn line_fit(pts: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let n = pts.len() as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| {
+        let b = sxy / sxx;
+        let worst = pts
+            .iter()
+            .map(|p| (p.1 - my - b * (p.0 - mx)).abs())
+            .fold(0.0, f64::max);
+        (b, worst)
+    })
+}
+
 /// A line of the figure: the rows of one scene, profile, method and breakpoint setting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series<'a> {
@@ -590,14 +667,32 @@ impl Series<'_> {
         }
     }
 
+    /// Whether the line is a peer's ([`is_peer_method`]).
+    pub fn is_peer(&self) -> bool {
+        is_peer_method(self.method)
+    }
+
     /// The observed order: minus the least-squares slope of log(error) against
-    /// log(rhs evaluations), over runs with error in [1e-13, 1e-2] (below, round-off
-    /// dominates; above, the asymptotic regime has not started) up to the ladder's most
-    /// accurate run (past it, more work only accumulates round-off: hertz with rk4 ends at
-    /// 1e-13 to 3e-13 after 4096 steps). `None` with fewer than two such runs (a ladder that
-    /// falls from above 1e-2 to round-off within one rung has no measurable order) or
-    /// without evaluation counts.
+    /// log(rhs evaluations) on the straight part of the line ([`Series::order_fit`]);
+    /// `None` where there is none.
     pub fn observed_order(&self) -> Option<f64> {
+        self.order_fit().ok()
+    }
+
+    /// The observed order p (error ~ evaluations^-p), or why there is none. The runs are
+    /// those with error in [1e-13, 1e-2] (below, round-off dominates; above, the
+    /// asymptotic regime has not started) up to the ladder's most accurate run (past it,
+    /// more work only accumulates round-off: hertz with rk4 ends at 1e-13 to 3e-13 after
+    /// 4096 steps). Two such runs give the secant's slope (a ladder that reaches round-off
+    /// within a rung or two). With more, the straight part: runs are dropped from either
+    /// end, the one that leaves the better fit first, until every run lies within a factor
+    /// [`STRAIGHT`] of the least-squares line, keeping at least three; the fit counts when
+    /// those runs span a factor 1.5 in evaluations, no two of them with the same
+    /// evaluations differ in error by more than a factor 2 (then the tolerance, not the
+    /// work, sets the error; runs at either end with their neighbour's work are left out
+    /// first), and the order is at most [`MAX_ORDER`] (LSODA on the tabulated pulse: 42
+    /// evaluations from rtol 1e-3 to 1e-6, then 1e-10 in 54 more: "p = 23.4").
+    pub fn order_fit(&self) -> Result<f64, NoOrder> {
         let best = self
             .rows
             .iter()
@@ -614,14 +709,47 @@ impl Series<'_> {
             })
             .collect();
         if pts.len() < 2 {
-            return None;
+            return Err(NoOrder::TooFewRuns);
         }
-        let n = pts.len() as f64;
-        let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-        let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-        let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-        let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-        (sxx > 0.0).then(|| -sxy / sxx)
+        let mut w: &[(f64, f64)] = &pts;
+        // Runs at the ladder's ends with the work of their neighbour (the fewest steps a
+        // method takes, or the most) measure the tolerance, not the work.
+        while w.len() > 2 && w[0].0 == w[1].0 {
+            w = &w[1..];
+        }
+        while w.len() > 2 && w[w.len() - 1].0 == w[w.len() - 2].0 {
+            w = &w[..w.len() - 1];
+        }
+        let mut fit = line_fit(w);
+        while fit.is_none_or(|f| f.1 > STRAIGHT.ln()) && w.len() > 3 {
+            let (head, tail) = (line_fit(&w[1..]), line_fit(&w[..w.len() - 1]));
+            let worst = |f: Option<(f64, f64)>| f.map_or(f64::INFINITY, |f| f.1);
+            w = if worst(head) <= worst(tail) {
+                &w[1..]
+            } else {
+                &w[..w.len() - 1]
+            };
+            fit = line_fit(w);
+        }
+        let same_work = w.iter().enumerate().any(|(i, a)| {
+            w[i + 1..]
+                .iter()
+                .any(|b| a.0 == b.0 && (a.1 - b.1).abs() > 2f64.ln())
+        });
+        if same_work {
+            return Err(NoOrder::NotSetByWork);
+        }
+        let spans = w.len() == 2 || w[w.len() - 1].0 - w[0].0 >= 1.5f64.ln();
+        match fit {
+            Some((slope, worst)) if worst <= STRAIGHT.ln() && spans => {
+                if -slope > MAX_ORDER {
+                    Err(NoOrder::FasterThanAnyOrder)
+                } else {
+                    Ok(-slope)
+                }
+            }
+            _ => Err(NoOrder::NoStraightPart),
+        }
     }
 
     /// The fewest right-hand-side evaluations of a run with error <= `target`, if any.
@@ -696,11 +824,13 @@ fn cost_cell(line: &Series<'_>, target: f64) -> String {
     }
 }
 
-/// A line's observed order, one decimal, or "-".
+/// A line's observed order, one decimal, or "-" and why not.
 fn order_cell(line: &Series<'_>) -> String {
-    line.observed_order()
-        .map(|o| format!("{o:.1}"))
-        .unwrap_or_else(|| "-".into())
+    match line.order_fit() {
+        Ok(o) => format!("{o:.1}"),
+        Err(NoOrder::TooFewRuns) => "-".into(),
+        Err(why) => format!("- ({})", why.text()),
+    }
 }
 
 /// A plain-text summary: per scene and profile, each method's observed order and the
@@ -713,7 +843,7 @@ pub fn summary(rows: &[StudyRow]) -> String {
         if line.scene != scene {
             scene = line.scene;
             let _ = writeln!(s, "\nscene: {scene}");
-            let _ = write!(s, "{:<11} {:<34} {:>6}", "profile", "method", "order");
+            let _ = write!(s, "{:<11} {:<34} {:>24}", "profile", "method", "order");
             for t in TARGETS {
                 let _ = write!(s, "  {:>18}", format!("error<={t:e}"));
             }
@@ -721,7 +851,7 @@ pub fn summary(rows: &[StudyRow]) -> String {
         }
         let _ = write!(
             s,
-            "{:<11} {:<34} {:>6}",
+            "{:<11} {:<34} {:>24}",
             line.profile,
             line.label(),
             order_cell(&line)
@@ -746,8 +876,11 @@ pub fn markdown(rows: &[StudyRow]) -> String {
          in the same directory: do not edit by hand. Each cell is the time per contact \
          (median wall time of one solve) / the right-hand-side evaluations of the cheapest run \
          of the line's ladder that reaches the error; p is the observed order (error ~ \
-         evaluations^-p over the runs with error in [1e-13, 1e-2] up to the ladder's most \
-         accurate one); best is the smallest error of the ladder. \"no transform\": hertz and sine-power stepped through graded \
+         evaluations^-p), fitted on the straight part of the runs with error in [1e-13, 1e-2] \
+         up to the ladder's most accurate one (every run within a factor 3 of the line); \
+         \"-\" says why there is none: no straight part, the error not set by the work \
+         (runs with the same evaluations and errors a factor 2 or more apart), or a slope \
+         steeper than 12, the highest order of the methods; best is the smallest error of the ladder. \"no transform\": hertz and sine-power stepped through graded \
          breakpoints instead of the smoothing time transform; \"no breakpoints\": a table's \
          knots not stepped to.\n",
     );
@@ -1004,6 +1137,33 @@ pub(crate) mod tests {
         assert_eq!(one.observed_order(), None);
     }
 
+    /// The order on the straight part, or why there is none: a first run far above the
+    /// power law 3 n^-4 is left out (p = 4 exactly on the rest); equal work with errors
+    /// 100 apart inside the line; a slope of ln(1e8) / ln 2 = 26.6; a zigzag.
+    #[test]
+    fn order_fit_on_the_straight_part_or_why_not() {
+        let line = |runs: &[(u64, f64)]| -> Result<f64, NoOrder> {
+            let rows: Vec<StudyRow> = runs
+                .iter()
+                .map(|&(n, e)| made_up_row("p", "m", e, n, n as f64 * 1e-9))
+                .collect();
+            series(&rows)[0].order_fit()
+        };
+        let mut law: Vec<(u64, f64)> = [16u64, 32, 64, 128, 256, 512]
+            .iter()
+            .map(|&n| (n, 3.0 * (n as f64).powi(-4)))
+            .collect();
+        law[0].1 = 1e-3;
+        assert!((line(&law).unwrap() - 4.0).abs() < 1e-12);
+        let tie = [(40, 1e-6), (60, 1e-7), (60, 1e-9), (80, 1e-10)];
+        assert_eq!(line(&tie), Err(NoOrder::NotSetByWork));
+        let steep = [(40, 1e-4), (60, 1e-8), (80, 1e-12)];
+        assert_eq!(line(&steep), Err(NoOrder::FasterThanAnyOrder));
+        let zigzag = [(10, 1e-3), (20, 1e-8), (40, 1e-4), (80, 1e-9), (160, 1e-5)];
+        assert_eq!(line(&zigzag), Err(NoOrder::NoStraightPart));
+        assert_eq!(line(&[(10, 1e-3)]), Err(NoOrder::TooFewRuns));
+    }
+
     /// Hertz runs with the time transform on and off (graded breakpoints), and the column
     /// says which; in the smoothed variable rk4 at 64 steps is far closer to the closed
     /// form (a t^1.5 end costs it its order: docs/model.md#the-smoothing-change-of-time-variable).
@@ -1067,14 +1227,33 @@ pub(crate) mod tests {
         assert!(md.starts_with("# What accuracy costs"));
         assert!(md.contains("\n## s\n"), "{md}");
         assert!(
-            // p = ln(1e-7 / 1e-11) / ln(120 / 80) = 22.7
-            md.contains("| hertz | dop853 | 22.7 | 1.0e-11 | 6.00 us / 80 | 12.00 us / 120 | 12.00 us / 120 | not reached |"),
+            // p = ln(1e-7 / 1e-11) / ln(120 / 80) = 22.7: steeper than any method's order.
+            md.contains("| hertz | dop853 | - (steeper than any order) | 1.0e-11 | 6.00 us / 80 | 12.00 us / 120 | 12.00 us / 120 | not reached |"),
             "{md}"
         );
         assert!(
             md.contains("| hertz | dop853 | 2.00x, 3.00x | 2.00x, 3.00x | 2.00x, 3.00x |"),
             "{md}"
         );
+    }
+
+    /// A new run keeps the peers' rows of its scenes and profiles, after its own, and
+    /// drops its own old rows and the peers' rows of a scene it did not run.
+    #[test]
+    fn a_new_run_keeps_the_peers_rows() {
+        let ours = vec![made_up_row("hertz", "dop853", 1e-9, 100, 1e-5)];
+        let mut other_scene = made_up_row("hertz", "scipy-RK45", 1e-6, 300, 1e-3);
+        other_scene.scene = "t".into();
+        let existing = vec![
+            made_up_row("hertz", "dop853", 2e-9, 90, 1e-5),
+            made_up_row("hertz", "scipy-LSODA", 1e-7, 200, 1e-3),
+            made_up_row("rectangle", "scipy-LSODA", 1e-7, 200, 1e-3),
+            other_scene,
+        ];
+        let (rows, dropped) = with_peers_of(ours.clone(), existing.clone());
+        assert_eq!(rows, vec![ours[0].clone(), existing[1].clone()]);
+        assert_eq!(dropped, 2);
+        assert!(is_peer_method("scipy-DOP853") && !is_peer_method("dop853"));
     }
 
     #[test]

@@ -9,7 +9,10 @@ use billiard_contact::formats::ball_paths::{
 };
 use billiard_contact::formats::report::{summary, Report};
 use billiard_contact::formats::scene::SolverOverrides;
-use billiard_contact::formats::trace::CsvTrace;
+use billiard_contact::formats::trace::{CsvTrace, Tee, TraceRow};
+use billiard_contact::plot::paths::TopView;
+use billiard_contact::plot::trace::TraceFigure;
+use billiard_contact::plot::FigureFormat;
 use billiard_contact::table_phase::TableOutcome;
 use billiard_contact::{run_scene, Error, Method, Sampling, Scene, SceneOutcome, SolverSettings};
 use clap::Args;
@@ -60,10 +63,14 @@ pub struct RunArgs {
         value_parser = whole::<u64>
     )]
     ball_path_samples: Option<u64>,
-    /// Draw a top view of both balls' paths with the line of centres (SVG, or PNG for a
-    /// `.png` name; needs `[effects] table = true`).
-    #[arg(long, value_name = "FILE.svg")]
+    /// Draw a top view of both balls' paths with the line of centres (`.svg` or `.png`;
+    /// needs `[effects] table = true`).
+    #[arg(long, value_name = "FILE.svg|png")]
     plot: Option<PathBuf>,
+    /// Draw the run's trace against time (`.svg` or `.png`): force and impulse, slip speed,
+    /// slip direction, velocity, spins, sliding heat; the rows of --trace (with --samples).
+    #[arg(long, value_name = "FILE.svg|png")]
+    plot_trace: Option<PathBuf>,
 }
 
 impl RunArgs {
@@ -81,15 +88,21 @@ impl RunArgs {
     /// The checks of the options that need the scene and the settings: refused when they
     /// could not act (exit code 2), a warning when an option has no effect on this run.
     fn validate(&self, scene: &Scene, settings: &SolverSettings) -> Result<(), Error> {
+        for (option, path) in [("--plot", &self.plot), ("--plot-trace", &self.plot_trace)] {
+            if let Some(path) = path {
+                FigureFormat::of(option, path)?;
+            }
+        }
         if let Some(n) = self.samples {
             if n == 0 {
                 return Err(Error::invalid("--samples", 0, "at least 1"));
             }
-            if self.trace.is_none() {
+            if self.trace.is_none() && self.plot_trace.is_none() {
                 return Err(Error::invalid(
                     "--samples",
                     n,
-                    "only with --trace FILE.csv (it sets the trace's rows)",
+                    "only with --trace FILE.csv or --plot-trace FILE.svg|png (it sets the \
+                     trace's rows)",
                 ));
             }
         }
@@ -127,9 +140,6 @@ impl RunArgs {
         for w in solver_options_unused(&given, settings) {
             warn(w);
         }
-        if let Some(path) = &self.plot {
-            figure_format("--plot", path)?;
-        }
         let table_options = [("--path", &self.ball_paths), ("--plot", &self.plot)];
         if let Some((option, Some(path))) = table_options.iter().find(|(_, p)| p.is_some()) {
             if !scene.effects.table {
@@ -164,21 +174,35 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             summary(&scene, outcome)
         })
     };
-    // The trace becomes visible only once the whole run, report included, succeeded.
-    let (text, outcome) = match &args.trace {
-        Some(path) => {
+    // The trace becomes visible only once the whole run, report included, succeeded; the
+    // trace figure draws the same rows.
+    let mut rows: Vec<TraceRow> = Vec::new();
+    let (text, outcome) = match (&args.trace, args.plot_trace.is_some()) {
+        (Some(path), plot) => {
             let file = AtomicFile::create(path)?;
             let mut csv = CsvTrace::new(file)?;
-            let outcome = run_scene(&scene, &settings, Some((&mut csv, sampling)))?;
+            let outcome = if plot {
+                let mut both = Tee(&mut csv, &mut rows);
+                run_scene(&scene, &settings, Some((&mut both, sampling)))?
+            } else {
+                run_scene(&scene, &settings, Some((&mut csv, sampling)))?
+            };
             let text = render(&outcome)?;
             csv.finish()?.commit()?;
             (text, outcome)
         }
-        None => {
+        (None, true) => {
+            let outcome = run_scene(&scene, &settings, Some((&mut rows, sampling)))?;
+            (render(&outcome)?, outcome)
+        }
+        (None, false) => {
             let outcome = run_scene(&scene, &settings, None)?;
             (render(&outcome)?, outcome)
         }
     };
+    if let Some(path) = &args.plot_trace {
+        TraceFigure::new(&scene, &outcome, &rows).write("--plot-trace", path)?;
+    }
     if let Some(table_phase) = &outcome.table {
         if let Some(path) = &args.ball_paths {
             let samples = args.ball_path_samples.unwrap_or(DEFAULT_BALL_PATH_SAMPLES);
@@ -186,7 +210,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             write_ball_paths(AtomicFile::create(path)?, &rows)?.commit()?;
         }
         if let Some(path) = &args.plot {
-            write_plot(path, table_phase, &scene)?;
+            write_plot(path, table_phase, &scene, &outcome)?;
         }
     }
     for w in &outcome.outcome.warnings {
@@ -199,52 +223,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         .map_err(|e| Error::io("stdout", e))
 }
 
-/// The top view of the table phase: SVG through an atomic file, PNG for a `.png` name
-/// (rendered beside the target and renamed into place).
-fn write_plot(path: &Path, table_phase: &TableOutcome, scene: &Scene) -> Result<(), Error> {
-    use billiard_contact::plot::paths;
-    let title = format!("{}: top view", scene.name);
-    if figure_format("--plot", path)? == Figure::Png {
-        let file = AtomicFile::create(path)?;
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
-        let temp = path.with_file_name(format!(".{name}.{}.render.png", std::process::id()));
-        let drawn = paths::png(table_phase, scene.balls.radii(), &title, &temp);
-        let moved =
-            drawn.and_then(|_| std::fs::rename(&temp, path).map_err(|e| Error::io(path, e)));
-        if moved.is_err() {
-            let _ = std::fs::remove_file(&temp);
-        }
-        drop(file);
-        moved
-    } else {
-        let svg = paths::svg(table_phase, scene.balls.radii(), &title)?;
-        let mut file = AtomicFile::create(path)?;
-        file.write_all(svg.as_bytes())
-            .map_err(|e| Error::io(path, e))?;
-        file.commit()
-    }
-}
-
-/// The formats a figure is written in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Figure {
-    Svg,
-    Png,
-}
-
-/// The format of the figure `option` writes, from its file's name: `.svg` or `.png` (any
-/// case); any other name is refused (a `.pdf` would otherwise hold SVG).
-fn figure_format(option: &str, path: &Path) -> Result<Figure, Error> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("svg") => Ok(Figure::Svg),
-        Some("png") => Ok(Figure::Png),
-        _ => Err(Error::invalid(
-            option,
-            path.display(),
-            "a file name ending in .svg or .png (the formats the figure is drawn in)",
-        )),
-    }
+/// The top view of the table phase, SVG or PNG by the file name's extension.
+fn write_plot(
+    path: &Path,
+    table_phase: &TableOutcome,
+    scene: &Scene,
+    outcome: &SceneOutcome,
+) -> Result<(), Error> {
+    TopView::new(scene, outcome, table_phase).write("--plot", path)
 }

@@ -16,7 +16,8 @@ pub struct StudyArgs {
     /// Scene file (TOML); the built-in default scene when omitted. Its balls, friction,
     /// impulse and duration are used with every profile.
     scene: Option<PathBuf>,
-    /// Directory for work_precision.csv, .svg, .png and .md (created if missing).
+    /// Directory for work_precision.csv, .svg, .png and .md (created if missing); the rows a
+    /// peer's script appended to an existing work_precision.csv there are kept.
     #[arg(long, value_name = "DIR", default_value = ".")]
     out: PathBuf,
     /// Profiles (comma-separated; default: all).
@@ -47,8 +48,7 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     let png = args.out.join("work_precision.png");
     let md = args.out.join("work_precision.md");
     if args.replot {
-        let file = std::fs::File::open(&csv_path).map_err(|e| Error::io(&csv_path, e))?;
-        let rows = work_precision::read_csv(std::io::BufReader::new(file), &csv_path)?;
+        let rows = read_rows(&csv_path)?;
         figure::write(&rows, &svg, &png)?;
         write_tables(&md, &rows)?;
         print!("{}", work_precision::summary(&rows));
@@ -60,6 +60,13 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         );
         return Ok(());
     }
+    // The rows a peer's script appended to the CSV this run replaces are read first (a
+    // malformed file fails before the study runs) and kept.
+    let existing = if csv_path.exists() {
+        read_rows(&csv_path)?
+    } else {
+        Vec::new()
+    };
     let scene = load_scene(args.scene.as_deref())?;
     let mut options = StudyOptions::default();
     if let Some(list) = &args.profiles {
@@ -83,6 +90,8 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
+    let own = rows.len();
+    let (rows, dropped) = work_precision::with_peers_of(rows, existing);
     write_rows(&csv_path, &rows)?;
     figure::write(&rows, &svg, &png)?;
     write_tables(&md, &rows)?;
@@ -91,6 +100,14 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         eprintln!(
             "warning: {} {} {:?} failed: {}",
             r.profile, r.method, r.rtol, r.note
+        );
+    }
+    if rows.len() > own || dropped > 0 {
+        println!(
+            "\nkept {} peer rows of {} (their scenes and profiles); dropped {dropped} of \
+             scenes or profiles not run now",
+            rows.len() - own,
+            csv_path.display()
         );
     }
     println!(
@@ -102,6 +119,12 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// The rows of the study CSV at `path`.
+fn read_rows(path: &Path) -> Result<Vec<StudyRow>, Error> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    work_precision::read_csv(std::io::BufReader::new(file), path)
 }
 
 /// The cost tables in Markdown, written whole or not at all.

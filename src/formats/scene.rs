@@ -41,6 +41,8 @@
 //! rolling_resistance = 0.0   # a rolling ball decelerates at rolling_resistance g (0: off)
 //! spin_decay = 0.0       # |w.up| falls at spin_decay g / (alpha r) on the cloth (0: off)
 //! # height = 0.0         # cloth height along up (m); default: r below the balls' centres
+//! # length = 2.54        # m, with width: the playing area between the cushions, centred
+//! # width = 1.27         # on the lab origin, drawn by --plot (cushions not modelled)
 //! ```
 
 use crate::error::Error;
@@ -53,7 +55,7 @@ use crate::model::material::{HertzContact, Material, POISSON_RATIO_FIELD, YOUNGS
 use crate::model::params::{Ball, BallPair, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
 use crate::profile::{Profile, ProfileSpec};
-use crate::table_phase::{Table, TableParams, TableSettings};
+use crate::table_phase::{Table, TableParams, TableSettings, TableSize};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
 use serde::{Deserialize, Deserializer};
@@ -123,6 +125,9 @@ pub struct Scene {
     /// The cloth (`[table]`) as given; `None` when the section is absent (defaults apply
     /// when the effect `table` is on).
     pub table: Option<TableParams>,
+    /// The playing area between the cushions (`[table] length, width`), drawn on the top
+    /// view; `None` when not given.
+    pub table_size: Option<TableSize>,
 }
 
 /// Solver settings as a scene's `[solver]` section or the command line gives them: each
@@ -200,6 +205,8 @@ struct RawTable {
     rolling_resistance: Option<f64>,
     spin_decay: Option<f64>,
     height: Option<f64>,
+    length: Option<f64>,
+    width: Option<f64>,
 }
 
 impl RawTable {
@@ -214,6 +221,24 @@ impl RawTable {
             spin_decay: self.spin_decay.unwrap_or(d.spin_decay),
             height: self.height,
         })
+    }
+
+    /// The playing area when both `length` and `width` are given (`None` when neither is).
+    fn size(&self) -> Result<Option<TableSize>, Error> {
+        match (self.length, self.width) {
+            (Some(l), Some(w)) => TableSize::new(l, w).map(Some),
+            (None, None) => Ok(None),
+            (Some(l), None) => Err(Error::invalid(
+                "table.length",
+                l,
+                "given together with table.width (the playing area's width, m)",
+            )),
+            (None, Some(w)) => Err(Error::invalid(
+                "table.width",
+                w,
+                "given together with table.length (the playing area's length, m)",
+            )),
+        }
     }
 }
 
@@ -515,6 +540,12 @@ impl Scene {
             effects,
             source: source.map(Path::to_path_buf),
             table: raw.table.as_ref().map(RawTable::build).transpose()?,
+            table_size: raw
+                .table
+                .as_ref()
+                .map(RawTable::size)
+                .transpose()?
+                .flatten(),
         };
         // Validate the geometry and the impulse now, so a bad scene fails at load.
         scene.collision()?;

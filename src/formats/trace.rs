@@ -29,6 +29,31 @@ pub struct TraceRow {
     pub heat_sliding: f64,
 }
 
+impl TraceRow {
+    /// The row's cells in the order of [`HEADER`], in its units; `None` for an empty cell
+    /// (theta when undefined).
+    pub fn values(&self) -> [Option<f64>; 15] {
+        let s = &self.state;
+        [
+            Some(self.t),
+            Some(self.force),
+            Some(self.impulse),
+            Some(s.u_cm.x),
+            Some(s.u_cm.y),
+            Some(s.u_cm.z),
+            Some(s.omega_a.x),
+            Some(s.omega_a.y),
+            Some(s.omega_a.z),
+            Some(s.omega_b.x),
+            Some(s.omega_b.y),
+            Some(s.omega_b.z),
+            Some(self.slip_speed),
+            self.theta,
+            Some(self.heat_sliding),
+        ]
+    }
+}
+
 /// Receives trace rows as they are produced (streaming: nothing is kept in memory).
 pub trait TraceSink {
     /// Takes one row.
@@ -91,33 +116,27 @@ impl<W: Write> CsvTrace<W> {
 
 impl<W: Write> TraceSink for CsvTrace<W> {
     fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
-        let s = &r.state;
-        let values = [
-            r.t,
-            r.force,
-            r.impulse,
-            s.u_cm.x,
-            s.u_cm.y,
-            s.u_cm.z,
-            s.omega_a.x,
-            s.omega_a.y,
-            s.omega_a.z,
-            s.omega_b.x,
-            s.omega_b.y,
-            s.omega_b.z,
-            r.slip_speed,
-        ];
-        for (name, v) in HEADER.iter().zip(values) {
-            let v = finite_output(v, || format!("trace column {name} at t = {}", r.t))?;
-            self.out.write_field(shortest(v))?;
+        for (name, v) in HEADER.iter().zip(r.values()) {
+            match v {
+                Some(v) => {
+                    let v = finite_output(v, || format!("trace column {name} at t = {}", r.t))?;
+                    self.out.write_field(shortest(v))?;
+                }
+                None => self.out.write_field("")?,
+            }
         }
-        match r.theta {
-            Some(th) => self.out.write_field(shortest(th))?,
-            None => self.out.write_field("")?,
-        }
-        self.out.write_field(shortest(r.heat_sliding))?;
         self.out.write_record(None::<&[u8]>)?;
         self.rows += 1;
         Ok(())
+    }
+}
+
+/// Sends every row to two sinks (e.g. the CSV file and the rows a figure is drawn from).
+pub struct Tee<'a>(pub &'a mut dyn TraceSink, pub &'a mut dyn TraceSink);
+
+impl TraceSink for Tee<'_> {
+    fn row(&mut self, row: &TraceRow) -> Result<(), Error> {
+        self.0.row(row)?;
+        self.1.row(row)
     }
 }

@@ -40,7 +40,7 @@ pub use cloth::{cloth_slip, Table, LEVEL_TOLERANCE};
 pub use flight::{MAX_BOUNCES, SETTLE_SPEED};
 pub use impact::{cloth_impact, ClothImpact};
 pub use outcome::{kinetic_energy, TableChecks, TableOutcome};
-pub use params::{TableParams, TableSettings};
+pub use params::{TableParams, TableSettings, TableSize};
 pub use roll_out::{roll_out, RollOut};
 pub use rolling::rolling_velocity;
 pub use segment::{BallMotion, Segment};

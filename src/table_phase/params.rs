@@ -214,6 +214,51 @@ impl TableParams {
     }
 }
 
+/// The playing area between the cushions (`[table] length, width`): drawn on the top view,
+/// not modelled (a ball's path runs on through a cushion). The rectangle is centred on the
+/// lab origin projected on the cloth, its length along the figure's first horizontal axis
+/// (lab x when up is +z) and its width along the second.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableSize {
+    length: f64,
+    width: f64,
+}
+
+impl TableSize {
+    /// The area `length` x `width` (m), both finite and > 0; an error names
+    /// `table.length` or `table.width`, the value and the accepted range.
+    ///
+    /// ```
+    /// use billiard_contact::table_phase::TableSize;
+    /// let pool = TableSize::new(2.54, 1.27).unwrap(); // a 9-foot pool table
+    /// assert_eq!((pool.length(), pool.width()), (2.54, 1.27));
+    /// assert!(TableSize::new(2.54, 0.0).is_err());
+    /// ```
+    pub fn new(length: f64, width: f64) -> Result<Self, Error> {
+        for (name, v) in [("table.length", length), ("table.width", width)] {
+            finite(name, v)?;
+            if v <= 0.0 {
+                return Err(Error::invalid(
+                    name,
+                    v,
+                    "> 0 m (the playing area between the cushions)",
+                ));
+            }
+        }
+        Ok(TableSize { length, width })
+    }
+
+    /// Length (m), along the figure's first horizontal axis.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// Width (m), along the figure's second horizontal axis.
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,24 +1,34 @@
-//! Top view of both balls' paths on the table (`--plot FILE.svg`), lab frame.
+//! Top view of both balls' paths on the table (`run --plot FILE.svg|png`), lab frame.
 //!
 //! Axes: lab x and y when `up` is +z (otherwise the lab x axis projected on the cloth and
-//! up x that). Drawn: the line of centres at contact (dashed, grey), both balls' outlines at
-//! contact, each path (flight thin and light, sliding solid, rolling thick), the landing
-//! points (crosses), where each ball starts to roll (filled dots) and, with rolling
-//! resistance, where it rests (squares), and an arrow along each final rolling direction.
-//! Both axes have the same scale, so angles on the figure are the true angles.
+//! up x that). Drawn: the table's cushions when the scene gives its size, the line of
+//! centres at contact (dashed, grey), both balls' outlines at contact, each path (flight
+//! thin and light, sliding medium, rolling thick), the landing points (crosses), where each
+//! ball starts to roll (dots, with the time) and, with rolling resistance, where it rests
+//! (squares, with the time); an arrow along the rolling direction of a ball still rolling
+//! when the path ends. Both axes have the same scale, so angles on the figure are the true
+//! angles; the figure's height follows the paths' extent. Below the chart: the legend, the
+//! throw, the deflection and the times, and, when the balls are small on the chart, an
+//! inset of the neighbourhood of the contact.
 
+use super::style::{
+    decimals_for, draw_legend, legend_row, light, short, tick_label, Drawn, LegendEntry, Line,
+    Mark, Swatch,
+};
 use super::FONT;
+use crate::apps::runner::SceneOutcome;
 use crate::error::Error;
+use crate::formats::scene::Scene;
 use crate::model::frame::horizontal;
-use crate::table_phase::{BallMotion, RollOut, TableOutcome};
+use crate::table_phase::{BallMotion, RollOut, TableOutcome, TableSize};
 use nalgebra::Vector3;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
 
-/// Figure size in pixels.
-pub const SIZE: (u32, u32) = (900, 820);
+/// Figure width (px); the height follows the paths' extent.
+pub const WIDTH: u32 = 1100;
 
 /// A point on the figure (m, m).
 type Point = (f64, f64);
@@ -28,21 +38,48 @@ type Arrow = (Point, Point, RGBColor);
 type Run = (BallMotion, Vec<Point>);
 /// The chart: figure coordinates (m) on both axes.
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-/// What a drawing step returns.
-type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 const COLOR_A: RGBColor = RGBColor(31, 90, 180);
 const COLOR_B: RGBColor = RGBColor(200, 60, 30);
 /// The line of centres.
 const COLOR_LINE: RGBColor = RGBColor(90, 90, 90);
+/// The kinds of motion in the legend.
+const COLOR_KEY: RGBColor = RGBColor(70, 70, 70);
+/// The cushions and the cloth.
+const COLOR_CUSHION: RGBColor = RGBColor(20, 110, 60);
+const COLOR_CLOTH: RGBColor = RGBColor(225, 242, 228);
 /// Points per segment of a path (one for a ball at rest).
 const POINTS_PER_SEGMENT: u32 = 120;
 /// Points on a ball's outline.
 const OUTLINE_POINTS: u32 = 72;
-/// Heights (px) of the x label area and the caption, width (px) of the y label area.
-const LABEL_X: u32 = 60;
-const CAPTION: u32 = 40;
-const LABEL_Y: u32 = 90;
+/// Heights (px) of the title strip, the x label area and the strip below the chart; width
+/// (px) of the y label area; the chart's margin.
+const HEADER: u32 = 50;
+const LABEL_X: u32 = 56;
+const STRIP: u32 = 300;
+const LABEL_Y: u32 = 84;
+const MARGIN: u32 = 16;
+/// The plotting area's height over its width, at least and at most.
+const ASPECT: (f64, f64) = (0.3, 1.0);
+/// Landing crosses of one ball closer than this (px) are drawn once.
+const CROWDED_PX: f64 = 10.0;
+/// Balls smaller than this radius (px) on the chart get the inset near the contact.
+const SMALL_BALL_PX: f64 = 8.0;
+/// Text sizes (px): title, tick labels, axis descriptions, legend and notes.
+const TITLE_FONT: u32 = 22;
+const TICK_FONT: u32 = 15;
+const DESC_FONT: u32 = 17;
+const LEGEND_FONT: u32 = 15;
+
+/// How each kind of motion is drawn, in `color`: flight thin and light, sliding medium,
+/// rolling thick.
+fn motion_swatch(motion: BallMotion, color: RGBColor) -> Swatch {
+    match motion {
+        BallMotion::Flight => Swatch::line(light(color), 1),
+        BallMotion::Sliding => Swatch::line(color, 2),
+        BallMotion::Rolling | BallMotion::Rest => Swatch::line(color, 5),
+    }
+}
 
 /// The figure's horizontal axes: e1 (lab x on the cloth, or lab y when x is vertical) and
 /// e2 = up x e1.
@@ -123,17 +160,17 @@ impl Bounds {
 struct Layout {
     /// Ball A's and ball B's paths, run by run.
     runs: [Vec<Run>; 2],
-    /// Arrows along the final rolling directions (none for a ball at rest).
+    /// Arrows along the rolling directions of balls still rolling at the end.
     arrows: Vec<Arrow>,
     /// Where the dotted line of ball A's incoming direction starts (it ends at A).
     incoming_from: Option<Point>,
-    /// The box holding the paths, the outlines at contact and the arrows.
+    /// The box holding the paths, the outlines at contact, the arrows and the table.
     bounds: Bounds,
 }
 
 impl Layout {
-    /// The layout of `t`'s figure, balls A and B of radii `radii` (m).
-    fn new(t: &TableOutcome, radii: [f64; 2], proj: &Projection) -> Self {
+    /// The layout of `t`'s figure, balls A and B of radii `radii` (m), the table `size`.
+    fn new(t: &TableOutcome, radii: [f64; 2], size: Option<TableSize>, proj: &Projection) -> Self {
         let up = t.table.up;
         let end = t.end_time();
         let runs = [runs(&t.a, &up, end, proj), runs(&t.b, &up, end, proj)];
@@ -144,15 +181,18 @@ impl Layout {
         let paths = runs.iter().flatten().flat_map(|(_, p)| p.iter().copied());
         let mut bounds = Bounds::of(paths.chain(outlines));
         let span = bounds.span(larger(radii));
-        let arrows = final_arrows(t, proj, end, 0.2 * span);
+        let arrows = final_arrows(t, proj, end, 0.15 * span);
         let vin = horizontal(&t.incoming[0], &up);
         let incoming_from = (vin.norm() > 0.0).then(|| {
             let (ax, ay) = proj.xy(&t.a.start.position);
-            let back = proj.xy(&(vin.normalize() * (0.25 * span)));
+            let back = proj.xy(&(vin.normalize() * (0.2 * span)));
             (ax - back.0, ay - back.1)
         });
         for to in arrows.iter().map(|a| a.1).chain(incoming_from) {
             bounds.include(to);
+        }
+        for corner in size.iter().flat_map(cushion_corners) {
+            bounds.include(corner);
         }
         Layout {
             runs,
@@ -161,6 +201,13 @@ impl Layout {
             bounds,
         }
     }
+}
+
+/// The corners of the playing area (m, figure axes), closed: centred on the origin,
+/// length along the first axis.
+fn cushion_corners(size: &TableSize) -> [Point; 5] {
+    let (l, w) = (0.5 * size.length(), 0.5 * size.width());
+    [(-l, -w), (l, -w), (l, w), (-l, w), (-l, -w)]
 }
 
 /// Points of a ball's path from separation to `end` (s), split into runs of one motion.
@@ -187,12 +234,13 @@ fn runs(r: &RollOut, up: &Vector3<f64>, end: f64, proj: &Projection) -> Vec<Run>
     out
 }
 
-/// Arrows of length `len` (m) from each ball's position at `end` (s) along its final
-/// rolling direction.
+/// Arrows of length `len` (m) from the position at `end` (s) along the rolling direction
+/// of each ball still rolling then (none for a ball that rests: its path ends there).
 fn final_arrows(t: &TableOutcome, proj: &Projection, end: f64, len: f64) -> Vec<Arrow> {
     let up = t.table.up;
     [(&t.a, COLOR_A), (&t.b, COLOR_B)]
         .into_iter()
+        .filter(|(r, _)| r.rest.is_none())
         .filter_map(|(r, c)| {
             let (_, s) = r.at(&up, end, true);
             let vh = horizontal(&r.rolling.velocity, &up);
@@ -205,19 +253,22 @@ fn final_arrows(t: &TableOutcome, proj: &Projection, end: f64, len: f64) -> Vec<
         .collect()
 }
 
-/// The axis ranges (m): `b` padded by 6 % of its span and widened along the shorter side
-/// so that both axes have the same scale on a figure of `dims` (px).
-fn equal_scale(b: &Bounds, radius: f64, dims: (u32, u32)) -> (Range<f64>, Range<f64>) {
-    let (w, h) = dims;
-    let pw = f64::from(w.saturating_sub(LABEL_Y + 40));
-    let ph = f64::from(h.saturating_sub(LABEL_X + CAPTION + 40));
-    let pad = 0.06 * b.span(radius);
+/// The main chart's axis ranges (m) and its plotting area's height (px): `b` padded by 5 %
+/// of its span, the height following the box's shape within [`ASPECT`], the shorter side
+/// widened so that both axes have the same scale.
+fn equal_scale(b: &Bounds, radius: f64) -> (Range<f64>, Range<f64>, u32) {
+    let pw = f64::from(WIDTH - 2 * MARGIN - LABEL_Y);
+    let pad = 0.05 * b.span(radius);
     let (cx0, cx1, cy0, cy1) = (b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad);
+    let ph = (pw * (cy1 - cy0) / (cx1 - cx0))
+        .clamp(ASPECT.0 * pw, ASPECT.1 * pw)
+        .round();
     let scale = ((cx1 - cx0) / pw).max((cy1 - cy0) / ph);
     let (mx, my) = (0.5 * (cx0 + cx1), 0.5 * (cy0 + cy1));
     (
         mx - 0.5 * scale * pw..mx + 0.5 * scale * pw,
         my - 0.5 * scale * ph..my + 0.5 * scale * ph,
+        ph as u32,
     )
 }
 
@@ -226,142 +277,559 @@ fn larger(radii: [f64; 2]) -> f64 {
     radii[0].max(radii[1])
 }
 
-/// Draws the figure of the table phase `t` on `root` with title `title`, balls A and B of
-/// radii `radii` (m); an error carries the backend's message.
-pub fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    t: &TableOutcome,
+/// The top view of a run's table phase, laid out and ready to draw.
+pub struct TopView<'a> {
+    t: &'a TableOutcome,
+    /// Radii of balls A and B (m).
     radii: [f64; 2],
-    title: &str,
-) -> Result<(), String>
-where
-    DB::ErrorType: 'static,
-{
-    super::register_fonts();
-    draw_figure(root, t, radii, title).map_err(|e| e.to_string())
+    title: String,
+    size: Option<TableSize>,
+    /// Throw angle at separation (degrees), from the contact.
+    throw_deg: Option<f64>,
+    proj: Projection,
+    layout: Layout,
+    x: Range<f64>,
+    y: Range<f64>,
+    /// Height (px) of the main chart's plotting area.
+    plot_height: u32,
+    /// Centre and half side (m) of the inset near the contact, when the balls are small.
+    inset: Option<(Point, f64)>,
 }
 
-/// The figure, element by element (in this order, so later ones are on top).
-fn draw_figure<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    t: &TableOutcome,
-    radii: [f64; 2],
-    title: &str,
+impl<'a> TopView<'a> {
+    /// The top view of `t`, the table phase of `run` (a run of `scene`).
+    pub fn new(scene: &Scene, run: &SceneOutcome, t: &'a TableOutcome) -> Self {
+        let radii = scene.balls.radii();
+        let radius = larger(radii);
+        let proj = Projection::new(&t.table.up);
+        let layout = Layout::new(t, radii, scene.table_size, &proj);
+        let (x, y, plot_height) = equal_scale(&layout.bounds, radius);
+        let px_per_m = f64::from(WIDTH - 2 * MARGIN - LABEL_Y) / (x.end - x.start);
+        let inset = (radius * px_per_m < SMALL_BALL_PX)
+            .then(|| inset_box(t, &proj, radius, x.end - x.start));
+        TopView {
+            t,
+            radii,
+            title: format!("{}: top view", scene.name),
+            size: scene.table_size,
+            throw_deg: run.throw_angle_deg,
+            proj,
+            layout,
+            x,
+            y,
+            plot_height,
+            inset,
+        }
+    }
+
+    /// The figure's size (px).
+    pub fn dims(&self) -> (u32, u32) {
+        (
+            WIDTH,
+            HEADER + self.plot_height + 2 * MARGIN + LABEL_X + STRIP,
+        )
+    }
+
+    /// Draws the figure on `root`; an error carries the backend's message.
+    pub fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        super::register_fonts();
+        self.draw_all(root).map_err(|e| e.to_string())
+    }
+
+    /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
+    /// command-line option in the error for another extension).
+    pub fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
+        super::write_figure(
+            option,
+            path,
+            self.dims(),
+            |r| self.draw(r),
+            |r| self.draw(r),
+        )
+    }
+
+    /// The title, the main chart, then the strip: legend, notes and the inset.
+    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
+        root.fill(&WHITE)?;
+        let (header, rest) = root.split_vertically(HEADER);
+        header.draw(&Text::new(
+            self.title.clone(),
+            (MARGIN as i32, 14),
+            (FONT, TITLE_FONT).into_font().style(FontStyle::Bold),
+        ))?;
+        let (main, strip) = rest.split_vertically(self.plot_height + 2 * MARGIN + LABEL_X);
+        let mut chart = ChartBuilder::on(&main)
+            .margin(MARGIN)
+            .x_label_area_size(LABEL_X)
+            .y_label_area_size(LABEL_Y)
+            .build_cartesian_2d(self.x.clone(), self.y.clone())?;
+        self.draw_axes(&mut chart)?;
+        self.draw_scene(&mut chart, true)?;
+        if let Some((c, h)) = self.inset {
+            let frame = [
+                (c.0 - h, c.1 - h),
+                (c.0 + h, c.1 - h),
+                (c.0 + h, c.1 + h),
+                (c.0 - h, c.1 + h),
+                (c.0 - h, c.1 - h),
+            ];
+            chart.draw_series(std::iter::once(PathElement::new(
+                frame.to_vec(),
+                BLACK.stroke_width(1),
+            )))?;
+        }
+        let (notes, inset_area) =
+            strip.split_horizontally(WIDTH - if self.inset.is_some() { STRIP } else { 0 });
+        self.draw_notes(&notes)?;
+        if let Some(b) = self.inset {
+            self.draw_inset(&inset_area, b)?;
+        }
+        root.present()
+    }
+
+    /// The mesh and the axis descriptions, tick labels without "-0".
+    fn draw_axes<'b, DB: DrawingBackend + 'b>(&self, chart: &mut Chart<'b, DB>) -> Drawn<DB> {
+        let (xl, yl) = self.proj.axis_names();
+        let d = decimals_for((self.x.end - self.x.start).min(self.y.end - self.y.start) / 8.0);
+        chart
+            .configure_mesh()
+            .x_desc(xl)
+            .y_desc(yl)
+            .x_label_formatter(&|v| tick_label(*v, d))
+            .y_label_formatter(&|v| tick_label(*v, d))
+            .label_style((FONT, TICK_FONT))
+            .axis_desc_style((FONT, DESC_FONT))
+            .light_line_style(RGBColor(238, 238, 238))
+            .draw()
+    }
+
+    /// Everything on the cloth, in this order (later on top): the table, the line of
+    /// centres, A's incoming line, the paths, the arrows, the markers, the outlines at
+    /// contact. `main`: the main chart (landings thinned out, times written).
+    fn draw_scene<'b, DB: DrawingBackend + 'b>(
+        &self,
+        chart: &mut Chart<'b, DB>,
+        main: bool,
+    ) -> Drawn<DB> {
+        let t = self.t;
+        if let Some(size) = &self.size {
+            let c = cushion_corners(size);
+            chart.draw_series(std::iter::once(Polygon::new(
+                c.to_vec(),
+                COLOR_CLOTH.mix(0.6).filled(),
+            )))?;
+            draw_clipped(chart, Swatch::line(COLOR_CUSHION, 3), &c)?;
+        }
+        let reach = 4.0 * ((self.x.end - self.x.start) + (self.y.end - self.y.start));
+        draw_line_of_centres(chart, t, &self.proj, reach)?;
+        if let Some(from) = self.layout.incoming_from {
+            let a = self.proj.xy(&t.a.start.position);
+            draw_clipped(chart, incoming_swatch(), &[from, a])?;
+        }
+        let balls = [(&t.a, COLOR_A), (&t.b, COLOR_B)];
+        for ((_, color), runs) in balls.iter().zip(&self.layout.runs) {
+            for (motion, pts) in runs {
+                draw_clipped(chart, motion_swatch(*motion, *color), pts)?;
+            }
+        }
+        for arrow in &self.layout.arrows {
+            draw_arrow(chart, arrow)?;
+        }
+        for (r, color) in balls {
+            self.draw_markers(chart, r, color, main)?;
+        }
+        for ((r, color), radius) in balls.into_iter().zip(self.radii) {
+            draw_outline(chart, self.proj.xy(&r.start.position), radius, color)?;
+        }
+        Ok(())
+    }
+
+    /// A ball's landings (crosses; those closer than [`CROWDED_PX`] to one drawn before
+    /// are left out), where it starts to roll (dot) and where it rests
+    /// (square); on the main chart with their times.
+    fn draw_markers<'b, DB: DrawingBackend + 'b>(
+        &self,
+        chart: &mut Chart<'b, DB>,
+        r: &RollOut,
+        color: RGBColor,
+        main: bool,
+    ) -> Drawn<DB> {
+        let up = &self.t.table.up;
+        let (xr, yr) = (chart.x_range(), chart.y_range());
+        let inside = |p: &Point| xr.contains(&p.0) && yr.contains(&p.1);
+        let mut drawn: Vec<(i32, i32)> = Vec::new();
+        let mut landings = Vec::new();
+        for p in landings_of(r, up, &self.proj).filter(inside) {
+            let px = chart.backend_coord(&p);
+            let near =
+                |q: &(i32, i32)| f64::from(q.0 - px.0).hypot(f64::from(q.1 - px.1)) < CROWDED_PX;
+            if !drawn.iter().any(near) {
+                drawn.push(px);
+                landings.push((p, false));
+            }
+        }
+        landing_swatch(color).draw_marks(chart.plotting_area(), landings)?;
+        let roll = self.proj.xy(&r.rolling.position);
+        let heading = self.proj.xy(&r.rolling.velocity);
+        if inside(&roll) {
+            roll_swatch(color).draw_marks(chart.plotting_area(), [(roll, false)])?;
+            if main {
+                let text = format!("rolls {} s", short(r.roll_time));
+                time_label(chart, roll, heading, text, color)?;
+            }
+        }
+        if let Some((time, p)) = r.rest.map(|(t, p)| (t, self.proj.xy(&p))) {
+            if inside(&p) {
+                rest_swatch(color).draw_marks(chart.plotting_area(), [(p, false)])?;
+                if main {
+                    time_label(chart, p, heading, format!("rests {} s", short(time)), color)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The strip below the chart: the legend in two columns, then the throw, the
+    /// deflection and the times.
+    fn draw_notes<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Drawn<DB> {
+        let entries = self.legend();
+        let (w, _) = area.dim_in_pixel();
+        let x0 = MARGIN as i32 + 8;
+        let column = (w as i32 - x0) / 2;
+        draw_legend(area, &entries, (x0, 6), (2, column), LEGEND_FONT)?;
+        let rows = entries.len().div_ceil(2) as i32;
+        let mut y = 6 + rows * legend_row(LEGEND_FONT) + 10;
+        for line in self.annotations() {
+            area.draw(&Text::new(line, (x0, y), (FONT, LEGEND_FONT).into_font()))?;
+            y += legend_row(LEGEND_FONT);
+        }
+        Ok(())
+    }
+
+    /// The legend's entries: what each line and marker means (only the markers drawn).
+    fn legend(&self) -> Vec<LegendEntry> {
+        let t = self.t;
+        let mut e = vec![
+            LegendEntry::new(motion_swatch(BallMotion::Sliding, COLOR_A), "A (cue ball)"),
+            LegendEntry::new(
+                motion_swatch(BallMotion::Sliding, COLOR_B),
+                "B (object ball)",
+            ),
+            LegendEntry::new(line_of_centres_swatch(), "line of centres at contact"),
+            LegendEntry::new(incoming_swatch(), "A incoming"),
+            LegendEntry::new(
+                motion_swatch(BallMotion::Flight, COLOR_KEY),
+                "in flight (thin)",
+            ),
+            LegendEntry::new(motion_swatch(BallMotion::Sliding, COLOR_KEY), "sliding"),
+            LegendEntry::new(
+                motion_swatch(BallMotion::Rolling, COLOR_KEY),
+                "rolling (thick)",
+            ),
+        ];
+        let up = &t.table.up;
+        let landings = |r: &RollOut| landings_of(r, up, &self.proj).count();
+        let (la, lb) = (landings(&t.a), landings(&t.b));
+        if la + lb > 0 {
+            e.push(LegendEntry::new(
+                landing_swatch(COLOR_KEY),
+                format!("landing (A {la}, B {lb}; those within {CROWDED_PX} px drawn once)"),
+            ));
+        }
+        e.push(LegendEntry::new(
+            roll_swatch(COLOR_KEY),
+            "starts rolling (time)",
+        ));
+        if t.a.rest.is_some() || t.b.rest.is_some() {
+            e.push(LegendEntry::new(
+                rest_swatch(COLOR_KEY),
+                "comes to rest (time)",
+            ));
+        }
+        if !self.layout.arrows.is_empty() {
+            e.push(LegendEntry::new(
+                Swatch::line(COLOR_KEY, 2).with_line(Line::Dashed),
+                "arrow: rolls on this way",
+            ));
+        }
+        if self.size.is_some() {
+            e.push(LegendEntry::new(
+                Swatch::line(COLOR_CUSHION, 3),
+                "cushions (not modelled)",
+            ));
+        }
+        if self.inset.is_some() {
+            e.push(LegendEntry::new(
+                Swatch::line(BLACK, 1),
+                "box: the inset, near the contact",
+            ));
+        }
+        e
+    }
+
+    /// The throw, the deflection and the times, one line each.
+    fn annotations(&self) -> Vec<String> {
+        let t = self.t;
+        let deg =
+            |d: Option<f64>| d.map_or_else(|| "none (at rest)".into(), |d| format!("{d:.2} deg"));
+        let mut lines = vec![
+            format!(
+                "throw of B: {} from the line of centres once rolling ({} at separation)",
+                deg(t.direction_deg(&t.b)),
+                deg(self.throw_deg)
+            ),
+            format!(
+                "deflection of A: {} from its incoming line",
+                deg(t.deflection_deg(0, &t.a))
+            ),
+        ];
+        for (name, r) in [("A", &t.a), ("B", &t.b)] {
+            lines.push(ball_times(name, r));
+        }
+        if let Some(s) = &self.size {
+            lines.push(format!(
+                "table {} m x {} m centred on the lab origin; paths run on through the cushions",
+                short(s.length()),
+                short(s.width())
+            ));
+        }
+        lines
+    }
+
+    /// The inset on `area`: the square of half side `h` (m) about `c`, where the balls
+    /// touch, with everything the main chart draws there.
+    fn draw_inset<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        (c, h): (Point, f64),
+    ) -> Drawn<DB> {
+        let area = area.margin(4, 12, 4, 12);
+        area.draw(&Text::new(
+            format!("near the contact ({} m across)", short(2.0 * h)),
+            (50, 0),
+            (FONT, LEGEND_FONT).into_font(),
+        ))?;
+        let (_, body) = area.split_vertically(legend_row(LEGEND_FONT) as u32);
+        let mut chart = ChartBuilder::on(&body)
+            .x_label_area_size(22)
+            .y_label_area_size(50)
+            .build_cartesian_2d(c.0 - h..c.0 + h, c.1 - h..c.1 + h)?;
+        let d = decimals_for(h / 2.0);
+        chart
+            .configure_mesh()
+            .x_labels(4)
+            .y_labels(4)
+            .x_label_formatter(&|v| tick_label(*v, d))
+            .y_label_formatter(&|v| tick_label(*v, d))
+            .label_style((FONT, 12))
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.08))
+            .draw()?;
+        self.draw_scene(&mut chart, false)
+    }
+}
+
+/// The square about the contact (centre, half side, m) holding both balls and the
+/// landings near them: at least 4 radii, at most a fifth of the main chart's width `span`.
+fn inset_box(t: &TableOutcome, proj: &Projection, radius: f64, span: f64) -> (Point, f64) {
+    let (a, b) = (proj.xy(&t.a.start.position), proj.xy(&t.b.start.position));
+    let c = (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1));
+    let up = &t.table.up;
+    let far = [&t.a, &t.b]
+        .into_iter()
+        .flat_map(|r| landings_of(r, up, proj))
+        .map(|p| (p.0 - c.0).abs().max((p.1 - c.1).abs()))
+        .filter(|d| *d < 0.1 * span)
+        .fold(4.0 * radius, f64::max);
+    (c, 1.2 * far + radius)
+}
+
+/// The points (m, figure axes) where a ball lands on the cloth after a flight.
+fn landings_of<'r>(
+    r: &'r RollOut,
+    up: &'r Vector3<f64>,
+    proj: &'r Projection,
+) -> impl Iterator<Item = Point> + 'r {
+    r.impacts
+        .iter()
+        .filter(|i| i.time > 0.0)
+        .map(move |i| proj.xy(&r.at(up, i.time, true).1.position))
+}
+
+/// A ball's times from separation: flight, landings, rolling and rest.
+fn ball_times(name: &str, r: &RollOut) -> String {
+    let mut s = format!("{name}: ");
+    if r.hop_time > 0.0 {
+        s += &format!("hops {} s, ", short(r.hop_time));
+    }
+    if r.bounces > 0 {
+        s += &format!(
+            "bounces {} times until {} s, ",
+            r.bounces,
+            short(r.settle_time)
+        );
+    }
+    s += &format!(
+        "slides {} s, rolls from {} s",
+        short(r.slide_time),
+        short(r.roll_time)
+    );
+    if let Some((time, _)) = r.rest {
+        s += &format!(", rests at {} s", short(time));
+    }
+    s + " (times from separation)"
+}
+
+/// The look of the line of centres.
+fn line_of_centres_swatch() -> Swatch {
+    Swatch::line(COLOR_LINE, 2).with_line(Line::Dashed)
+}
+
+/// The look of A's incoming line.
+fn incoming_swatch() -> Swatch {
+    Swatch::line(light(COLOR_A), 2).with_line(Line::Dotted)
+}
+
+/// The markers: landings (crosses), the start of rolling (dots), rest (squares).
+fn landing_swatch(color: RGBColor) -> Swatch {
+    Swatch::line(color, 2)
+        .with_line(Line::None)
+        .with_mark(Mark::Cross, 6)
+}
+fn roll_swatch(color: RGBColor) -> Swatch {
+    Swatch::line(color, 2)
+        .with_line(Line::None)
+        .with_mark(Mark::Circle, 6)
+}
+fn rest_swatch(color: RGBColor) -> Swatch {
+    Swatch::line(color, 2)
+        .with_line(Line::None)
+        .with_mark(Mark::Square, 6)
+}
+
+/// `text` beside the marker at `at`, in `color`: on the right-hand side of the ball's
+/// direction of travel `heading` (figure axes), kept inside the chart.
+fn time_label<'b, DB: DrawingBackend + 'b>(
+    chart: &mut Chart<'b, DB>,
+    at: Point,
+    heading: Point,
+    text: String,
+    color: RGBColor,
 ) -> Drawn<DB> {
-    let proj = Projection::new(&t.table.up);
-    let layout = Layout::new(t, radii, &proj);
-    let (x, y) = equal_scale(&layout.bounds, larger(radii), root.dim_in_pixel());
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, (FONT, 22))
-        .margin(20)
-        .x_label_area_size(LABEL_X)
-        .y_label_area_size(LABEL_Y)
-        .build_cartesian_2d(x.clone(), y.clone())?;
-    draw_axes(&mut chart, &proj)?;
-    draw_line_of_centres(&mut chart, t, &proj, (&x, &y))?;
-    if let Some(from) = layout.incoming_from {
-        draw_incoming(&mut chart, from, proj.xy(&t.a.start.position))?;
-    }
-    let balls = [
-        ("A (cue ball)", &t.a, COLOR_A),
-        ("B (object ball)", &t.b, COLOR_B),
-    ];
-    for (((name, r, color), runs), radius) in balls.into_iter().zip(&layout.runs).zip(radii) {
-        draw_outline(&mut chart, proj.xy(&r.start.position), radius, color)?;
-        draw_path(&mut chart, name, runs, color)?;
-        draw_markers(&mut chart, r, &t.table.up, &proj, color, x.end - x.start)?;
-    }
-    for arrow in &layout.arrows {
-        draw_arrow(&mut chart, arrow)?;
-    }
-    draw_legend(&mut chart)?;
-    root.present()
+    let n = heading.0.hypot(heading.1);
+    // Right-hand normal (figure axes), then in pixels (y down).
+    let (rx, ry) = if n > 0.0 {
+        (heading.1 / n, -heading.0 / n)
+    } else {
+        (0.0, 1.0)
+    };
+    let width = (text.chars().count() as f64 * 0.56 * f64::from(LEGEND_FONT)) as i32;
+    let height = LEGEND_FONT as i32;
+    let (px, py) = (rx * 16.0, -ry * 16.0);
+    let mut dx = px as i32
+        - if px < -4.0 {
+            width
+        } else if px.abs() <= 4.0 {
+            width / 2
+        } else {
+            0
+        };
+    let mut dy = py as i32
+        - if py < -4.0 {
+            height
+        } else if py.abs() <= 4.0 {
+            height / 2
+        } else {
+            0
+        };
+    // Inside the plotting area.
+    let (w, h) = chart.plotting_area().dim_in_pixel();
+    let (ox, oy) = chart.plotting_area().get_base_pixel();
+    let (ax, ay) = chart.backend_coord(&at);
+    let (ax, ay) = (ax - ox, ay - oy);
+    dx = dx.clamp(-ax + 2, w as i32 - ax - width - 2);
+    dy = dy.clamp(-ay + 2, h as i32 - ay - height - 2);
+    let style = TextStyle::from((FONT, LEGEND_FONT).into_font()).color(&color);
+    chart.draw_series(std::iter::once(
+        EmptyElement::at(at) + Text::new(text, (dx, dy), style),
+    ))?;
+    Ok(())
 }
 
-/// The mesh and the axis descriptions.
-fn draw_axes<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    proj: &Projection,
+/// The polyline `pts` drawn with `swatch`, clipped to the chart's ranges.
+fn draw_clipped<'b, DB: DrawingBackend + 'b>(
+    chart: &mut Chart<'b, DB>,
+    swatch: Swatch,
+    pts: &[Point],
 ) -> Drawn<DB> {
-    let (xl, yl) = proj.axis_names();
-    chart
-        .configure_mesh()
-        .x_desc(xl)
-        .y_desc(yl)
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 17))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let mut piece: Vec<Point> = Vec::new();
+    for w in pts.windows(2) {
+        match clip(w[0], w[1], (&xr, &yr)) {
+            Some((p, q)) => {
+                if piece.last() != Some(&p) {
+                    swatch.draw_line(chart.plotting_area(), &piece)?;
+                    piece = vec![p];
+                }
+                piece.push(q);
+            }
+            None => {
+                swatch.draw_line(chart.plotting_area(), &piece)?;
+                piece.clear();
+            }
+        }
+    }
+    swatch.draw_line(chart.plotting_area(), &piece)
 }
 
-/// The line of centres at contact (dashed, grey) across the figure, whose axes span
-/// `ranges` (m).
+/// The part of the segment `p`-`q` inside the box (Liang-Barsky); `None` when none is.
+fn clip(p: Point, q: Point, (xr, yr): (&Range<f64>, &Range<f64>)) -> Option<(Point, Point)> {
+    let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (pk, qk) in [
+        (-dx, p.0 - xr.start),
+        (dx, xr.end - p.0),
+        (-dy, p.1 - yr.start),
+        (dy, yr.end - p.1),
+    ] {
+        if pk == 0.0 {
+            if qk < 0.0 {
+                return None;
+            }
+        } else {
+            let r = qk / pk;
+            if pk < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 <= t1).then_some((
+        (p.0 + t0 * dx, p.1 + t0 * dy),
+        (p.0 + t1 * dx, p.1 + t1 * dy),
+    ))
+}
+
+/// The line of centres at contact, `reach` (m) beyond both balls: across the chart.
 fn draw_line_of_centres<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
     t: &TableOutcome,
     proj: &Projection,
-    ranges: (&Range<f64>, &Range<f64>),
+    reach: f64,
 ) -> Drawn<DB> {
     let ca = proj.xy(&t.a.start.position);
+    let cb = proj.xy(&t.b.start.position);
     let l = proj.xy(&t.line);
-    // The backend moves a point outside the axes onto the border coordinate by coordinate,
-    // which turns a slanted line towards a corner: draw only the part inside the axes.
-    let Some((from, to)) = clip_line(ca, l, ranges) else {
-        return Ok(());
-    };
-    let line = [from, to];
-    chart
-        .draw_series(DashedLineSeries::new(
-            line,
-            10,
-            6,
-            ShapeStyle::from(COLOR_LINE).stroke_width(2),
-        ))?
-        .label("line of centres at contact")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_LINE.stroke_width(2)));
+    let line = [
+        (ca.0 - reach * l.0, ca.1 - reach * l.1),
+        (cb.0 + reach * l.0, cb.1 + reach * l.1),
+    ];
+    draw_clipped(chart, line_of_centres_swatch(), &line)?;
     Ok(())
-}
-
-/// Where the cue ball came from: its incoming direction of travel, dotted, `from` to its
-/// centre at contact `to`.
-fn draw_incoming<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    from: Point,
-    to: Point,
-) -> Drawn<DB> {
-    chart
-        .draw_series(DashedLineSeries::new(
-            [from, to],
-            3,
-            5,
-            COLOR_A.mix(0.6).stroke_width(2),
-        ))?
-        .label("A incoming")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], COLOR_A.mix(0.6).stroke_width(2)));
-    Ok(())
-}
-
-/// The part inside the box `ranges` of the line through `p` along `d`: its two ends, or
-/// `None` when the line misses the box (or `d` is zero). Each axis bounds the line
-/// parameter s of p + s d; the part inside is the intersection of the two intervals.
-fn clip_line(p: Point, d: Point, ranges: (&Range<f64>, &Range<f64>)) -> Option<(Point, Point)> {
-    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-    for (start, dir, range) in [(p.0, d.0, ranges.0), (p.1, d.1, ranges.1)] {
-        if dir == 0.0 {
-            if start < range.start || start > range.end {
-                return None;
-            }
-        } else {
-            let (a, b) = ((range.start - start) / dir, (range.end - start) / dir);
-            lo = lo.max(a.min(b));
-            hi = hi.min(a.max(b));
-        }
-    }
-    (lo < hi && lo.is_finite() && hi.is_finite()).then_some((
-        (p.0 + lo * d.0, p.1 + lo * d.1),
-        (p.0 + hi * d.0, p.1 + hi * d.1),
-    ))
 }
 
 /// A ball's outline at contact: the circle of `radius` (m) about `centre`.
@@ -378,70 +846,7 @@ fn draw_outline<'a, DB: DrawingBackend + 'a>(
             (cx + radius * a.cos(), cy + radius * a.sin())
         })
         .collect();
-    chart.draw_series(LineSeries::new(outline, color.stroke_width(1)))?;
-    Ok(())
-}
-
-/// A ball's path, run by run: flight thin and light, sliding solid, rolling thick; one
-/// legend entry `name`.
-fn draw_path<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    name: &str,
-    runs: &[Run],
-    color: RGBColor,
-) -> Drawn<DB> {
-    for (i, (motion, pts)) in runs.iter().enumerate() {
-        let style = match motion {
-            BallMotion::Flight => color.mix(0.45).stroke_width(1),
-            BallMotion::Sliding => color.stroke_width(2),
-            BallMotion::Rolling | BallMotion::Rest => color.stroke_width(4),
-        };
-        let s = chart.draw_series(LineSeries::new(pts.iter().copied(), style))?;
-        if i == 0 {
-            s.label(format!("{name}: flight thin, sliding, rolling thick"))
-                .legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 20, y)], color.stroke_width(3))
-                });
-        }
-    }
-    Ok(())
-}
-
-/// A ball's landing points (crosses), where it starts to roll (filled dot) and, with
-/// rolling resistance, where it rests (a square of 1.2 % of the x range `x_span` (m)).
-fn draw_markers<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Chart<'a, DB>,
-    r: &RollOut,
-    up: &Vector3<f64>,
-    proj: &Projection,
-    color: RGBColor,
-    x_span: f64,
-) -> Drawn<DB> {
-    let landings: Vec<Point> = r
-        .impacts
-        .iter()
-        .filter(|i| i.time > 0.0)
-        .map(|i| proj.xy(&r.at(up, i.time, true).1.position))
-        .collect();
-    chart.draw_series(
-        landings
-            .into_iter()
-            .map(|p| Cross::new(p, 7, color.stroke_width(2))),
-    )?;
-    chart.draw_series(std::iter::once(Circle::new(
-        proj.xy(&r.rolling.position),
-        5,
-        color.filled(),
-    )))?;
-    if let Some((_, p)) = r.rest {
-        let (px, py) = proj.xy(&p);
-        let d = 0.006 * x_span;
-        chart.draw_series(std::iter::once(Rectangle::new(
-            [(px - d, py - d), (px + d, py + d)],
-            color.filled(),
-        )))?;
-    }
-    Ok(())
+    draw_clipped(chart, Swatch::line(color, 2), &outline)
 }
 
 /// A dashed arrow with an open head a quarter of its length.
@@ -457,85 +862,130 @@ fn draw_arrow<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>, arrow: &Ar
             to.1 - head * (uy * 0.94 + s * ux * 0.34),
         )
     };
-    chart.draw_series(DashedLineSeries::new(
-        [from, to],
-        6,
-        4,
-        color.stroke_width(2),
-    ))?;
-    chart.draw_series(LineSeries::new(
-        [wing(1.0), to, wing(-1.0)],
-        color.stroke_width(2),
-    ))?;
+    let swatch = Swatch::line(color, 2);
+    draw_clipped(chart, swatch.with_line(Line::Dashed), &[from, to])?;
+    draw_clipped(chart, swatch, &[wing(1.0), to, wing(-1.0)])?;
     Ok(())
-}
-
-/// The legend: the series' entries and one for the markers, upper left.
-fn draw_legend<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>) -> Drawn<DB> {
-    let gray = RGBColor(60, 60, 60);
-    chart
-        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
-        .label("x landing on the cloth, dot: starts rolling, dashed arrow: rolling direction")
-        .legend(move |(x, y)| Cross::new((x + 10, y), 5, gray.stroke_width(2)));
-    chart
-        .configure_series_labels()
-        .label_font((FONT, 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()
-}
-
-/// The figure of `t` (balls A and B of radii `radii`, m) as SVG text.
-pub fn svg(t: &TableOutcome, radii: [f64; 2], title: &str) -> Result<String, Error> {
-    let mut out = String::new();
-    {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(&root, t, radii, title).map_err(plot_error)?;
-    }
-    Ok(out)
-}
-
-/// Renders the figure of `t` (balls A and B of radii `radii`, m) as PNG at `path` (written
-/// directly; the CLI renames it into place).
-pub fn png(
-    t: &TableOutcome,
-    radii: [f64; 2],
-    title: &str,
-    path: &std::path::Path,
-) -> Result<(), Error> {
-    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-    draw(&root, t, radii, title).map_err(plot_error)
-}
-
-fn plot_error(message: String) -> Error {
-    Error::Plot {
-        path: "plot".into(),
-        message: format!("drawing the path figure: {message}"),
-    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::clip_line;
+    use super::*;
+    use crate::apps::runner::run_scene;
+    use std::path::Path;
 
-    #[test]
-    fn the_line_of_centres_is_clipped_to_the_axes_along_itself() {
-        let (x, y) = (-1.0..3.0, -1.0..1.0);
-        // Horizontal through (0.5, 0.25): from x = -1 to x = 3 at y = 0.25.
-        let h = clip_line((0.5, 0.25), (2.0, 0.0), (&x, &y)).unwrap();
-        assert_eq!(h, ((-1.0, 0.25), (3.0, 0.25)));
-        // Slope 1/2 through the origin: y reaches -1 and 1 at x = -2 and 2, outside x's
-        // -1 on the left, so the part inside runs from (-1, -0.5) to (2, 1).
-        let (a, b) = clip_line((0.0, 0.0), (0.8, 0.4), (&x, &y)).unwrap();
-        let close = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).abs().max((p.1 - q.1).abs()) < 1e-15;
-        assert!(
-            close(a, (-1.0, -0.5)) && close(b, (2.0, 1.0)),
-            "{a:?} {b:?}"
+    /// The draw shot of data/scenes, with `extra` added under its `[table]`.
+    fn draw_shot(extra: &str) -> Scene {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+        let text = std::fs::read_to_string(dir.join("draw_table.toml")).unwrap();
+        let text = text.replace(
+            "spin_decay = 0.044",
+            &format!("spin_decay = 0.044\n{extra}"),
         );
-        // A line that passes above the box, and a vertical one beside it.
-        assert!(clip_line((0.0, 2.0), (1.0, 0.0), (&x, &y)).is_none());
-        assert!(clip_line((4.0, 0.0), (0.0, 1.0), (&x, &y)).is_none());
-        assert!(clip_line((0.0, 0.0), (0.0, 0.0), (&x, &y)).is_none());
+        Scene::parse(&text, &dir, None).unwrap()
+    }
+
+    fn view_of<T>(scene: &Scene, f: impl FnOnce(&TopView<'_>) -> T) -> T {
+        let run = run_scene(scene, &scene.solver, None).unwrap();
+        let t = run.table.as_ref().unwrap();
+        f(&TopView::new(scene, &run, t))
+    }
+
+    /// With rolling resistance both balls rest about 15 m apart along x and 0.3 m across:
+    /// the chart's height shrinks to its least (the paths fill its width), no arrow runs
+    /// past a rest point, and the balls at contact are small enough for the inset.
+    #[test]
+    fn the_frame_fits_paths_that_end_at_rest() {
+        let scene = draw_shot("rolling_resistance = 0.01");
+        view_of(&scene, |v| {
+            let b = &v.layout.bounds;
+            let width = v.x.end - v.x.start;
+            assert!((b.x1 - b.x0) / width > 0.85, "paths fill the width");
+            let pw = f64::from(WIDTH - 2 * MARGIN - LABEL_Y);
+            assert_eq!(f64::from(v.plot_height), (ASPECT.0 * pw).round());
+            // Equal scales: metres per pixel the same across and up.
+            let (sx, sy) = (width / pw, (v.y.end - v.y.start) / f64::from(v.plot_height));
+            assert!((sx / sy - 1.0).abs() < 1e-12);
+            assert!(v.layout.arrows.is_empty(), "both balls rest: no arrows");
+            assert!(v.inset.is_some());
+        });
+    }
+
+    /// Without rolling resistance the balls roll on: one arrow each, starting where the
+    /// path ends; the balls are large enough on the chart to need no inset.
+    #[test]
+    fn rolling_balls_get_arrows_from_the_end_of_their_paths() {
+        let scene = draw_shot("");
+        view_of(&scene, |v| {
+            assert_eq!(v.layout.arrows.len(), 2);
+            for (arrow, runs) in v.layout.arrows.iter().zip(&v.layout.runs) {
+                let end = *runs.last().unwrap().1.last().unwrap();
+                assert!((arrow.0 .0 - end.0).hypot(arrow.0 .1 - end.1) < 1e-9);
+            }
+            assert!(v.inset.is_none());
+        });
+    }
+
+    /// `[table] length, width`: the cushions' rectangle, centred on the origin, inside the
+    /// frame; one without the other, or a size <= 0, is refused naming the key.
+    #[test]
+    fn the_table_size_is_drawn_and_validated() {
+        let scene = draw_shot("length = 2.54\nwidth = 1.27");
+        let size = scene.table_size.unwrap();
+        assert_eq!((size.length(), size.width()), (2.54, 1.27));
+        assert_eq!(
+            cushion_corners(&size),
+            [
+                (-1.27, -0.635),
+                (1.27, -0.635),
+                (1.27, 0.635),
+                (-1.27, 0.635),
+                (-1.27, -0.635)
+            ]
+        );
+        view_of(&scene, |v| {
+            assert!(v.x.start < -1.27 && v.x.end > 1.27);
+            assert!(v.y.start < -0.635 && v.y.end > 0.635);
+        });
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+        let text = std::fs::read_to_string(dir.join("draw_table.toml")).unwrap();
+        for (extra, message) in [
+            (
+                "length = 2.54",
+                "table.length = 2.54: given together with table.width",
+            ),
+            (
+                "width = 1.27",
+                "table.width = 1.27: given together with table.length",
+            ),
+            ("length = 2.54\nwidth = 0", "table.width = 0: > 0 m"),
+            ("length = -1\nwidth = 1", "table.length = -1: > 0 m"),
+        ] {
+            let t = text.replace(
+                "spin_decay = 0.044",
+                &format!("spin_decay = 0.044\n{extra}"),
+            );
+            let e = Scene::parse(&t, &dir, None).unwrap_err().to_string();
+            assert!(e.contains(message), "{e}");
+        }
+    }
+
+    /// Clipping keeps the part of a segment inside the box and drops one outside it.
+    #[test]
+    fn segments_are_clipped_to_the_chart() {
+        let (x, y) = (0.0..1.0, 0.0..1.0);
+        assert_eq!(
+            clip((-1.0, 0.5), (2.0, 0.5), (&x, &y)),
+            Some(((0.0, 0.5), (1.0, 0.5)))
+        );
+        assert_eq!(
+            clip((-1.0, -1.0), (1.0, 1.0), (&x, &y)),
+            Some(((0.0, 0.0), (1.0, 1.0)))
+        );
+        assert_eq!(clip((2.0, 2.0), (3.0, 2.5), (&x, &y)), None);
+        assert_eq!(
+            clip((0.2, 0.2), (0.4, 0.6), (&x, &y)),
+            Some(((0.2, 0.2), (0.4, 0.6)))
+        );
     }
 }

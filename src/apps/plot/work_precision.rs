@@ -1,14 +1,16 @@
 //! The work-precision diagram: error of the outgoing state (log x) against wall time per
-//! contact (log y), one line per method, one panel per profile, one row of panels per
-//! scene. Each panel's legend gives the observed order p (error ~ evaluations^-p,
-//! [`crate::apps::work_precision::Series::observed_order`]). Errors of exactly 0 (the closed form, and
-//! runs that are exact to round-off) are drawn at 1e-17 as hollow markers
-//! (docs/formats.md#work-precision-csv).
+//! contact (log y), one line per method, one panel per profile (rows) and scene (columns).
+//! One legend for the whole figure (colour: method; solid with circles: the default
+//! settings; dashed with crosses: time transform or breakpoints off; triangles: the peers),
+//! and beside each panel the observed order p of each of its lines
+//! ([`crate::apps::work_precision::Series::order_fit`]), or why it has none. Errors of
+//! exactly 0 (the closed form, and runs that are exact to round-off) are drawn at 1e-17 as
+//! hollow markers (docs/formats.md#work-precision-csv).
 
+use super::style::{draw_legend, legend_row, Drawn, LegendEntry, Line, Mark, Swatch};
 use super::FONT;
-use crate::apps::work_precision::{series, Series, StudyRow};
+use crate::apps::work_precision::{series, NoOrder, Series, StudyRow};
 use crate::error::Error;
-use plotters::coord::combinators::LogCoord;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -17,12 +19,97 @@ use std::path::Path;
 /// docs/formats.md#work-precision-csv).
 pub const ZERO_ERROR_AT: f64 = 1e-17;
 
-/// Width and height (px) of one panel.
-const PANEL: (u32, u32) = (470, 430);
+/// Width and height (px) of one panel: the chart and, at its right, the orders.
+const PANEL: (u32, u32) = (700, 400);
+/// Width (px) of the orders beside a chart.
+const ORDERS: u32 = 210;
 /// Smallest width (px): the title strip's text.
-const MIN_WIDTH: u32 = 1120;
-/// Height (px) of the title strip.
-const HEADER: u32 = 70;
+const MIN_WIDTH: u32 = 1400;
+/// Height (px) of the title strip above the legend.
+const TITLE: u32 = 122;
+/// Height (px) of the scenes' names above the columns of panels.
+const COLUMN_TITLES: u32 = 40;
+/// Columns of the figure's legend.
+const LEGEND_COLUMNS: usize = 4;
+/// Text sizes (px): title, notes, panel titles, axis descriptions, ticks, legends.
+const TITLE_FONT: u32 = 28;
+const NOTE_FONT: u32 = 17;
+const PANEL_FONT: u32 = 20;
+const DESC_FONT: u32 = 17;
+const TICK_FONT: u32 = 16;
+const LEGEND_FONT: u32 = 17;
+
+/// The panels: profiles (rows) and scenes (columns), in order of first appearance.
+fn layout(rows: &[StudyRow]) -> (Vec<&str>, Vec<&str>) {
+    let mut scenes: Vec<&str> = Vec::new();
+    let mut profiles: Vec<&str> = Vec::new();
+    for r in rows {
+        if !scenes.contains(&r.scene.as_str()) {
+            scenes.push(&r.scene);
+        }
+        if !profiles.contains(&r.profile.as_str()) {
+            profiles.push(&r.profile);
+        }
+    }
+    (scenes, profiles)
+}
+
+/// The figure's legend: one entry per kind of line present (method and settings), in
+/// order of first appearance.
+fn legend(lines: &[Series<'_>]) -> Vec<LegendEntry> {
+    let mut out: Vec<LegendEntry> = Vec::new();
+    for l in lines {
+        let label = l.label();
+        if !out.iter().any(|e| e.label == label) {
+            out.push(LegendEntry::new(swatch(l), label));
+        }
+    }
+    out
+}
+
+/// Height (px) of the header: the title strip and the legend.
+fn header_height(entries: usize) -> u32 {
+    TITLE
+        + (legend_row(LEGEND_FONT) * entries.div_ceil(LEGEND_COLUMNS) as i32) as u32
+        + 12
+        + COLUMN_TITLES
+}
+
+/// The figure's size (px) for these rows.
+pub fn size(rows: &[StudyRow]) -> (u32, u32) {
+    let (scenes, profiles) = layout(rows);
+    let entries = legend(&series(rows)).len();
+    (
+        (PANEL.0 * scenes.len().max(1) as u32).max(MIN_WIDTH),
+        header_height(entries) + PANEL.1 * profiles.len().max(1) as u32,
+    )
+}
+
+/// The time axis range (s): all finite times, padded by a factor 1.6.
+fn time_range(rows: &[StudyRow]) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    for r in rows {
+        let t = r.seconds_per_contact;
+        if t.is_finite() && t > 0.0 && r.error.is_some() {
+            lo = lo.min(t);
+            hi = hi.max(t);
+        }
+    }
+    if !(lo.is_finite() && hi > 0.0) {
+        return (1e-9, 1.0);
+    }
+    (lo / 1.6, hi * 1.6)
+}
+
+/// The x position of an error: errors of exactly 0 at [`ZERO_ERROR_AT`]; errors above 1
+/// clamped to 1.
+fn x_of(error: f64) -> f64 {
+    if error == 0.0 {
+        ZERO_ERROR_AT
+    } else {
+        error.clamp(1e-18, 1.0)
+    }
+}
 
 /// The colour of a method's line.
 fn colour(method: &str) -> RGBColor {
@@ -38,122 +125,109 @@ fn colour(method: &str) -> RGBColor {
     }
 }
 
-/// The panels: scenes (rows) and profiles (columns), in order of first appearance.
-fn layout(rows: &[StudyRow]) -> (Vec<&str>, Vec<&str>) {
-    let mut scenes: Vec<&str> = Vec::new();
-    let mut profiles: Vec<&str> = Vec::new();
-    for r in rows {
-        if !scenes.contains(&r.scene.as_str()) {
-            scenes.push(&r.scene);
-        }
-        if !profiles.contains(&r.profile.as_str()) {
-            profiles.push(&r.profile);
-        }
+/// How a line is drawn: its method's colour; solid with circles with the default
+/// settings, dashed with crosses with the time transform or the breakpoints off,
+/// triangles for the peers (scipy).
+fn swatch(line: &Series<'_>) -> Swatch {
+    let s = Swatch::line(colour(line.method), 2);
+    if line.is_peer() {
+        s.with_mark(Mark::Triangle, 5)
+    } else if line.is_default() {
+        s.with_mark(Mark::Circle, 4)
+    } else {
+        s.with_line(Line::Dashed).with_mark(Mark::Cross, 5)
     }
-    (scenes, profiles)
 }
 
-/// The figure's size (px) for these rows.
-pub fn size(rows: &[StudyRow]) -> (u32, u32) {
+/// Draws the diagram on `root`: the title strip with the legend, then one panel per
+/// profile and scene.
+pub fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, rows: &[StudyRow]) -> Drawn<DB> {
+    super::register_fonts();
+    root.fill(&WHITE)?;
+    let lines = series(rows);
+    let entries = legend(&lines);
+    let (header, body) = root.split_vertically(header_height(entries.len()));
+    draw_header(&header, &entries)?;
     let (scenes, profiles) = layout(rows);
-    // At least wide enough for the title lines.
-    (
-        (PANEL.0 * profiles.len().max(1) as u32).max(MIN_WIDTH),
-        HEADER + PANEL.1 * scenes.len().max(1) as u32,
+    let (_, names) = header.split_vertically(header_height(entries.len()) - COLUMN_TITLES);
+    let (w, _) = names.dim_in_pixel();
+    for (j, scene) in scenes.iter().enumerate() {
+        let x = (w / scenes.len().max(1) as u32 * j as u32) as i32 + 16;
+        names.draw(&Text::new(
+            format!("scene: {scene}"),
+            (x, 6),
+            (FONT, PANEL_FONT + 2).into_font().style(FontStyle::Bold),
+        ))?;
+    }
+    let times = time_range(rows);
+    let panels = body.split_evenly((profiles.len().max(1), scenes.len().max(1)));
+    for (i, profile) in profiles.iter().enumerate() {
+        for (j, scene) in scenes.iter().enumerate() {
+            let title = profile.to_string();
+            let mine: Vec<&Series<'_>> = lines
+                .iter()
+                .filter(|l| l.scene == *scene && l.profile == *profile)
+                .collect();
+            draw_panel(&panels[i * scenes.len() + j], &title, times, &mine)?;
+        }
+    }
+    root.present()
+}
+
+/// The title strip: what the figure shows, how to read it, and the legend.
+fn draw_header<DB: DrawingBackend>(
+    header: &DrawingArea<DB, Shift>,
+    entries: &[LegendEntry],
+) -> Drawn<DB> {
+    header.draw(&Text::new(
+        "Work-precision: wall time per contact against the error of the outgoing state",
+        (16, 12),
+        (FONT, TITLE_FONT).into_font().style(FontStyle::Bold),
+    ))?;
+    for (k, line) in [
+        "error = largest scaled deviation from the closed form; hollow markers at 1e-17: error \
+         exactly 0; dashed: time transform or breakpoints off.",
+        "Beside each panel: p, the observed order (error ~ evaluations^-p) on the straight part \
+         of the line, or - and why not: (s) no straight part,",
+        "(w) error not set by the work (equal work, different errors), (>12) steeper than any \
+         method's order.",
+    ]
+    .iter()
+    .enumerate()
+    {
+        header.draw(&Text::new(
+            *line,
+            (16, 50 + 23 * k as i32),
+            (FONT, NOTE_FONT).into_font(),
+        ))?;
+    }
+    let (w, _) = header.dim_in_pixel();
+    let column = (w as i32 - 32) / LEGEND_COLUMNS as i32;
+    draw_legend(
+        header,
+        entries,
+        (16, TITLE as i32),
+        (LEGEND_COLUMNS, column),
+        LEGEND_FONT,
     )
 }
 
-/// The time axis range (s): all finite times, padded by a factor 1.6 below and 40 above
-/// (room for the legends above the lines).
-fn time_range(rows: &[StudyRow]) -> (f64, f64) {
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
-    for r in rows {
-        let t = r.seconds_per_contact;
-        if t.is_finite() && t > 0.0 && r.error.is_some() {
-            lo = lo.min(t);
-            hi = hi.max(t);
-        }
-    }
-    if !(lo.is_finite() && hi > 0.0) {
-        return (1e-9, 1.0);
-    }
-    (lo / 1.6, hi * 40.0)
-}
-
-/// The x position of an error: errors of exactly 0 at [`ZERO_ERROR_AT`]; errors above 1
-/// clamped to 1.
-fn x_of(error: f64) -> f64 {
-    if error == 0.0 {
-        ZERO_ERROR_AT
-    } else {
-        error.clamp(1e-18, 1.0)
-    }
-}
-
-/// Draws the diagram on `root`: the title strip, then one panel per scene and profile.
-pub fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    rows: &[StudyRow],
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    super::register_fonts();
-    root.fill(&WHITE)?;
-    let (header, body) = root.split_vertically(HEADER);
-    draw_header(&header)?;
-    let (scenes, profiles) = layout(rows);
-    let times = time_range(rows);
-    let lines = series(rows);
-    let panels = body.split_evenly((scenes.len().max(1), profiles.len().max(1)));
-    for (i, scene) in scenes.iter().enumerate() {
-        for (j, profile) in profiles.iter().enumerate() {
-            let title = if j == 0 {
-                format!("{profile}  [{}]", shorten(scene, 34))
-            } else {
-                profile.to_string()
-            };
-            let panel_lines = lines
-                .iter()
-                .filter(|l| l.scene == *scene && l.profile == *profile);
-            draw_panel(&panels[i * profiles.len() + j], &title, times, panel_lines)?;
-        }
-    }
-    root.present()?;
-    Ok(())
-}
-
-/// The chart of one panel: error (scaled, log) across, seconds per contact (log) up.
-type Panel<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
-/// What a drawing step returns.
-type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
-
-/// The title strip: what the figure shows and how to read its markers.
-fn draw_header<DB: DrawingBackend>(header: &DrawingArea<DB, Shift>) -> Drawn<DB> {
-    header.draw(&Text::new(
-        "Work-precision: wall time per contact against the error of the outgoing state",
-        (14, 10),
-        (FONT, 22).into_font().style(FontStyle::Bold),
-    ))?;
-    header.draw(&Text::new(
-        "error = largest scaled deviation from the closed form; p = observed order \
-         (error ~ evaluations^-p); hollow markers at 1e-17: error exactly 0; \
-         dashed with crosses: time transform off (hertz, sine-power) or breakpoints off",
-        (14, 42),
-        (FONT, 15).into_font(),
-    ))
-}
-
-/// One panel titled `title`, time axis `times` (s): axes, the column of zero errors, the
-/// `lines` and their legend.
-fn draw_panel<'r, DB: DrawingBackend + 'r>(
+/// One panel titled `title`, time axis `times` (s): the chart with the column of zero
+/// errors and the `lines`, and at its right each line's observed order.
+fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     title: &str,
     (t_lo, t_hi): (f64, f64),
-    lines: impl Iterator<Item = &'r Series<'r>>,
+    lines: &[&Series<'_>],
 ) -> Drawn<DB> {
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, (FONT, 17))
-        .margin(10)
-        .x_label_area_size(42)
-        .y_label_area_size(62)
+    let area = area.margin(6, 6, 10, 10);
+    let (w, _) = area.dim_in_pixel();
+    let (plot, orders) = area.split_horizontally(w.saturating_sub(ORDERS));
+    let mut chart = ChartBuilder::on(&plot)
+        .caption(title, (FONT, PANEL_FONT))
+        .margin(6)
+        .x_label_area_size(46)
+        .y_label_area_size(76)
         .build_cartesian_2d((1e-18f64..1.0f64).log_scale(), (t_lo..t_hi).log_scale())?;
     chart
         .configure_mesh()
@@ -163,35 +237,59 @@ fn draw_panel<'r, DB: DrawingBackend + 'r>(
         .y_labels(6)
         .x_label_formatter(&|v| format!("{v:.0e}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 13))
+        .label_style((FONT, TICK_FONT))
+        .axis_desc_style((FONT, DESC_FONT))
         .light_line_style(WHITE.mix(0.0))
         .bold_line_style(BLACK.mix(0.08))
         .draw()?;
     // The column where errors of exactly 0 are drawn.
-    chart.draw_series(DashedLineSeries::new(
-        [(ZERO_ERROR_AT, t_lo), (ZERO_ERROR_AT, t_hi)],
-        4,
-        4,
-        BLACK.mix(0.35).stroke_width(1),
-    ))?;
+    Swatch::line(RGBColor(150, 150, 150), 1)
+        .with_line(Line::Dashed)
+        .draw_line(
+            chart.plotting_area(),
+            &[(ZERO_ERROR_AT, t_lo), (ZERO_ERROR_AT, t_hi)],
+        )?;
     for line in lines {
         let pts = points(line);
-        if pts.is_empty() {
-            continue;
-        }
-        draw_line(&mut chart, line, &pts)?;
-        draw_markers(&mut chart, line, &pts)?;
+        let sw = swatch(line);
+        let xy: Vec<(f64, f64)> = pts.iter().map(|p| (p.0, p.1)).collect();
+        sw.draw_line(chart.plotting_area(), &xy)?;
+        sw.draw_marks(chart.plotting_area(), pts.iter().map(|p| ((p.0, p.1), p.2)))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .margin(6)
-        .legend_area_size(22)
-        .label_font((FONT, 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
+    let entries: Vec<LegendEntry> = lines
+        .iter()
+        .filter(|l| l.method != "closed-form")
+        .map(|l| LegendEntry::new(swatch(l), order_text(l)))
+        .collect();
+    orders.draw(&Text::new(
+        "p",
+        (8, 34),
+        (FONT, LEGEND_FONT).into_font().style(FontStyle::Bold),
+    ))?;
+    draw_legend(
+        &orders,
+        &entries,
+        (0, 58),
+        (1, ORDERS as i32),
+        LEGEND_FONT - 1,
+    )
+}
+
+/// A line's observed order beside its panel: a short name and p, or "-" and the reason's
+/// code (the title strip explains them).
+fn order_text(line: &Series<'_>) -> String {
+    let name = line
+        .label()
+        .replace("scipy-", "")
+        .replace(" (no transform)", " no tr.")
+        .replace(" (no breakpoints)", " no bp.");
+    match line.order_fit() {
+        Ok(p) => format!("{name} {p:.1}"),
+        Err(NoOrder::TooFewRuns) => format!("{name} -"),
+        Err(NoOrder::NoStraightPart) => format!("{name} - (s)"),
+        Err(NoOrder::NotSetByWork) => format!("{name} - (w)"),
+        Err(NoOrder::FasterThanAnyOrder) => format!("{name} - (>12)"),
+    }
 }
 
 /// A line's drawable points: (x of the error, seconds per contact, whether the error is
@@ -205,102 +303,6 @@ fn points(line: &Series) -> Vec<(f64, f64, bool)> {
             (t.is_finite() && t > 0.0).then(|| (x_of(e), t, e == 0.0))
         })
         .collect()
-}
-
-/// The line through `pts` in its method's colour, solid with the default settings and
-/// dashed with the time transform or the breakpoints off, with its legend entry (the
-/// observed order when there is one).
-fn draw_line<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Panel<'a, DB>,
-    line: &Series,
-    pts: &[(f64, f64, bool)],
-) -> Drawn<DB> {
-    let c = colour(line.method);
-    let style = c.stroke_width(2);
-    let xy = apart_by_pixels(chart, pts);
-    let label = match line.observed_order() {
-        Some(p) => format!("{}  p = {p:.1}", line.label()),
-        None => line.label(),
-    };
-    // Segment by segment: the bitmap backend joins wide polylines with unlimited
-    // miters, which spike across the figure where a ladder doubles back.
-    let drawn = if line.is_default() {
-        chart.draw_series(
-            xy.windows(2)
-                .map(|w| PathElement::new(vec![w[0], w[1]], style)),
-        )?
-    } else {
-        chart.draw_series(
-            xy.windows(2)
-                .flat_map(|w| DashedLineSeries::new(vec![w[0], w[1]], 7, 4, style)),
-        )?
-    };
-    drawn
-        .label(label)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
-    Ok(())
-}
-
-/// The points of `pts` at least 3 px (in x or y) from the previously kept one.
-/// Consecutive points on the same pixel make the bitmap backend's wide-line polygon
-/// degenerate (stray strokes across the figure): keep one of them.
-fn apart_by_pixels<'a, DB: DrawingBackend + 'a>(
-    chart: &Panel<'a, DB>,
-    pts: &[(f64, f64, bool)],
-) -> Vec<(f64, f64)> {
-    let mut xy: Vec<(f64, f64)> = Vec::with_capacity(pts.len());
-    let mut last_px: Option<(i32, i32)> = None;
-    for p in pts {
-        let px = chart.backend_coord(&(p.0, p.1));
-        let near = last_px.is_some_and(|q| (q.0 - px.0).abs() <= 2 && (q.1 - px.1).abs() <= 2);
-        if !near {
-            xy.push((p.0, p.1));
-            last_px = Some(px);
-        }
-    }
-    xy
-}
-
-/// The markers of a line's points: triangles for the peers (scipy), circles with the
-/// default settings, crosses with the time transform or the breakpoints off; hollow and
-/// larger for errors of exactly 0.
-fn draw_markers<'a, DB: DrawingBackend + 'a>(
-    chart: &mut Panel<'a, DB>,
-    line: &Series,
-    pts: &[(f64, f64, bool)],
-) -> Drawn<DB> {
-    let c = colour(line.method);
-    let peer = line.method.starts_with("scipy");
-    let marker = |&(x, y, zero): &(f64, f64, bool)| {
-        let st = if zero { c.stroke_width(2) } else { c.filled() };
-        (x, y, if zero { 6 } else { 3 }, st)
-    };
-    if peer {
-        chart.draw_series(pts.iter().map(marker).map(|(x, y, r, st)| {
-            EmptyElement::at((x, y)) + TriangleMarker::new((0, 0), r + 1, st)
-        }))?;
-    } else if line.is_default() {
-        chart.draw_series(
-            pts.iter()
-                .map(marker)
-                .map(|(x, y, r, st)| EmptyElement::at((x, y)) + Circle::new((0, 0), r, st)),
-        )?;
-    } else {
-        chart.draw_series(pts.iter().map(marker).map(|(x, y, r, _)| {
-            EmptyElement::at((x, y)) + Cross::new((0, 0), r + 1, c.stroke_width(2))
-        }))?;
-    }
-    Ok(())
-}
-
-fn shorten(s: &str, n: usize) -> String {
-    if s.chars().count() <= n {
-        s.to_string()
-    } else {
-        let mut t: String = s.chars().take(n - 1).collect();
-        t.push('…');
-        t
-    }
 }
 
 /// Writes the diagram as SVG to `svg` and as PNG to `png`, each replacing its file only
@@ -343,10 +345,8 @@ mod tests {
             r.profile = "hertz".into();
         }
         rows.extend(other);
-        assert_eq!(
-            size(&rows),
-            ((2 * PANEL.0).max(MIN_WIDTH), HEADER + PANEL.1)
-        );
+        // Two profiles (rows) of one scene; a legend of three kinds of line in one row.
+        assert_eq!(size(&rows), (MIN_WIDTH, header_height(3) + 2 * PANEL.1));
         let mut svg = String::new();
         {
             let root = SVGBackend::with_string(&mut svg, size(&rows)).into_drawing_area();
@@ -354,8 +354,12 @@ mod tests {
         }
         assert!(svg.contains("half-sine"));
         assert!(svg.contains("hertz"));
-        assert!(svg.contains("p = 4.0"), "rk4's order in the legend");
-        assert!(svg.contains("dop853 (no breakpoints)"));
+        assert!(svg.contains("rk4 4.0"), "rk4's order beside its panel");
+        assert!(svg.contains("dop853 (no breakpoints)"), "in the legend");
+        assert!(
+            svg.contains("dop853 no bp. 8.0"),
+            "its order beside its panel"
+        );
         assert!(svg.contains("exactly 0"));
     }
 
