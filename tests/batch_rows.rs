@@ -292,13 +292,15 @@ fn lab_rows_match_first_principles() {
     }
 }
 
-/// dop853 at rtol = atol = 1e-11 against the exact state (scaled): observed MEASURED2.
-const DOP853_TOL: f64 = 3e-10;
+/// dop853 at rtol = atol = 1e-11 against the exact state (scaled): observed worst 1.3e-12
+/// (the 60 states of `dop853_slice_agrees_with_closed_form`) and 1.0e-12 (the lab row),
+/// held to about ten times that.
+const DOP853_TOL: f64 = 1.5e-11;
 
 /// dop853 rows (rtol 1e-11) agree with the closed form through the in-memory path, sticking
-/// and sliding rows alike within 3e-10 (sticking rows once reached a few 1e-9: a stage of the
-/// crossing step took the friction direction from a round-off slip; fixed by the round-off
-/// floor in dynamics.rs).
+/// and sliding rows alike within [`DOP853_TOL`] (sticking rows once reached a few 1e-9: a
+/// stage of the crossing step took the friction direction from a round-off slip; fixed by
+/// the round-off floor `SLIP_ROUND_OFF` of src/integrator/rhs.rs).
 #[test]
 fn dop853_slice_agrees_with_closed_form() {
     let st = states(60);
@@ -307,7 +309,7 @@ fn dop853_slice_agrees_with_closed_form() {
     let d = resolve_slice(&setup(Method::Dop853), &inputs);
     for (a, b) in cf.iter().zip(&d) {
         let (a, b) = (a.as_ref().unwrap(), b.as_ref().unwrap());
-        assert!(b.closed_form_error < 3e-10, "{b:?}");
+        assert!(b.closed_form_error <= DOP853_TOL, "{b:?}");
         assert_eq!(a.result.sticks, b.result.sticks);
         if let (Some(x), Some(y)) = (a.stick_time, b.stick_time) {
             assert!((x - y).abs() < 1e-9 * 2.5e-4);

@@ -115,3 +115,117 @@ fn summary_prints_the_roll_out_of_both_balls() {
     assert!(text.contains("    A:") && text.contains("    B:"));
     assert!(text.contains("deflected"));
 }
+
+/// A stun cut through the command, frictionless elastic contact (mu = 0, e = 1): A leaves
+/// along the tangent line with (0, s sin phi), B along the line of centres with
+/// (s cos phi, 0), neither spinning, both on the cloth (no hop: settle_time 0). Derived here
+/// for a ball sliding without spin at speed v on cloth friction mu_c (up +z): the friction
+/// mu_c m g opposes v and its torque spins the ball up until v - mu_c g t = (5/2) mu_c g t,
+/// so it rolls at t_s = 2 v / (7 mu_c g) with 5/7 v, having slid 12 v^2 / (49 mu_c g);
+/// with rolling resistance mu_r it then rests after (5/7 v) / (mu_r g) more, another
+/// (5/7 v)^2 / (2 mu_r g) on. The cloth's impulse until then is m (v_end - v) horizontally
+/// and m g t_end upward (it carries the weight). Directions are counter-clockwise about up
+/// from +x (the line of centres); a negative cut (v < 0) makes A's direction and
+/// deflection negative.
+#[test]
+fn table_json_values_of_a_stun_cut() {
+    const M: f64 = 0.17;
+    const R: f64 = 0.028575;
+    let (g, mu_c, mu_r, s) = (9.81, 0.2, 0.01, 2.0);
+    let dir = temp_dir("stun");
+    for (cut_deg, resistance) in [(30.0f64, 0.0), (-30.0, 0.0), (-30.0, mu_r)] {
+        let cut = cut_deg.to_radians();
+        let (u, v) = (s * cut.cos(), s * cut.sin());
+        let path = dir.join("stun.toml");
+        std::fs::write(
+            &path,
+            format!(
+                r#"
+name = "stun cut"
+[balls]
+mass = {M}
+radius = {R}
+alpha = 0.4
+[contact]
+mu = 0.0
+restitution = 1.0
+[contact.profile]
+shape = "half-sine"
+duration = 2.5e-4
+[incoming.lab]
+a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [{u:?}, {v:?}, 0.0] }}
+b = {{ position = [{R:?}, 0.0, {R:?}], velocity = [0.0, 0.0, 0.0] }}
+up = [0.0, 0.0, 1.0]
+[solver]
+method = "closed-form"
+[effects]
+table = true
+[table]
+mu = {mu_c}
+rolling_resistance = {resistance}
+"#,
+                a = -R
+            ),
+        )
+        .unwrap();
+        let out = bin().arg("run").arg(&path).arg("--json").output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let table = &json["table"];
+        let num = |x: &serde_json::Value| x.as_f64().unwrap_or_else(|| panic!("{x}"));
+        let close = |x: f64, want: f64, what: &str| {
+            assert!(
+                (x - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{cut_deg} {resistance} {what}: {x} vs {want}"
+            )
+        };
+        let mut ends = Vec::new();
+        // (ball, speed, its unit direction, start x, incoming direction (degrees) if moving)
+        for (key, speed, (ex, ey), x0, incoming) in [
+            ("a", v.abs(), (0.0, v.signum()), -R, Some(cut_deg)),
+            ("b", u, (1.0, 0.0), R, None),
+        ] {
+            let b = &table[key];
+            let t_s = 2.0 * speed / (7.0 * mu_c * g);
+            close(num(&b["hop_time"]), 0.0, "hop_time");
+            close(num(&b["settle_time"]), 0.0, "settle_time");
+            close(num(&b["slide_time"]), t_s, "slide_time");
+            close(num(&b["roll_time"]), t_s, "roll_time");
+            let slid = 12.0 * speed * speed / (49.0 * mu_c * g);
+            close(num(&b["slide_displacement"][0]), slid * ex, "slide x");
+            close(num(&b["slide_displacement"][1]), slid * ey, "slide y");
+            let roll = 5.0 / 7.0 * speed;
+            let heading = ey.atan2(ex).to_degrees();
+            // The direction is that of the rolling velocity, also when the ball then rests.
+            close(num(&b["direction_deg"]), heading, "direction_deg");
+            match incoming {
+                Some(inc) => close(num(&b["deflection_deg"]), heading - inc, "deflection_deg"),
+                None => assert!(b.get("deflection_deg").is_none(), "B came in at rest"),
+            }
+            let (end, v_end) = if resistance > 0.0 {
+                let t_rest = t_s + roll / (resistance * g);
+                let run = slid + roll * roll / (2.0 * resistance * g);
+                let rest = &b["rest"];
+                close(num(&rest["time"]), t_rest, "rest time");
+                close(num(&rest["position"][0]), x0 + run * ex, "rest x");
+                close(num(&rest["position"][1]), run * ey, "rest y");
+                close(num(&rest["position"][2]), R, "rest z");
+                (t_rest, 0.0)
+            } else {
+                assert!(b.get("rest").is_none());
+                (t_s, roll)
+            };
+            let imp = &b["table_impulse"];
+            close(num(&imp[0]), M * (v_end - speed) * ex, "table_impulse x");
+            close(num(&imp[1]), M * (v_end - speed) * ey, "table_impulse y");
+            close(num(&imp[2]), M * g * end, "table_impulse z");
+            ends.push(end);
+        }
+        close(num(&table["end_time"]), ends[0].max(ends[1]), "end_time");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -33,7 +33,7 @@ use billiard_contact::{Incoming, Scene};
 use common::Exact;
 use nalgebra::{Rotation3, Unit, Vector3};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, FileFailurePersistence};
+use proptest::test_runner::{Config, FileFailurePersistence, TestCaseError};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Mutex;
@@ -275,8 +275,10 @@ impl Case {
             (Method::ClosedForm, _) => 1e-14,
             // Measured worst 1.6e-13 (eq 50).
             (Method::Rk4, true) => 2e-12,
-            // Measured worst 6.5e-12 (closed form); eq 50 has its own, below.
-            (Method::Rk4, false) => 7e-11,
+            // The fixed step's error in the nonlinear S(p), growing like sigma^4
+            // ([`Case::rk4_sigma`]): measured worst 2.0e-11 + 0.025 sigma^4 over 70,000 rk4
+            // cases with mu(S) (below).
+            (Method::Rk4, false) => 2e-10 + 0.25 * self.rk4_sigma().powi(4),
             // The adaptive methods: most cases within 6.6e-10 (dop853) and 2.2e-9 (dopri5)
             // over 50,000 cases, but small alpha with large mu (alpha 0.02, mu 6.4, an
             // explicit impulse of 1.75 m U(0)) reached 5.7e-9 with dop853: held to 1e-8
@@ -287,15 +289,52 @@ impl Case {
     }
 
     /// Eq 50's balance (and the signs of H and H_sfr): the state's tolerance, except for rk4
-    /// with speed-dependent mu, where the heat of sliding integrates mu(S) S over ~100 steps
-    /// when the impulse sits in a tenth of the duration and small alpha makes the slip fall
-    /// fast (measured worst 6.6e-8 on random tables, 2.7e-9 on the other pulses).
+    /// with speed-dependent mu, where the heat of sliding integrates mu(S) S: measured worst
+    /// 1.0e-9 + 0.02 sigma^4.
     fn eq50_tolerance(&self) -> f64 {
         if self.method == Method::Rk4 && self.mu.is_err() {
-            7e-7
+            1e-8 + 0.2 * self.rk4_sigma().powi(4)
         } else {
             self.tolerance()
         }
+    }
+
+    /// How far rk4 at its fixed 1000 steps is from resolving a speed-dependent
+    /// mu(S) = a + b e^(-c S): sigma = c k mu(0) P dq, the e-folds of the exponential the
+    /// slip crosses in the largest step, with dS/dp = -k mu(S) (k = 2 (1 + 1/alpha) / m,
+    /// eq 22) and dq the largest fraction of the impulse one step delivers: (pi/2) / 1000
+    /// for the curved pulses (the half-sine, and the others stepped in its impulse by the
+    /// time transform), 1/1000 for the rectangle, f_max tau / (1000 P) for a table. The
+    /// method's error in S(p) falls like sigma^4 (a fixed step of order 4); where sigma
+    /// exceeds 1 the slip collapses within a step or two and rk4 resolves nothing of the
+    /// nonlinear law (a table whose impulse sits in its last 6%, alpha 1e-3: sigma 7, the
+    /// stop of sliding 2e-5 P off; [`rk4_unresolved_stop_converges`]). Measured over 50,000
+    /// cases of this distribution and 20,000 with the impulse in the last 3-15% of a table
+    /// and alpha 1e-3..5e-3 (sigma up to 100).
+    fn rk4_sigma(&self) -> f64 {
+        let Err((a, b, c)) = self.mu else {
+            return 0.0;
+        };
+        let k = 2.0 * (1.0 + 1.0 / self.alpha) / self.m;
+        let u0 = self.incoming().u_cm.x;
+        let p = self
+            .impulse()
+            .unwrap_or((1.0 + self.rule.unwrap_or(0.0)) * self.m * u0.max(0.0));
+        // Peak of the normalised force f tau / P.
+        let peak = match &self.profile {
+            ProfileKind::Rectangle => 1.0,
+            ProfileKind::Table(pts) => {
+                let area: f64 = pts
+                    .windows(2)
+                    .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+                    .sum();
+                let f_max = pts.iter().map(|q| q.1).fold(0.0, f64::max);
+                f_max * pts[pts.len() - 1].0 / area
+            }
+            _ => std::f64::consts::FRAC_PI_2,
+        };
+        // c carries 1/speed (Case::friction).
+        (c / self.v) * k * (a + b) * p * peak / f64::from(SolverSettings::default().steps())
     }
 
     /// The class of case each worst value is printed under by [`reached`].
@@ -352,90 +391,140 @@ const ALL: &[Method] = &[
 ];
 const ADAPTIVE: &[Method] = &[Method::Dopri5, Method::Dop853];
 
+/// Conservation laws, signs of the heats and of S_out, eq 50 and the closed form.
+fn check_invariants(case: &Case) -> Result<(), TestCaseError> {
+    let c = case.collision();
+    let profile = case.profile();
+    let o = solve(&c, &profile, &case.settings(), None).unwrap();
+    let tol = case.tolerance();
+    let cls = case.class();
+    let (m, r) = (case.m, case.r);
+    let inc = case.incoming();
+    let v_ref = c.scales.speed;
+    let u0 = inc.u_cm.x;
+    // Impulse: eq 52 family / eq 56, and none for separating balls.
+    let p = case.impulse().unwrap_or(if u0 > 0.0 {
+        (1.0 + case.rule.unwrap_or(0.0)) * m * u0
+    } else {
+        0.0
+    });
+    prop_assert!((o.result.impulse - p).abs() <= 1e-15 * p.max(1e-300) * 4.0);
+    prop_assert!(o.result.out.is_finite());
+    // Normal momentum of A (eq 24): m (U_out - U(0)) = -P.
+    let dp = (m * (o.result.out.u_cm.x - u0) + p).abs() / (m * v_ref);
+    reached(&cls, "normal momentum", dp);
+    prop_assert!(dp <= tol, "normal momentum error {dp:e}");
+    // Angular momentum of eq 36: conserved by every method to round-off (the torques of
+    // eq 11 are equal on both balls), measured worst 7.3e-15.
+    let dl = (angular_momentum(&o.result.out, m, r, case.alpha)
+        - angular_momentum(&inc, m, r, case.alpha))
+    .amax()
+        / (m * v_ref * r);
+    reached(&cls, "angular momentum", dl);
+    prop_assert!(dl <= 1e-13, "angular momentum error {dl:e}");
+    // Heats and the outgoing slip (measured: never below -1e-29 of m v_ref^2).
+    let e_ref = m * v_ref * v_ref;
+    let eq50_tol = case.eq50_tolerance();
+    prop_assert!(
+        o.result.heat >= -eq50_tol * e_ref,
+        "H = {:e}",
+        o.result.heat
+    );
+    prop_assert!(
+        o.result.heat_sliding >= -eq50_tol * e_ref,
+        "H_sfr = {:e}",
+        o.result.heat_sliding
+    );
+    prop_assert!(o.result.s_out >= 0.0, "S_out = {:e}", o.result.s_out);
+    // Eq 50: H = H_sfr + 2 U(0) P - P^2 / m, H from the kinetic energies (eq 37).
+    let ke = |s: &CmState| {
+        m * s.u_cm.norm_squared()
+            + 0.5 * case.alpha * m * r * r * (s.omega_a.norm_squared() + s.omega_b.norm_squared())
+    };
+    let h = ke(&inc) - ke(&o.result.out);
+    let balance = (h - o.result.heat_sliding - (2.0 * u0 * p - p * p / m)).abs() / e_ref;
+    reached(&cls, "eq 50", balance);
+    prop_assert!(balance <= eq50_tol, "eq 50 off by {balance:e}");
+    // The slip's direction, measured worst 5.5e-12 (dop853, mu(S)).
+    reached(&cls, "theta drift", o.check.theta_drift);
+    prop_assert!(
+        o.check.theta_drift <= 5e-11,
+        "theta drift {:e}",
+        o.check.theta_drift
+    );
+    // The independent closed form (constant or speed-dependent mu).
+    let ex = case.exact();
+    let err = ex.scaled_error(&o.result.out, &ex.out().state);
+    reached(&cls, "closed form", err);
+    prop_assert!(err <= tol, "closed form error {err:e}");
+    if p > 0.0 && ex.mu > 0.0 && (ex.p_stick - p).abs() > 10.0 * tol * p {
+        prop_assert_eq!(o.result.sticks, ex.sticks());
+    }
+    // The event rule: the promise is |p(t_stick) - p_stick| <= 1e-10 P
+    // (docs/model.md#locating-the-stop-of-sliding) for constant mu, where the slip is
+    // affine in p: measured worst 1.6e-14 P (rk4), held to 2e-13 P. With speed-dependent
+    // mu the located stop carries the integration error of the nonlinear S(p): there
+    // the reported time and impulse agree (measured worst 4.0e-15 P, held to 5e-14 P),
+    // and the impulse is p_stick to the method's accuracy: 1.4e-9 P with the adaptive
+    // methods over 50,000 cases, held to 1.5e-8 P; rk4 at its fixed 1000 steps to what
+    // its steps resolve of the nonlinear S(p) (Case::rk4_sigma). p(t) from the
+    // independent Phi.
+    if let (true, Some(t)) = (o.result.sticks, o.stick_time) {
+        let at = p * case.phi(t / case.tau);
+        let reported = o.result.stick_impulse.unwrap();
+        let ps = ex.p_stick;
+        match case.mu {
+            Ok(_) => {
+                reached(&cls, "p(t_stick) - p_stick", (at - ps).abs() / p);
+                reached(&cls, "stick_impulse - p_stick", (reported - ps).abs() / p);
+                prop_assert!(
+                    (at - ps).abs() <= 2e-13 * p,
+                    "p(t_stick) {at:e} vs p_stick {ps:e}"
+                );
+                prop_assert!(
+                    (reported - ps).abs() <= 2e-13 * p,
+                    "stick_impulse {reported:e} vs p_stick {ps:e}"
+                );
+            }
+            Err(_) => {
+                reached(
+                    &cls,
+                    "p(t_stick) - stick_impulse",
+                    (at - reported).abs() / p,
+                );
+                reached(&cls, "stick_impulse - p_stick", (reported - ps).abs() / p);
+                prop_assert!(
+                    (at - reported).abs() <= 5e-14 * p,
+                    "p(t_stick) {at:e} vs stick_impulse {reported:e}"
+                );
+                // rk4: measured worst 1.0e-8 + 3e-3 sigma^4 (Case::rk4_sigma).
+                let loose = if case.method == Method::Rk4 {
+                    1e-7 + 0.03 * case.rk4_sigma().powi(4)
+                } else {
+                    1.5e-8
+                };
+                prop_assert!(
+                    (reported - ps).abs() <= loose * p,
+                    "stick_impulse {reported:e} vs p_stick {ps:e}"
+                );
+            }
+        }
+    }
+    if matches!(case.slip, SlipKind::Zero) && p > 0.0 {
+        prop_assert_eq!(o.result.theta, None);
+        prop_assert_eq!(o.result.out.u_cm.y, inc.u_cm.y);
+        prop_assert_eq!(o.result.out.omega_a, inc.omega_a);
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(cases(1200))]
 
     /// Conservation laws, signs of the heats and of S_out, eq 50 and the closed form.
     #[test]
     fn invariants(case in case_strategy(ALL)) {
-        let c = case.collision();
-        let profile = case.profile();
-        let o = solve(&c, &profile, &case.settings(), None).unwrap();
-        let tol = case.tolerance();
-        let cls = case.class();
-        let (m, r) = (case.m, case.r);
-        let inc = case.incoming();
-        let v_ref = c.scales.speed;
-        let u0 = inc.u_cm.x;
-        // Impulse: eq 52 family / eq 56, and none for separating balls.
-        let p = case.impulse().unwrap_or(if u0 > 0.0 { (1.0 + case.rule.unwrap_or(0.0)) * m * u0 } else { 0.0 });
-        prop_assert!((o.result.impulse - p).abs() <= 1e-15 * p.max(1e-300) * 4.0);
-        prop_assert!(o.result.out.is_finite());
-        // Normal momentum of A (eq 24): m (U_out - U(0)) = -P.
-        let dp = (m * (o.result.out.u_cm.x - u0) + p).abs() / (m * v_ref);
-        reached(&cls, "normal momentum", dp);
-        prop_assert!(dp <= tol, "normal momentum error {dp:e}");
-        // Angular momentum of eq 36: conserved by every method to round-off (the torques of
-        // eq 11 are equal on both balls), measured worst 7.3e-15.
-        let dl = (angular_momentum(&o.result.out, m, r, case.alpha) - angular_momentum(&inc, m, r, case.alpha)).amax() / (m * v_ref * r);
-        reached(&cls, "angular momentum", dl);
-        prop_assert!(dl <= 1e-13, "angular momentum error {dl:e}");
-        // Heats and the outgoing slip (measured: never below -1e-29 of m v_ref^2).
-        let e_ref = m * v_ref * v_ref;
-        let eq50_tol = case.eq50_tolerance();
-        prop_assert!(o.result.heat >= -eq50_tol * e_ref, "H = {:e}", o.result.heat);
-        prop_assert!(o.result.heat_sliding >= -eq50_tol * e_ref, "H_sfr = {:e}", o.result.heat_sliding);
-        prop_assert!(o.result.s_out >= 0.0, "S_out = {:e}", o.result.s_out);
-        // Eq 50: H = H_sfr + 2 U(0) P - P^2 / m, H from the kinetic energies (eq 37).
-        let ke = |s: &CmState| m * s.u_cm.norm_squared() + 0.5 * case.alpha * m * r * r * (s.omega_a.norm_squared() + s.omega_b.norm_squared());
-        let h = ke(&inc) - ke(&o.result.out);
-        let balance = (h - o.result.heat_sliding - (2.0 * u0 * p - p * p / m)).abs() / e_ref;
-        reached(&cls, "eq 50", balance);
-        prop_assert!(balance <= eq50_tol, "eq 50 off by {balance:e}");
-        // The slip's direction, measured worst 5.5e-12 (dop853, mu(S)).
-        reached(&cls, "theta drift", o.check.theta_drift);
-        prop_assert!(o.check.theta_drift <= 5e-11, "theta drift {:e}", o.check.theta_drift);
-        // The independent closed form (constant or speed-dependent mu).
-        let ex = case.exact();
-        let err = ex.scaled_error(&o.result.out, &ex.out().state);
-        reached(&cls, "closed form", err);
-        prop_assert!(err <= tol, "closed form error {err:e}");
-        if p > 0.0 && ex.mu > 0.0 && (ex.p_stick - p).abs() > 10.0 * tol * p {
-            prop_assert_eq!(o.result.sticks, ex.sticks());
-        }
-        // The event rule: the promise is |p(t_stick) - p_stick| <= 1e-10 P
-        // (docs/model.md#locating-the-stop-of-sliding) for constant mu, where the slip is
-        // affine in p: measured worst 1.6e-14 P (rk4), held to 2e-13 P. With speed-dependent
-        // mu the located stop carries the integration error of the nonlinear S(p): there
-        // the reported time and impulse agree (measured worst 4.0e-15 P, held to 5e-14 P),
-        // and the impulse is p_stick to the method's accuracy: 1.4e-9 P with the adaptive
-        // methods over 50,000 cases, held to 1.5e-8 P; rk4 at its fixed 1000 steps 1.3e-6 P,
-        // held to 1e-5 P. p(t) from the independent Phi.
-        if let (true, Some(t)) = (o.result.sticks, o.stick_time) {
-            let at = p * case.phi(t / case.tau);
-            let reported = o.result.stick_impulse.unwrap();
-            let ps = ex.p_stick;
-            match case.mu {
-                Ok(_) => {
-                    reached(&cls, "p(t_stick) - p_stick", (at - ps).abs() / p);
-                    reached(&cls, "stick_impulse - p_stick", (reported - ps).abs() / p);
-                    prop_assert!((at - ps).abs() <= 2e-13 * p, "p(t_stick) {at:e} vs p_stick {ps:e}");
-                    prop_assert!((reported - ps).abs() <= 2e-13 * p, "stick_impulse {reported:e} vs p_stick {ps:e}");
-                }
-                Err(_) => {
-                    reached(&cls, "p(t_stick) - stick_impulse", (at - reported).abs() / p);
-                    reached(&cls, "stick_impulse - p_stick", (reported - ps).abs() / p);
-                    prop_assert!((at - reported).abs() <= 5e-14 * p, "p(t_stick) {at:e} vs stick_impulse {reported:e}");
-                    let loose = if case.method == Method::Rk4 { 1e-5 } else { 1.5e-8 };
-                    prop_assert!((reported - ps).abs() <= loose * p, "stick_impulse {reported:e} vs p_stick {ps:e}");
-                }
-            }
-        }
-        if matches!(case.slip, SlipKind::Zero) && p > 0.0 {
-            prop_assert_eq!(o.result.theta, None);
-            prop_assert_eq!(o.result.out.u_cm.y, inc.u_cm.y);
-            prop_assert_eq!(o.result.out.omega_a, inc.omega_a);
-        }
+        check_invariants(&case)?;
     }
 
     /// Time stepping equals the closed form at P = p(t) at every sample, not only at the
@@ -584,45 +673,149 @@ proptest! {
     }
 }
 
+/// theta is constant while sliding: every trace row before the stop has its slip
+/// (2V + r Omega_z, 2W - r Omega_y), recomputed from the row's state, along e0; and the
+/// trace's theta, the angle of the carried slip, agrees with e0 to what that slip's error
+/// across e0 allows.
+fn check_theta_constant(case: &Case) -> Result<(), TestCaseError> {
+    let c = case.collision();
+    let profile = case.profile();
+    let mut rows: Vec<TraceRow> = Vec::new();
+    let o = solve(
+        &c,
+        &profile,
+        &case.settings().with_steps(200).unwrap(),
+        Some((&mut rows, Sampling::Steps)),
+    )
+    .unwrap();
+    if !(c.collides() && c.s0 > 0.0 && c.active_friction().is_some()) {
+        return Ok(());
+    }
+    let e0 = c.direction.unwrap();
+    let v_ref = c.scales.speed;
+    let t_stop = o.stick_time.unwrap_or(f64::INFINITY);
+    for row in rows.iter().filter(|r| r.t < t_stop) {
+        let slip = row.state.slip(case.r);
+        // The slip recomputed from the state inherits the state's integration error,
+        // relative to the size of its terms |V|, r |Omega| (with small alpha the spins
+        // change 1/alpha times faster than the velocities).
+        let size = row.state.u_cm.yz().amax() + case.r * row.state.omega_sum().yz().amax();
+        // Measured worst 1.0e-9 of v_ref.max(size) (dop853, alpha 0.02, mu 6.4; most
+        // cases stay below 1.3e-12).
+        let bound = 1e-8 * v_ref.max(size) + 8.0 * f64::EPSILON * size;
+        let across = (slip.x * e0.y - slip.y * e0.x).abs();
+        reached(
+            &case.class(),
+            "theta: slip across e0",
+            across / v_ref.max(size),
+        );
+        prop_assert!(
+            across <= bound,
+            "slip {slip:?} off e0 {e0:?} at t = {:e}",
+            row.t
+        );
+        prop_assert!(slip.dot(&e0) >= -bound);
+        // The trace's theta is the angle of the carried slip (taken while |S| is above
+        // 1e-6 S(0), else kept from the last step that was): off e0 by the carried slip's
+        // error across e0 over |S|. That error is the one bounded above; near the stop |S|
+        // divides it. A step that takes the slip from S(0) to 5e-5 S(0) (a table rising
+        // steeply, alpha 0.012, mu 5.8) evaluates stages at slips near zero whose direction
+        // is uncertain by eps S(0) / |S|, which leaves 2.3e-10 S(0) across e0 in the slip
+        // and the angle 4.8e-6 rad off (`trace_theta_near_the_stop`). So the angle is
+        // checked through |S| sin(theta - theta0): within the bound above, and within
+        // 1e-8 rad where |S| is of the size of the speeds.
+        let (th, th0) = (row.theta.unwrap(), o.result.theta.unwrap());
+        let d = (th - th0).sin().abs().max((th.cos() - th0.cos()).abs());
+        let s = row.slip_speed.abs();
+        reached(
+            &case.class(),
+            "theta: |S| x trace's angle",
+            d * s / v_ref.max(size),
+        );
+        prop_assert!(d * s <= bound, "trace theta {th} vs {th0} at |S| = {s:e}");
+    }
+    Ok(())
+}
+
 proptest! {
     // The property that found the rk4 overflow past the stop of sliding at 12,000 cases.
     #![proptest_config(cases(12_000))]
 
-    /// theta is constant while sliding: every trace row before the stop has its slip
-    /// (2V + r Omega_z, 2W - r Omega_y), recomputed from the row's state, along e0.
+    /// theta is constant while sliding ([`check_theta_constant`]).
     #[test]
     fn theta_constant_while_sliding(case in case_strategy(&[Method::Rk4, Method::Dopri5, Method::Dop853])) {
-        let c = case.collision();
-        let profile = case.profile();
-        let mut rows: Vec<TraceRow> = Vec::new();
-        let o = solve(&c, &profile, &case.settings().with_steps(200).unwrap(), Some((&mut rows, Sampling::Steps))).unwrap();
-        if !(c.collides() && c.s0 > 0.0 && c.active_friction().is_some()) {
-            return Ok(());
-        }
-        let e0 = c.direction.unwrap();
-        let v_ref = c.scales.speed;
-        let t_stop = o.stick_time.unwrap_or(f64::INFINITY);
-        for row in rows.iter().filter(|r| r.t < t_stop) {
-            let slip = row.state.slip(case.r);
-            // The slip recomputed from the state inherits the state's integration error,
-            // relative to the size of its terms |V|, r |Omega| (with small alpha the spins
-            // change 1/alpha times faster than the velocities).
-            let size = row.state.u_cm.yz().amax() + case.r * row.state.omega_sum().yz().amax();
-            // Measured worst 1.0e-9 of v_ref.max(size) (dop853, alpha 0.02, mu 6.4; most
-            // cases stay below 1.3e-12).
-            let bound = 1e-8 * v_ref.max(size) + 8.0 * f64::EPSILON * size;
-            let across = (slip.x * e0.y - slip.y * e0.x).abs();
-            reached(&case.class(), "theta: slip across e0", across / v_ref.max(size));
-            prop_assert!(across <= bound, "slip {slip:?} off e0 {e0:?} at t = {:e}", row.t);
-            prop_assert!(slip.dot(&e0) >= -bound);
-            // The trace's theta is the angle of the carried slip, measured while |slip| is
-            // above 1e-6 |slip(0)|: the slip's own error across e0 (round-off and the
-            // integration error of a few eps |slip(0)|) divided by |slip| (observed up to
-            // 1.7e-7 rad in 500,000 cases). The physical check is the one above.
-            let (th, th0) = (row.theta.unwrap(), o.result.theta.unwrap());
-            let d = (th - th0).sin().abs().max((th.cos() - th0.cos()).abs());
-            reached(&case.class(), "theta: trace's angle", d);
-            prop_assert!(d <= 1e-6, "trace theta {th} vs {th0}");
-        }
+        check_theta_constant(&case)?;
     }
+}
+
+/// Found at 50,000 cases of `theta_constant_while_sliding`: one dop853 step takes the slip
+/// from S(0) to 4.7e-5 S(0), and the trace's angle there is 4.8e-6 rad off e0, which the
+/// old bound of 1e-6 rad refused; the slip's error across e0 is 1.3e-9 of the speed, within
+/// the physical bound.
+#[test]
+fn trace_theta_near_the_stop() {
+    let case = Case {
+        m: 1.0,
+        r: 1.0,
+        alpha: 0.011803232900166029,
+        mu: Ok(5.775927375266369),
+        rule: Err(1.6585715402634236),
+        v: 1.0,
+        tau: 1.0,
+        u: [0.9063978422807275, -0.7517067680088969, -0.7700239795549226],
+        wa: [0.0, 1.3996323485828253, -1.0005876468024508],
+        wb: [0.0, 0.05016201568345903, -2.0968870446825454],
+        slip: SlipKind::General,
+        profile: ProfileKind::Table(vec![
+            (0.0, 0.0),
+            (0.1617871311795982, 1.0),
+            (0.8509939689926058, 0.0),
+            (1.7517127708675182, 0.0),
+            (2.585914246478691, 0.0),
+        ]),
+        method: Method::Dop853,
+    };
+    check_theta_constant(&case).unwrap();
+}
+
+/// Found at 50,000 cases of `invariants`: rk4 at 1000 steps with mu(S) = b e^(-c S),
+/// alpha 1e-3 and a table whose whole impulse sits in its last 15% (sigma = 7: the slip
+/// collapses within about two steps). The stop of sliding is 2e-5 P off p_stick, which the
+/// old bound of 1e-5 P refused, while the outgoing state is exact (it sticks). The error is
+/// the fixed step's, not a defect: it falls to 1.3e-6 P at 2000 steps and 1.6e-9 P at 16000
+/// (measured), and `check_invariants` holds it to what sigma allows.
+#[test]
+fn rk4_unresolved_stop_converges() {
+    let case = Case {
+        m: 1.0,
+        r: 1.0,
+        alpha: 0.001,
+        mu: Err((0.0, 0.18706420746993352, 2.369278553827863)),
+        rule: Ok(0.0),
+        v: 1.0,
+        tau: 1.0,
+        u: [0.8819492147073986, 0.0, 0.8978486747944435],
+        wa: [0.0; 3],
+        wb: [0.0; 3],
+        slip: SlipKind::General,
+        profile: ProfileKind::Table(vec![
+            (0.0, 0.0),
+            (0.85, 0.0),
+            (0.9329524306788881, 0.1),
+            (1.0, 0.1),
+        ]),
+        method: Method::Rk4,
+    };
+    assert!(case.rk4_sigma() > 5.0, "sigma {}", case.rk4_sigma());
+    check_invariants(&case).unwrap();
+    let ex = case.exact();
+    let off = |steps: u32| {
+        let settings = case.settings().with_steps(steps).unwrap();
+        let o = solve(&case.collision(), &case.profile(), &settings, None).unwrap();
+        assert!(o.result.sticks);
+        (o.result.stick_impulse.unwrap() - ex.p_stick).abs() / ex.p
+    };
+    // Measured 2.0e-5 P at 1000 steps (within the sigma bound above), 1.6e-9 P at 16,000.
+    let fine = off(16_000);
+    assert!(fine <= 2e-8, "the resolved stop: {fine:e} P");
 }

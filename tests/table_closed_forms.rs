@@ -241,8 +241,9 @@ fn half_ball_hit_rolling_cue_ball_deflects_33_7_degrees() {
             let so = run_scene(&s, &s.solver, None).unwrap();
             let t = so.table.unwrap();
             let d = t.deflection_deg(0, &t.a).unwrap();
+            // Counter-clockwise about up (+z) from the incoming (u, v), v > 0: positive.
             assert!(
-                (d.abs() - expected).abs() <= tol,
+                (d - expected).abs() <= tol,
                 "{method} {cloth}: {d} vs {expected}"
             );
         }
@@ -283,10 +284,8 @@ fn half_ball_hit_friction_corrected_deflection() {
         assert!(t.a.hop_time > 0.0, "A hops (eq 69: upward mu u^2 / s)");
         assert!(close(t.a.hop_time, 2.0 * mu * u * u / s / 9.81, 1e-8));
         let d = t.deflection_deg(0, &t.a).unwrap();
-        assert!(
-            (d.abs() - expected).abs() <= tol,
-            "{method}: {d} vs {expected}"
-        );
+        // Counter-clockwise about up (+z): positive.
+        assert!((d - expected).abs() <= tol, "{method}: {d} vs {expected}");
     }
 }
 
@@ -586,6 +585,7 @@ table = true
     assert!((t.table.height - 0.0).abs() < 1e-15);
     let d = t.deflection_deg(0, &t.a).unwrap();
     let expected = (5.0 * 3f64.sqrt() / 13.0).atan().to_degrees();
-    assert!((d.abs() - expected).abs() <= ANGLE_EXACT_DEG, "{d}");
+    // A proper rotation keeps the sense about up: positive as with up = +z.
+    assert!((d - expected).abs() <= ANGLE_EXACT_DEG, "{d}");
     assert!(t.a.rolling.velocity.y.abs() <= 1e-15, "rolls on the cloth");
 }
