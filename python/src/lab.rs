@@ -387,9 +387,15 @@ impl BallBall {
             impulse: o.result.impulse,
             tangential_impulse: o.result.tangential_impulse,
             sticks: o.result.sticks,
-            throw: frame
-                .throw_angle_deg(&(b.velocity - row.vb))
-                .unwrap_or(f64::NAN),
+            // No throw without a collision: B's velocity change is then the round-off of
+            // the change of frame (as the library's batch).
+            throw: if o.result.collided() {
+                frame
+                    .throw_angle_deg(&(b.velocity - row.vb))
+                    .unwrap_or(f64::NAN)
+            } else {
+                f64::NAN
+            },
         })
     }
 
