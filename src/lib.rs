@@ -91,14 +91,17 @@ pub use apps::work_precision;
 
 pub use apps::runner::{run_scene, SceneOutcome};
 pub use contact::closed_form::ClosedForm;
+pub use contact::law_outcome::{solve_law, LawOutcome};
 pub use contact::outcome::{solve, Outcome};
 pub use contact::result::ContactResult;
 pub use error::Error;
 pub use formats::report::Report;
 pub use formats::scene::{Incoming, Scene};
 pub use formats::trace::{CsvTrace, TraceRow, TraceSink};
+pub use integrator::law::HeadOn;
 pub use integrator::{Method, Sampling, SolverSettings, Stats};
 pub use model::collision::Collision;
+pub use model::contact_law::{ContactLaw, Damping};
 pub use model::effects::Effects;
 pub use model::frame::{Frame, LabScene, TOUCH_TOLERANCE};
 pub use model::material::{HertzContact, Material};
@@ -115,8 +118,11 @@ pub use profile::{ForceProfile, Profile};
 pub mod details {
     pub use crate::contact::check::{checks, state_error, Checks};
     pub use crate::contact::closed_form::ClosedFormBatch;
+    pub use crate::integrator::law::{head_on, LAW_SPAN};
     pub use crate::integrator::{
         integrate, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
     };
+    pub use crate::model::contact_law::CALIBRATION_RTOL;
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
+    pub use crate::model::material::{elastic_impact, hertz_stiffness, reduced_mass};
 }

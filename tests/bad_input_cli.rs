@@ -567,7 +567,10 @@ fn wrong_types_and_missing_sections() {
     for (section, want) in [
         ("[balls]", "missing section [balls]"),
         ("[contact]", "contact.mu"),
-        ("[contact.profile]", "contact.profile: missing"),
+        (
+            "[contact.profile]",
+            "contact.profile = missing: a section [contact.profile]",
+        ),
         ("[incoming.cm]", "[incoming.cm]"),
     ] {
         refuse(

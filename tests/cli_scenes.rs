@@ -214,6 +214,19 @@ fn num(v: Option<&toml::Value>) -> Option<f64> {
     v.and_then(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
 }
 
+/// The scenes with a prescribed profile: a contact law's scene (`[contact.law]`) realises its
+/// own impulse, which the reference here does not model; tests/contact_law_*.rs check them.
+fn profile_scenes() -> Vec<PathBuf> {
+    scenes()
+        .into_iter()
+        .filter(|p| {
+            !std::fs::read_to_string(p)
+                .unwrap()
+                .contains("[contact.law]")
+        })
+        .collect()
+}
+
 fn read_scene(path: &Path) -> SceneRef {
     let text = std::fs::read_to_string(path).unwrap();
     let t: toml::Table = text.parse().unwrap();
@@ -600,7 +613,7 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
 #[test]
 fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
     let mut worst = Worst::new();
-    for path in scenes() {
+    for path in profile_scenes() {
         let sc = read_scene(&path);
         let want = resolve(&sc.balls, &sc.law, &sc.pair);
         let p = path.to_str().unwrap();
@@ -670,7 +683,7 @@ fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
 fn trace_csv_follows_the_contract() {
     assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
     let n = SAMPLES.to_string();
-    for path in scenes() {
+    for path in profile_scenes() {
         let sc = read_scene(&path);
         let p = path.to_str().unwrap();
         for method in METHODS {

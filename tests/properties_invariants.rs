@@ -626,6 +626,7 @@ proptest! {
             material: None,
             contact: Contact { friction: case.friction(), impulse: case.rule() },
             profile: case.profile(),
+            law: None,
             incoming: Incoming::Lab(l),
             solver: case.settings(),
             effects: Effects::default(),

@@ -25,6 +25,9 @@
 //! `duration` (s; the outgoing state does not depend on it, the stick time scales with it).
 //! With a scene that gives the balls' material, each row's duration is its own Hertz contact
 //! time (from its mass, radius and approach speed), and a `duration` column is refused.
+//! With a scene whose force comes from a contact law (`[contact.law]`), each row realises its
+//! own impulse, restitution and duration; `restitution`, `impulse` and `duration` columns are
+//! refused, and the stick time is the row's own (docs/contact-law.md#batch-and-sweep).
 //!
 //! # Output columns
 //!
@@ -38,6 +41,7 @@
 
 use crate::apps::runner::throw_angle_deg;
 use crate::contact::closed_form::ClosedFormBatch;
+use crate::contact::law_outcome::solve_law;
 use crate::contact::outcome::solve;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
@@ -46,9 +50,10 @@ use crate::formats::number::{finite_output, Shortest};
 use crate::formats::scene::{Incoming, LabFrame, Scene};
 use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
+use crate::model::contact_law::ContactLaw;
 use crate::model::effects::Effects;
 use crate::model::frame::LabScene;
-use crate::model::material::{HertzContact, Material, YOUNGS_MODULUS_FIELD};
+use crate::model::material::{hertz_stiffness, HertzContact, Material, YOUNGS_MODULUS_FIELD};
 use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::profile::{ForceProfile, Profile};
@@ -76,6 +81,9 @@ pub struct BatchSetup {
     pub material: Option<Material>,
     /// Method and tolerances.
     pub settings: SolverSettings,
+    /// The scene's contact law (docs/contact-law.md), when the force comes from the
+    /// compression: each row realises its own impulse and duration.
+    pub law: Option<ContactLaw>,
 }
 
 impl BatchSetup {
@@ -88,6 +96,7 @@ impl BatchSetup {
             profile: scene.profile.clone(),
             material: scene.material,
             settings,
+            law: scene.law,
         }
     }
 }
@@ -235,6 +244,14 @@ fn resolve_with(
 ) -> Result<BatchOutput, Error> {
     let (balls, contact) = params_of(setup, &input.overrides)?;
     let (cm, lab) = input.incoming.to_cm(&balls)?;
+    if let Some(law) = &setup.law {
+        let mut out = resolve_law(setup, law, &input.overrides, balls, contact, &cm)?;
+        if let Some(LabFrame { frame, lab }) = lab {
+            let (a, b) = frame.to_lab(&out.result.out);
+            out.lab = Some((a, b, frame.throw_angle_deg(&(b.velocity - lab.b.velocity))));
+        }
+        return Ok(out);
+    }
     let profile = &setup.profile;
     let time_scale = row_duration(setup, &input.overrides, &balls, &cm)?;
     let mut out = if setup.settings.method() == Method::ClosedForm {
@@ -275,6 +292,52 @@ fn resolve_with(
         out.lab = Some((a, b, throw));
     }
     Ok(out)
+}
+
+/// One row under the setup's contact law: the row's restitution, impulse and duration
+/// columns are refused (the law decides them); with the balls' material the stiffness
+/// follows from the row's ball.
+fn resolve_law(
+    setup: &BatchSetup,
+    law: &ContactLaw,
+    o: &Overrides,
+    balls: BallPair,
+    contact: Contact,
+    cm: &CmState,
+) -> Result<BatchOutput, Error> {
+    let given = [
+        ("restitution", o.restitution),
+        ("impulse", o.impulse),
+        ("duration", o.duration),
+    ];
+    if let Some((column, Some(v))) = given.iter().find(|(_, v)| v.is_some()) {
+        return Err(Error::invalid(
+            *column,
+            format!("{v} with the scene's [contact.law]"),
+            "no restitution, impulse or duration column: the law decides them for every row",
+        ));
+    }
+    let law = match &setup.material {
+        Some(m) if balls != setup.balls => ContactLaw::new(
+            hertz_stiffness((&balls.a, m), (&balls.b, m)).2,
+            law.damping(),
+            law.coefficient(),
+        )?,
+        _ => *law,
+    };
+    let contact = Contact {
+        impulse: ImpulseRule::ELASTIC,
+        ..contact
+    };
+    let c = Collision::new(balls, contact, setup.effects, *cm)?;
+    let o = solve_law(&c, &law, &setup.settings, None)?;
+    Ok(BatchOutput {
+        result: o.result,
+        stick_time: o.stick_time,
+        lab: None,
+        closed_form_error: o.check.closed_form_error,
+        rhs_evaluations: o.stats.rhs_evaluations,
+    })
 }
 
 /// Resolves a slice of collisions in parallel (rayon's current pool), in order: element i

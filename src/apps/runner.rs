@@ -1,6 +1,7 @@
 //! Running a scene: the collision in the centre-of-mass frame, the outcome, and its lab
 //! form.
 
+use crate::contact::law_outcome::solve_law;
 use crate::contact::outcome::{solve, Outcome};
 use crate::contact::result::ContactResult;
 use crate::error::Error;
@@ -37,7 +38,10 @@ pub fn run_scene(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<SceneOutcome, Error> {
     let (collision, lab) = scene.collision()?;
-    let mut outcome = solve(&collision, &scene.profile, settings, trace)?;
+    let mut outcome = match &scene.law {
+        Some(law) => solve_law(&collision, law, settings, trace)?,
+        None => solve(&collision, &scene.profile, settings, trace)?,
+    };
     let out = outcome.result.out;
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {

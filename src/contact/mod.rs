@@ -5,5 +5,6 @@
 pub(crate) mod check;
 pub(crate) mod closed_form;
 pub(crate) mod friction;
+pub(crate) mod law_outcome;
 pub(crate) mod outcome;
 pub(crate) mod result;

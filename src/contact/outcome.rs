@@ -2,10 +2,11 @@
 
 use crate::contact::check::{checks, Checks};
 use crate::contact::closed_form::ClosedForm;
+use crate::contact::law_outcome::LawOutcome;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::trace::{TraceRow, TraceSink};
-use crate::integrator::{integrate, Method, Sampling, SolverSettings, Stats};
+use crate::integrator::{integrate, Integrated, Method, Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
 use crate::profile::ForceProfile;
 use nalgebra::Vector2;
@@ -25,8 +26,11 @@ pub struct Outcome {
     pub stats: Stats,
     /// Warnings (e.g. eq 57 violated with `stick = false`).
     pub warnings: Vec<String>,
-    /// The closed form of the same collision (the reference).
+    /// The closed form of the same collision (the reference; under a contact law, at the
+    /// realised impulse).
     pub exact: ClosedForm,
+    /// What a contact law decided (`None` for a prescribed profile): docs/contact-law.md.
+    pub law: Option<LawOutcome>,
 }
 
 /// Default number of trace rows of the closed-form method without `--samples`.
@@ -62,6 +66,7 @@ pub fn solve<P: ForceProfile + ?Sized>(
         stats: Stats::default(),
         warnings: Vec::new(),
         exact,
+        law: None,
     };
     if !c.collides() {
         outcome.result.stick_impulse = None;
@@ -81,23 +86,10 @@ pub fn solve<P: ForceProfile + ?Sized>(
     outcome.stick_time = exact_result
         .stick_fraction(profile)
         .map(|s| profile.duration() * s);
-    if exact.violates_eq57() {
-        let p_stick = exact_result.stick_impulse.unwrap_or(f64::INFINITY);
-        outcome.warnings.push(format!(
-            "eq 57 fails: sliding would stop at p = {p_stick:e} N s < P = {:e} N s; with stick = \
-             false friction kept acting and the slip reversed (S_out = {:e} m/s)",
-            c.impulse, exact_result.s_out
-        ));
-    }
+    outcome.warnings.extend(eq57_warning(c, &exact));
     match settings.method() {
         Method::ClosedForm => {
-            outcome.check = checks(
-                c,
-                &exact,
-                &exact_result.out,
-                exact_result.tangential_impulse,
-                exact_result.heat_sliding,
-            );
+            outcome.check = closed_form_checks(c, &exact);
             if let Some((sink, sampling)) = trace {
                 let n = match sampling {
                     Sampling::Uniform(n) => n,
@@ -121,6 +113,32 @@ fn time_step<P: ForceProfile + ?Sized>(
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<(), Error> {
     let run = integrate(c, profile, settings, trace)?;
+    take_run(outcome, c, &run);
+    Ok(())
+}
+
+/// The warning of a collision whose closed form violates eq 57 (`stick = false` only).
+pub(crate) fn eq57_warning(c: &Collision, exact: &ClosedForm) -> Option<String> {
+    let r = &exact.result;
+    exact.violates_eq57().then(|| {
+        let p_stick = r.stick_impulse.unwrap_or(f64::INFINITY);
+        format!(
+            "eq 57 fails: sliding would stop at p = {p_stick:e} N s < P = {:e} N s; with stick = \
+             false friction kept acting and the slip reversed (S_out = {:e} m/s)",
+            c.impulse, r.s_out
+        )
+    })
+}
+
+/// The checks of the closed form itself.
+pub(crate) fn closed_form_checks(c: &Collision, exact: &ClosedForm) -> Checks {
+    let r = &exact.result;
+    checks(c, exact, &r.out, r.tangential_impulse, r.heat_sliding)
+}
+
+/// Puts a time-stepping run's result, work and checks into `outcome` (which holds the
+/// closed form's).
+pub(crate) fn take_run(outcome: &mut Outcome, c: &Collision, run: &Integrated) {
     let m = c.balls.pair_mass();
     let e = c.direction.unwrap_or_else(Vector2::zeros);
     let du = run.out.u_cm - c.incoming.u_cm;
@@ -142,7 +160,6 @@ fn time_step<P: ForceProfile + ?Sized>(
     outcome.check = checks(c, &outcome.exact, &run.out, j, run.heat_sliding);
     outcome.check.theta_drift = run.theta_drift;
     outcome.check.slip_consistency = run.slip_consistency;
-    Ok(())
 }
 
 /// The exact trace: the closed form at p(t) for t = i tau / n, i = 0..=n, plus the stop of
@@ -170,6 +187,7 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
             slip_speed: part.sliding.slip,
             theta,
             heat_sliding: part.sliding.heat,
+            compression: None,
         }
     };
     let mut last = -1.0;

@@ -10,6 +10,7 @@
 
 use crate::apps::runner::SceneOutcome;
 use crate::contact::check::Checks;
+use crate::contact::law_outcome::LawOutcome;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::number::{count, decimal, sci, si};
@@ -172,6 +173,49 @@ impl From<&HertzContact> for HertzJson {
             peak_force: Num(h.peak_force),
             contact_radius: Num(h.contact_radius),
         }
+    }
+}
+
+/// What a contact law decided (docs/contact-law.md), SI units.
+#[derive(Debug, Serialize)]
+pub struct ContactLawJson {
+    /// The damping term's name.
+    pub damping: &'static str,
+    /// The realised restitution e = P / (m U(0)) - 1.
+    pub restitution: Num,
+    /// Largest compression delta_max (m).
+    pub max_compression: Num,
+    /// Peak force (N).
+    pub peak_force: Num,
+    /// The damping coefficient, given or calibrated: beta (s/m), gamma (s), 0 for `none`.
+    pub coefficient: Num,
+    /// Stiffness k (N / m^(3/2)).
+    pub stiffness: Num,
+}
+
+impl From<&LawOutcome> for ContactLawJson {
+    fn from(l: &LawOutcome) -> Self {
+        ContactLawJson {
+            damping: l.law.damping().name(),
+            restitution: Num(l.restitution),
+            max_compression: Num(l.max_compression),
+            peak_force: Num(l.peak_force),
+            coefficient: Num(l.law.coefficient()),
+            stiffness: Num(l.law.stiffness()),
+        }
+    }
+}
+
+/// The name the report gives the force of a scene: the profile's, or `contact-law`.
+pub const CONTACT_LAW_NAME: &str = "contact-law";
+
+/// The name of the scene's force and its contact duration (s): the profile's, or the
+/// duration a contact law realised.
+fn force_and_duration(scene: &Scene, run: &SceneOutcome) -> (&'static str, f64) {
+    match (&scene.law, &run.outcome.law) {
+        (Some(_), Some(l)) => (CONTACT_LAW_NAME, l.duration),
+        (Some(_), None) => (CONTACT_LAW_NAME, 0.0),
+        (None, _) => (scene.profile.name(), scene.profile.duration()),
     }
 }
 
@@ -395,13 +439,18 @@ impl Serialize for Report<'_> {
         let (scene, run) = (self.scene, self.run);
         let o = &run.outcome;
         let r = &o.result;
-        let mut m = s.serialize_struct("Report", 25)?;
+        let mut m = s.serialize_struct("Report", 26)?;
         m.serialize_field("name", &scene.name)?;
-        m.serialize_field("profile", scene.profile.name())?;
-        m.serialize_field("duration", &Num(scene.profile.duration()))?;
+        let (force, duration) = force_and_duration(scene, run);
+        m.serialize_field("profile", force)?;
+        m.serialize_field("duration", &Num(duration))?;
         match scene.hertz() {
             Ok(Some(h)) => m.serialize_field("hertz", &HertzJson::from(&h))?,
             _ => m.skip_field("hertz")?,
+        }
+        match &o.law {
+            Some(l) => m.serialize_field("contact_law", &ContactLawJson::from(l))?,
+            None => m.skip_field("contact_law")?,
         }
         m.serialize_field("effects", &scene.effects.simulated(&scene.contact.friction))?;
         match HeldFrictionJson::new(&scene.contact.friction, r.s0) {
@@ -447,14 +496,18 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     let r = &o.result;
     let mut s = String::new();
     let _ = writeln!(s, "{}", scene.name);
+    let (force, duration) = force_and_duration(scene, so);
     let _ = writeln!(
         s,
         "  profile {} over {}, method {}, effects: {}",
-        scene.profile.name(),
-        si(scene.profile.duration(), "s", 5),
+        force,
+        si(duration, "s", 5),
         so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
+    if let Some(l) = &o.law {
+        s.push_str(&law_summary(l));
+    }
     if let Ok(Some(h)) = scene.hertz() {
         let _ = writeln!(
             s,
@@ -517,6 +570,21 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         s.push_str(&table_summary(t));
     }
     s
+}
+
+/// The contact law's line of the summary: its damping, the restitution it gave, the
+/// largest compression and force.
+fn law_summary(l: &LawOutcome) -> String {
+    format!(
+        "  contact law hertz, damping {} (coefficient {} {}): restitution {:.9}, compression \
+         {}, peak force {}\n",
+        l.law.damping(),
+        decimal(l.law.coefficient(), 7),
+        l.law.damping().unit(),
+        l.restitution,
+        si(l.max_compression, "m", 5),
+        si(l.peak_force, "N", 5)
+    )
 }
 
 /// The least round-off of a heat, relative to the energy scale m v_ref^2: a few ulps of the

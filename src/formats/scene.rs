@@ -16,6 +16,11 @@
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
 //!                        # | tabulated (file = "...", relative to the scene)
 //! duration = 2.5e-4      # s (hertz, sine-power: or from the balls' material)
+//! # [contact.law]        # instead of [contact.profile] and restitution / impulse: the force
+//! # model = "hertz"      # from the compression (docs/contact-law.md)
+//! # stiffness = 4.5e8    # N/m^1.5; or from [balls] youngs_modulus and poisson_ratio
+//! # damping = "hunt-crossley"   # none (default) | hunt-crossley | kuwabara-kono
+//! # coefficient = 0.1    # beta (s/m) or gamma (s); or restitution = 0.95 and at_speed = 1.0
 //! [incoming.cm]          # either this ...
 //! u = [0.5, 0.25, 0.0]   # velocity of ball A in the paper's frame; B has -u
 //! omega_a = [0.0, 0.0, 0.0]   # default 0
@@ -47,14 +52,21 @@
 
 use crate::error::Error;
 use crate::formats::names::did_you_mean;
+use crate::integrator::law::pair_mass;
 use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
+use crate::model::contact_law::{
+    ContactLaw, Damping, AT_SPEED_FIELD, COEFFICIENT_FIELD, RESTITUTION_FIELD, STIFFNESS_FIELD,
+};
 use crate::model::effects::Effects;
 use crate::model::frame::{Frame, LabScene};
-use crate::model::material::{HertzContact, Material, POISSON_RATIO_FIELD, YOUNGS_MODULUS_FIELD};
+use crate::model::material::{
+    elastic_impact, hertz_stiffness, HertzContact, Material, POISSON_RATIO_FIELD,
+    YOUNGS_MODULUS_FIELD,
+};
 use crate::model::params::{Ball, BallPair, Contact, Evaluate, Friction, ImpulseRule, ALPHA_SOLID};
 use crate::model::state::{CmState, LabBall};
-use crate::profile::{Profile, ProfileSpec};
+use crate::profile::{Hertz, Profile, ProfileSpec};
 use crate::table_phase::{Table, TableParams, TableSettings, TableSize};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
@@ -112,8 +124,11 @@ pub struct Scene {
     pub material: Option<Material>,
     /// Friction and impulse rule.
     pub contact: Contact,
-    /// Normal-force profile.
+    /// Normal-force profile. With a contact law, the elastic Hertz pulse of the law's
+    /// stiffness at the approach speed (the law's time unit; the law decides the force).
     pub profile: Profile,
+    /// The contact law (`[contact.law]`), when the force comes from the compression.
+    pub law: Option<ContactLaw>,
     /// Incoming state.
     pub incoming: Incoming,
     /// Solver settings (`[solver]`, defaults when absent).
@@ -312,7 +327,124 @@ struct RawContact {
     mu: FrictionSpec,
     restitution: Option<f64>,
     impulse: Option<f64>,
-    profile: ProfileSpec,
+    profile: Option<ProfileSpec>,
+    law: Option<RawLaw>,
+}
+
+/// `[contact.law]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLaw {
+    #[serde(deserialize_with = "name")]
+    model: LawModel,
+    stiffness: Option<f64>,
+    #[serde(default, deserialize_with = "optional_name")]
+    damping: Option<Damping>,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+}
+
+/// The contact laws by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum LawModel {
+    /// Hertz's force k delta^(3/2), with the damping term of `damping`.
+    Hertz,
+}
+
+impl RawLaw {
+    /// The validated law for the balls `balls` of `material` (if given): the stiffness from
+    /// exactly one of `stiffness` or the material, the coefficient given or calibrated.
+    fn build(&self, balls: &BallPair, material: Option<&Material>) -> Result<ContactLaw, Error> {
+        let LawModel::Hertz = self.model;
+        let stiffness = match (self.stiffness, material) {
+            (Some(k), None) => k,
+            (None, Some(m)) => hertz_stiffness((&balls.a, m), (&balls.b, m)).2,
+            (Some(k), Some(m)) => {
+                return Err(Error::invalid(
+                    STIFFNESS_FIELD,
+                    format!(
+                        "{k} together with {YOUNGS_MODULUS_FIELD} = {}",
+                        m.youngs_modulus()
+                    ),
+                    "one of them: the stiffness, or the balls' material it follows from",
+                ))
+            }
+            (None, None) => {
+                return Err(Error::invalid(
+                    STIFFNESS_FIELD,
+                    "missing",
+                    "a stiffness k (N/m^1.5), or [balls] youngs_modulus and poisson_ratio",
+                ))
+            }
+        };
+        let damping = self.damping.unwrap_or(Damping::None);
+        match (self.coefficient, self.restitution, self.at_speed) {
+            (c, None, None) => ContactLaw::new(stiffness, damping, c.unwrap_or(0.0)),
+            (None, Some(e), Some(v)) => {
+                ContactLaw::calibrated(stiffness, damping, e, v, 0.5 * pair_mass(balls))
+            }
+            (Some(c), Some(e), _) => Err(Error::invalid(
+                COEFFICIENT_FIELD,
+                format!("{c} together with {RESTITUTION_FIELD} = {e}"),
+                "one of them: the coefficient, or the restitution (with at_speed) it is \
+                 calibrated to",
+            )),
+            (_, None, Some(v)) => Err(Error::invalid(
+                RESTITUTION_FIELD,
+                format!("missing, with {AT_SPEED_FIELD} = {v}"),
+                "given together with at_speed: the restitution the law has at that speed",
+            )),
+            (None, Some(e), None) => Err(Error::invalid(
+                AT_SPEED_FIELD,
+                format!("missing, with {RESTITUTION_FIELD} = {e}"),
+                "given together with restitution: the relative approach speed (m/s) at which \
+                 the law has it",
+            )),
+        }
+    }
+}
+
+/// How a scene's contact sets the normal force: a prescribed profile, or a law.
+enum ForceSource<'a> {
+    Profile(&'a ProfileSpec),
+    Law(&'a RawLaw),
+}
+
+impl RawContact {
+    /// Exactly one of `[contact.profile]` or `[contact.law]`; a law without `restitution` or
+    /// `impulse` (it decides the impulse).
+    fn force_source(&self) -> Result<ForceSource<'_>, Error> {
+        match (&self.profile, &self.law) {
+            (Some(p), None) => Ok(ForceSource::Profile(p)),
+            (None, Some(law)) => {
+                let given = [("restitution", self.restitution), ("impulse", self.impulse)];
+                if let Some((key, Some(v))) = given.iter().find(|(_, v)| v.is_some()) {
+                    return Err(Error::invalid(
+                        "contact.law",
+                        format!("given together with contact.{key} = {v}"),
+                        "one of them: the law decides the impulse (leave out \
+                         contact.restitution and contact.impulse; calibrate the law with \
+                         contact.law.restitution and at_speed)",
+                    ));
+                }
+                Ok(ForceSource::Law(law))
+            }
+            (Some(_), Some(_)) => Err(Error::invalid(
+                "contact.law",
+                "given together with [contact.profile]",
+                "one of them: [contact.profile] prescribes the force, [contact.law] makes it \
+                 from the compression",
+            )),
+            (None, None) => Err(Error::invalid(
+                "contact.profile",
+                "missing",
+                "a section [contact.profile] (the force's shape and duration), or \
+                 [contact.law] (the force from the compression)",
+            )),
+        }
+    }
 }
 
 /// What `contact.mu` accepts.
@@ -497,15 +629,22 @@ impl Scene {
         let balls = raw.balls.build()?;
         let material = material_of(&raw.balls)?;
         let friction = raw.contact.mu.build()?;
+        let force = raw.contact.force_source()?;
         let impulse =
             ImpulseRule::from_either("contact.", raw.contact.restitution, raw.contact.impulse)?
                 .unwrap_or(ImpulseRule::ELASTIC);
-        check_duration_source(&raw.contact.profile, material.as_ref())?;
+        let law = match force {
+            ForceSource::Law(law) => Some(law.build(&balls, material.as_ref())?),
+            ForceSource::Profile(spec) => {
+                check_duration_source(spec, material.as_ref())?;
+                None
+            }
+        };
         // Without the material the profile is built here, before the incoming state (whose
-        // errors come second); with it, once the approach speed is known.
-        let given = match material {
-            None => Some(raw.contact.profile.build(base)?),
-            Some(_) => None,
+        // errors come second); with it, or with a law, once the approach speed is known.
+        let given = match (&force, material) {
+            (ForceSource::Profile(spec), None) => Some(spec.build(base)?),
+            _ => None,
         };
         let incoming = raw.incoming.build()?;
         let solver = raw
@@ -514,15 +653,19 @@ impl Scene {
             .apply(&SolverSettings::default())?;
         let contact = Contact { friction, impulse };
         let effects = raw.effects.unwrap_or_default();
-        let profile = match (given, &material) {
-            (Some(p), _) => p,
-            (None, Some(mat)) => {
+        let profile = match (given, &force, &law) {
+            (Some(p), _, _) => p,
+            (None, _, Some(law)) => law_time_unit(law, &balls, &incoming)?,
+            (None, ForceSource::Profile(spec), None) => {
+                let mat = material
+                    .as_ref()
+                    .expect("without the material the profile is built");
                 let (cm, _) = incoming.to_cm(&balls)?;
                 let c = Collision::new(balls, contact, effects, cm)?;
                 let hertz = HertzContact::of_pair(&balls, mat, c.incoming.u_cm.x)?;
-                raw.contact.profile.build_with(base, Some(hertz.duration))?
+                spec.build_with(base, Some(hertz.duration))?
             }
-            (None, None) => unreachable!("without the material the profile is built above"),
+            (None, ForceSource::Law(_), None) => unreachable!("a law section builds the law"),
         };
         let scene = Scene {
             name: raw.name.unwrap_or_else(|| {
@@ -535,6 +678,7 @@ impl Scene {
             material,
             contact,
             profile,
+            law,
             incoming,
             solver,
             effects,
@@ -589,14 +733,35 @@ impl Scene {
     }
 
     /// Hertz's contact of the balls' material at the scene's approach speed, when the scene
-    /// gives the material (`None` otherwise): the profile's duration is its contact time.
+    /// gives the material for a profile (`None` otherwise, and with a contact law): the profile's duration is its contact time.
     pub fn hertz(&self) -> Result<Option<HertzContact>, Error> {
-        let Some(material) = &self.material else {
+        let (Some(material), None) = (&self.material, &self.law) else {
             return Ok(None);
         };
         let (c, _) = self.collision()?;
         HertzContact::of_pair(&self.balls, material, c.incoming.u_cm.x).map(Some)
     }
+}
+
+/// The elastic Hertz pulse of `law` for the balls `balls` approaching as `incoming` gives it: the
+/// time unit of a law scene. Balls that do not approach are refused (the law has no contact
+/// to make).
+fn law_time_unit(
+    law: &ContactLaw,
+    balls: &BallPair,
+    incoming: &Incoming,
+) -> Result<Profile, Error> {
+    let (cm, _) = incoming.to_cm(balls)?;
+    let u0 = cm.u_cm.x;
+    if u0.is_nan() || u0 <= 0.0 {
+        return Err(Error::invalid(
+            "incoming",
+            format!("a normal speed U(0) = {u0} m/s with [contact.law]"),
+            "approaching balls (U(0) > 0): a contact law needs a contact to make",
+        ));
+    }
+    let (_, tau) = elastic_impact(law.stiffness(), 0.5 * pair_mass(balls), 2.0 * u0);
+    Ok(Profile::Hertz(Hertz::new(tau)?))
 }
 
 /// The balls' material, when `[balls]` gives it: `youngs_modulus` and `poisson_ratio`

@@ -2,8 +2,9 @@
 //!
 //! Columns (header cells `name (unit)`, docs/formats.md#trace-csv): `t (s)`, `f (N)`, `p (N s)`,
 //! `U (m/s)`, `V (m/s)`, `W (m/s)`, `omega_a_x (rad/s)` .. `omega_b_z (rad/s)`, `S (m/s)`,
-//! `theta (rad)`, `H_sfr (J)`. The state is the paper's centre-of-mass frame. After
-//! sticking, S is 0 and theta is the last sliding value; theta is empty when S(0) = 0.
+//! `theta (rad)`, `H_sfr (J)`, and with a contact law (docs/contact-law.md) `delta (m)`.
+//! The state is the paper's centre-of-mass frame. After sticking, S is 0 and theta is the
+//! last sliding value; theta is empty when S(0) = 0.
 
 use crate::error::Error;
 use crate::formats::number::{finite_output, shortest};
@@ -27,6 +28,8 @@ pub struct TraceRow {
     pub theta: Option<f64>,
     /// Sliding heat H_sfr so far (J).
     pub heat_sliding: f64,
+    /// Compression delta (m) of a contact law; `None` for a prescribed profile.
+    pub compression: Option<f64>,
 }
 
 impl TraceRow {
@@ -87,18 +90,39 @@ pub const HEADER: [&str; 15] = [
     "H_sfr (J)",
 ];
 
+/// The header cell of the compression column, written after [`HEADER`] with a contact law.
+pub const COMPRESSION_HEADER: &str = "delta (m)";
+
 /// Writes trace rows as CSV, streaming.
 pub struct CsvTrace<W: Write> {
     out: csv::Writer<W>,
     rows: u64,
+    /// Whether rows carry the compression column.
+    compression: bool,
 }
 
 impl<W: Write> CsvTrace<W> {
     /// A writer that starts with the header line.
     pub fn new(out: W) -> Result<Self, Error> {
+        CsvTrace::with_columns(out, false)
+    }
+
+    /// A writer that starts with the header line, with the column `delta (m)` of a
+    /// contact law when `compression` is true.
+    pub fn with_columns(out: W, compression: bool) -> Result<Self, Error> {
         let mut out = csv::Writer::from_writer(out);
-        out.write_record(HEADER)?;
-        Ok(CsvTrace { out, rows: 0 })
+        for cell in HEADER {
+            out.write_field(cell)?;
+        }
+        if compression {
+            out.write_field(COMPRESSION_HEADER)?;
+        }
+        out.write_record(None::<&[u8]>)?;
+        Ok(CsvTrace {
+            out,
+            rows: 0,
+            compression,
+        })
     }
 
     /// Rows written so far.
@@ -124,6 +148,11 @@ impl<W: Write> TraceSink for CsvTrace<W> {
                 }
                 None => self.out.write_field("")?,
             }
+        }
+        if self.compression {
+            let delta = r.compression.unwrap_or(0.0);
+            let delta = finite_output(delta, || format!("trace column delta at t = {}", r.t))?;
+            self.out.write_field(shortest(delta))?;
         }
         self.out.write_record(None::<&[u8]>)?;
         self.rows += 1;

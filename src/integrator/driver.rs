@@ -54,13 +54,13 @@ pub struct Integrated {
 
 /// Where sliding stopped, if it did.
 #[derive(Debug, Clone, Copy, Default)]
-struct Stop {
+pub(super) struct Stop {
     /// Whether the surfaces stick (the stop with effect `stick = true`, or S(0) = 0).
-    sticks: bool,
+    pub(super) sticks: bool,
     /// Time (s) of the stop.
-    time: Option<f64>,
+    pub(super) time: Option<f64>,
     /// Impulse (N s) at the stop.
-    impulse: Option<f64>,
+    pub(super) impulse: Option<f64>,
 }
 
 /// Integrates a collision that happens (U(0) > 0) with the given settings (not
@@ -130,7 +130,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
 }
 
 /// The stage the contact starts in, and the stop when there is no sliding to stop.
-fn initial_stage(c: &Collision) -> (ContactStage, Stop) {
+pub(super) fn initial_stage(c: &Collision) -> (ContactStage, Stop) {
     match c.active_friction() {
         Some(_) if c.s0 > 0.0 => (ContactStage::Sliding, Stop::default()),
         // S(0) = 0: the surfaces do not slide at all (docs/model.md#no-initial-sliding).
@@ -147,7 +147,7 @@ fn initial_stage(c: &Collision) -> (ContactStage, Stop) {
 }
 
 /// The run's result from the final scaled state `y`.
-fn result<P: ForceProfile + ?Sized>(
+pub(super) fn result<P: ForceProfile + ?Sized>(
     problem: &Problem<'_, P>,
     y: &SlidingState,
     stop: Stop,

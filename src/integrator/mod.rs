@@ -9,17 +9,19 @@
 //! | `stages` | the stages of the contact (sliding, frozen, normal) and why a stage's stepping stops |
 //! | `stepping` | one call of an `ode_solvers` method over a span, with the named step-control constants |
 //! | `stop_event` | location of the stop of sliding (regula falsi, Illinois) |
+//! | `law` | a contact law's normal force from the compression: its states, right-hand sides, events and runs |
 //! | `time_map` | the integration variable: the scaled time, or the variable in which the impulse follows the half-sine's |
 //! | `units` | scaled states back to physical ones and trace rows |
 //! | `record` | trace rows, the first error, theta drift and slip consistency of a run |
 
 mod driver;
+pub(crate) mod law;
 mod record;
 pub(crate) mod rhs;
 mod settings;
 mod stages;
 mod stepping;
-mod stop_event;
+pub(crate) mod stop_event;
 mod time_map;
 mod units;
 

@@ -5,7 +5,7 @@ use super::rhs::SlidingState;
 use super::settings::Sampling;
 use super::units::Units;
 use crate::error::Error;
-use crate::formats::trace::TraceSink;
+use crate::formats::trace::{TraceRow, TraceSink};
 use crate::model::state::slip_angle;
 use crate::profile::ForceProfile;
 use nalgebra::{SVector, Vector2};
@@ -85,16 +85,23 @@ impl<'a> Recorder<'a> {
         y: &SlidingState,
         time: Option<f64>,
     ) {
-        if self.error.is_some() || y.x() <= self.last_row_x {
+        self.emit_with(y.x(), |theta| units.row(y, time, theta));
+    }
+
+    /// Writes the row `row` builds from the slip angle, for the state at integration
+    /// variable `x`, unless a row at or after it was written already or an error was
+    /// recorded.
+    pub(super) fn emit_with(&mut self, x: f64, row: impl FnOnce(Option<f64>) -> TraceRow) {
+        if self.error.is_some() || x <= self.last_row_x {
             return;
         }
+        let theta = self.theta_last;
         if let Some(sink) = self.sink.as_deref_mut() {
-            let row = units.row(y, time, self.theta_last);
-            if let Err(e) = sink.row(&row) {
+            if let Err(e) = sink.row(&row(theta)) {
                 self.error = Some(e);
             }
         }
-        self.last_row_x = y.x();
+        self.last_row_x = x;
     }
 
     /// Whether the trace takes a row per accepted step.

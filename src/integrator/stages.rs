@@ -59,11 +59,11 @@ pub(super) struct Problem<'a, P: ForceProfile + ?Sized> {
     /// pi = P / (m v_ref).
     pi: f64,
     /// Initial sliding direction e0 (unit; zero without sliding).
-    e0: Vector2<f64>,
+    pub(super) e0: Vector2<f64>,
     /// Scaled incoming slip.
     pub(super) slip0: Vector2<f64>,
     /// The event function at or below which the slip counts as stopped ([`STOP_FLOOR`]).
-    stop_floor: f64,
+    pub(super) stop_floor: f64,
 }
 
 impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
@@ -85,7 +85,7 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
     }
 
     /// Eqs 14-19 with the friction direction taken by `direction`.
-    fn sliding_rhs(&self, direction: Direction) -> SlidingRhs<'a, P> {
+    pub(super) fn sliding_rhs(&self, direction: Direction) -> SlidingRhs<'a, P> {
         SlidingRhs {
             profile: self.profile,
             time_map: self.time_map,

@@ -87,16 +87,17 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
     Ok(best)
 }
 
-/// One end of the bracket: impulse fraction q and event function g there.
+/// One end of the bracket: the abscissa q (here the impulse fraction; the time or a law's
+/// coefficient for the other root finders of the crate) and the function g there.
 #[derive(Debug, Clone, Copy)]
-struct Bound {
-    q: f64,
-    g: f64,
+pub(crate) struct Bound {
+    pub(crate) q: f64,
+    pub(crate) g: f64,
 }
 
 /// The end of the bracket the last trial replaced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Side {
+pub(crate) enum Side {
     None,
     Low,
     High,
@@ -105,7 +106,7 @@ enum Side {
 /// Replaces the end of the bracket on the side of the trial (q, g), and halves the value at
 /// the other end when that end is kept twice in a row (the Illinois modification, which
 /// stops the retained end from stalling the secant). Returns the side replaced.
-fn illinois_update(lo: &mut Bound, hi: &mut Bound, last: Side, q: f64, g: f64) -> Side {
+pub(crate) fn illinois_update(lo: &mut Bound, hi: &mut Bound, last: Side, q: f64, g: f64) -> Side {
     if g > 0.0 {
         *lo = Bound { q, g };
         if last == Side::Low {

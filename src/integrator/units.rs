@@ -91,6 +91,7 @@ impl<'a, P: ForceProfile + ?Sized> Units<'a, P> {
             slip_speed: sign * slip.x.hypot(slip.y) * self.v,
             theta,
             heat_sliding: self.heat(y),
+            compression: None,
         }
     }
 }

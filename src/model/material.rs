@@ -131,15 +131,9 @@ impl HertzContact {
                  the approach speed",
             ));
         }
-        let (ball_a, mat_a) = a;
-        let (ball_b, mat_b) = b;
-        let effective_modulus = 1.0 / (mat_a.compliance() + mat_b.compliance());
-        let effective_radius = 1.0 / (1.0 / ball_a.radius() + 1.0 / ball_b.radius());
-        let reduced_mass = ball_a.mass() * ball_b.mass() / (ball_a.mass() + ball_b.mass());
-        let stiffness = 4.0 / 3.0 * effective_modulus * effective_radius.sqrt();
-        let v = approach_speed;
-        let max_compression = (5.0 * reduced_mass * v * v / (4.0 * stiffness)).powf(0.4);
-        let duration = 0.8 * beta(0.4, 0.5) * max_compression / v;
+        let (effective_modulus, effective_radius, stiffness) = hertz_stiffness(a, b);
+        let reduced_mass = reduced_mass(a.0, b.0);
+        let (max_compression, duration) = elastic_impact(stiffness, reduced_mass, approach_speed);
         let contact = HertzContact {
             effective_modulus,
             effective_radius,
@@ -194,6 +188,52 @@ impl HertzContact {
     pub fn of_pair(balls: &BallPair, material: &Material, u0: f64) -> Result<Self, Error> {
         HertzContact::between((&balls.a, material), (&balls.b, material), 2.0 * u0)
     }
+}
+
+/// Hertz's stiffness of balls `a` and `b` of their materials: the effective modulus E* (Pa),
+/// the effective radius R (m) and k = (4/3) E* sqrt(R) (N / m^(3/2)).
+///
+/// ```
+/// use billiard_contact::{Ball, Material};
+/// use billiard_contact::details::hertz_stiffness;
+/// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+/// let resin = Material::new(5.4e9, 0.34)?;
+/// let (_, _, k) = hertz_stiffness((&ball, &resin), (&ball, &resin));
+/// let e_star = 5.4e9 / (2.0 * (1.0 - 0.34 * 0.34));
+/// assert!((k - 4.0 / 3.0 * e_star * (0.028575f64 / 2.0).sqrt()).abs() < 1e-6 * k);
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+pub fn hertz_stiffness(a: (&Ball, &Material), b: (&Ball, &Material)) -> (f64, f64, f64) {
+    let (ball_a, mat_a) = a;
+    let (ball_b, mat_b) = b;
+    let effective_modulus = 1.0 / (mat_a.compliance() + mat_b.compliance());
+    let effective_radius = 1.0 / (1.0 / ball_a.radius() + 1.0 / ball_b.radius());
+    let stiffness = 4.0 / 3.0 * effective_modulus * effective_radius.sqrt();
+    (effective_modulus, effective_radius, stiffness)
+}
+
+/// The reduced mass m* = m_a m_b / (m_a + m_b) (kg) of balls `a` and `b`: the mass of
+/// their relative motion along the line of centres.
+pub fn reduced_mass(a: &Ball, b: &Ball) -> f64 {
+    a.mass() * b.mass() / (a.mass() + b.mass())
+}
+
+/// Hertz's elastic impact of stiffness `stiffness` k (N / m^(3/2)) and reduced mass
+/// `reduced_mass` m* (kg) at the relative approach speed `approach_speed` v (m/s): the
+/// largest compression delta_max = (5 m* v^2 / (4 k))^(2/5) (m) and the contact time
+/// tau = (4/5) B(2/5, 1/2) delta_max / v (s), about 2.9433 delta_max / v.
+///
+/// ```
+/// use billiard_contact::details::elastic_impact;
+/// // m* = 0.085 kg, k = 1e9 N/m^1.5, v = 1 m/s.
+/// let (d, tau) = elastic_impact(1e9, 0.085, 1.0);
+/// assert!((d - (5.0 * 0.085 / 4e9f64).powf(0.4)).abs() < 1e-18);
+/// assert!((tau / (d / 1.0) - 2.9432).abs() < 1e-3);
+/// ```
+pub fn elastic_impact(stiffness: f64, reduced_mass: f64, approach_speed: f64) -> (f64, f64) {
+    let v = approach_speed;
+    let max_compression = (5.0 * reduced_mass * v * v / (4.0 * stiffness)).powf(0.4);
+    (max_compression, 0.8 * beta(0.4, 0.5) * max_compression / v)
 }
 
 #[cfg(test)]

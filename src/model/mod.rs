@@ -3,6 +3,7 @@
 //! the effects a run simulates, and one collision.
 
 pub(crate) mod collision;
+pub(crate) mod contact_law;
 pub(crate) mod effects;
 pub(crate) mod frame;
 pub(crate) mod material;

@@ -1,0 +1,230 @@
+//! Resolving a collision under a contact law (docs/contact-law.md): the law decides the
+//! impulse, the contact time and the restitution; the closed form at the realised impulse is
+//! the reference the run is checked against (the outgoing state is a function of the impulse
+//! alone, whatever f(t) was: docs/model.md#the-closed-form).
+//!
+//! `closed-form` integrates only the normal law (delta and U, with dop853 at the run's
+//! tolerances) and applies the closed form at its impulse; `rk4`, `dopri5` and `dop853`
+//! integrate everything.
+
+use crate::contact::closed_form::ClosedForm;
+use crate::contact::outcome::{closed_form_checks, eq57_warning, solve, take_run, Outcome};
+use crate::error::Error;
+use crate::formats::trace::{TraceRow, TraceSink};
+use crate::integrator::law::{
+    integrate_law, normal_run, normal_settings, HeadOn, LawScales, NormalPoint,
+};
+use crate::integrator::{Method, Sampling, SolverSettings};
+use crate::model::collision::Collision;
+use crate::model::contact_law::ContactLaw;
+use crate::model::params::{Contact, ImpulseRule};
+use crate::profile::Rectangle;
+
+/// What a contact law decided in one collision (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawOutcome {
+    /// The law (its coefficient the given or calibrated one).
+    pub law: ContactLaw,
+    /// The realised restitution e = P / (m U(0)) - 1.
+    pub restitution: f64,
+    /// The realised impulse P (N s).
+    pub impulse: f64,
+    /// The realised contact time (s).
+    pub duration: f64,
+    /// Largest compression delta_max (m), from the normal law.
+    pub max_compression: f64,
+    /// Peak force (N), from the normal law.
+    pub peak_force: f64,
+}
+
+/// Default number of trace rows of the closed-form method without `--samples`.
+const CLOSED_FORM_TRACE_SAMPLES: u64 = crate::contact::outcome::CLOSED_FORM_TRACE_SAMPLES;
+
+/// Resolves a collision under `law` with `settings.method()`, optionally streaming a trace
+/// (with the compression column). Balls that do not approach keep their state.
+///
+/// ```
+/// # use billiard_contact::*;
+/// # use nalgebra::Vector3;
+/// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+/// let contact = Contact { friction: Friction::constant(0.06)?, impulse: ImpulseRule::ELASTIC };
+/// let s = CmState::new(Vector3::new(0.5, 0.1, 0.0), Vector3::zeros(), Vector3::zeros());
+/// let c = Collision::new(ball, contact, Effects::default(), s)?;
+/// let law = ContactLaw::new(4.5e8, Damping::HuntCrossley, 0.1)?;
+/// let o = solve_law(&c, &law, &SolverSettings::default(), None)?;
+/// // beta v = 0.1 (v = 2 U(0) = 1 m/s): e = 0.93748 solves -beta e v - ln(1 - beta e v) =
+/// // beta v - ln(1 + beta v) (docs/contact-law.md#the-laws).
+/// let e = o.law.unwrap().restitution;
+/// assert!((e - 0.937475579950).abs() < 1e-9);
+/// assert!(o.check.closed_form_error < 1e-9);
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+pub fn solve_law(
+    c: &Collision,
+    law: &ContactLaw,
+    settings: &SolverSettings,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<Outcome, Error> {
+    if !c.collides() {
+        let outcome = solve(c, &Rectangle::new(1.0)?, settings, None)?;
+        if let Some((sink, _)) = trace {
+            sink.row(&TraceRow {
+                t: 0.0,
+                force: 0.0,
+                impulse: 0.0,
+                state: c.incoming,
+                slip_speed: c.s0,
+                theta: c.theta(),
+                heat_sliding: 0.0,
+                compression: Some(0.0),
+            })?;
+        }
+        return Ok(outcome);
+    }
+    let scales = LawScales::for_collision(c, law)?;
+    let normal = normal_settings(settings);
+    let head = normal_run(&scales, &normal, None, None)?;
+    if settings.method() == Method::ClosedForm {
+        return closed_form(c, &scales, &normal, head, trace);
+    }
+    let run = integrate_law(c, law, settings, trace)?;
+    let real = realised(c, run.impulse)?;
+    let mut outcome = outcome_of(&real, settings.method(), &scales, &head);
+    take_run(&mut outcome, &real, &run.run);
+    outcome.result.impulse = run.impulse;
+    outcome.law = Some(LawOutcome {
+        restitution: scales.restitution(run.impulse),
+        impulse: run.impulse,
+        duration: run.duration,
+        ..law_outcome(&scales, &head)
+    });
+    Ok(outcome)
+}
+
+/// The closed form at the impulse of the normal law's run `head` (with `normal`, a stepping
+/// method); the stick time where that run's impulse reaches p_stick.
+fn closed_form(
+    c: &Collision,
+    scales: &LawScales,
+    normal: &SolverSettings,
+    head: HeadOn,
+    trace: Option<(&mut dyn TraceSink, Sampling)>,
+) -> Result<Outcome, Error> {
+    let real = realised(c, head.impulse)?;
+    let mut outcome = outcome_of(&real, Method::ClosedForm, scales, &head);
+    outcome.result.impulse = head.impulse;
+    outcome.check = closed_form_checks(&real, &outcome.exact);
+    outcome.stats = head.stats;
+    let r = &outcome.exact.result;
+    if r.sticks {
+        outcome.stick_time = match r.stick_impulse.unwrap_or(0.0) {
+            p if p > 0.0 => normal_run(scales, normal, Some(p), None)?.mark_time,
+            _ => Some(0.0),
+        };
+    }
+    if let Some((sink, sampling)) = trace {
+        let n = match sampling {
+            Sampling::Uniform(n) => n,
+            Sampling::Steps => CLOSED_FORM_TRACE_SAMPLES,
+        };
+        closed_form_trace(
+            &real,
+            &outcome.exact,
+            scales,
+            normal,
+            head.duration,
+            sink,
+            n,
+        )?;
+    }
+    Ok(outcome)
+}
+
+/// The outcome of the realised collision `real` before its run is taken in: the closed form,
+/// its eq 57 warning, the law's part from the normal law's run `head`.
+fn outcome_of(real: &Collision, method: Method, scales: &LawScales, head: &HeadOn) -> Outcome {
+    let exact = ClosedForm::new(real);
+    Outcome {
+        method,
+        result: exact.result,
+        stick_time: None,
+        check: Default::default(),
+        stats: Default::default(),
+        warnings: eq57_warning(real, &exact).into_iter().collect(),
+        exact,
+        law: Some(law_outcome(scales, head)),
+    }
+}
+
+/// The law's part of a normal law's run.
+fn law_outcome(scales: &LawScales, head: &HeadOn) -> LawOutcome {
+    LawOutcome {
+        law: scales.law(),
+        restitution: scales.restitution(head.impulse),
+        impulse: head.impulse,
+        duration: head.duration,
+        max_compression: head.max_compression,
+        peak_force: head.peak_force,
+    }
+}
+
+/// Collision `c` with the realised impulse `impulse` (N s), kept within eq 56's
+/// [m U(0), 2 m U(0)] (an integrator's round-off beyond it is the run's error, which the
+/// checks then show).
+fn realised(c: &Collision, impulse: f64) -> Result<Collision, Error> {
+    let (m, u0) = (c.balls.pair_mass(), c.incoming.u_cm.x);
+    let contact = Contact {
+        friction: c.contact.friction,
+        impulse: ImpulseRule::explicit(impulse.clamp(m * u0, 2.0 * m * u0))?,
+    };
+    Collision::new(c.balls, contact, c.effects, c.incoming)
+}
+
+/// The closed form's trace under a law: the normal law integrated again with a point every
+/// `duration / n` and at the end, each row the closed form at that point's impulse. Points
+/// closer than 1e-9 `duration` to the next one are not written (the last sample and the end).
+fn closed_form_trace(
+    real: &Collision,
+    exact: &ClosedForm,
+    scales: &LawScales,
+    normal: &SolverSettings,
+    duration: f64,
+    sink: &mut dyn TraceSink,
+    n: u64,
+) -> Result<(), Error> {
+    let theta = real.theta();
+    let row = |[t, p, force, delta]: NormalPoint| {
+        let part = exact.at_impulse(p.min(real.impulse));
+        TraceRow {
+            t,
+            force,
+            impulse: p,
+            state: part.state,
+            slip_speed: part.sliding.slip,
+            theta,
+            heat_sliding: part.sliding.heat,
+            compression: Some(delta),
+        }
+    };
+    let mut pending: Option<TraceRow> = None;
+    let mut write = |point: NormalPoint| -> Result<(), Error> {
+        let next = row(point);
+        if let Some(prev) = pending.take() {
+            if next.t - prev.t > 1e-9 * duration {
+                sink.row(&prev)?;
+            }
+        }
+        pending = Some(next);
+        Ok(())
+    };
+    normal_run(
+        scales,
+        normal,
+        None,
+        Some((&mut write, duration / n.max(1) as f64)),
+    )?;
+    match pending {
+        Some(last) => sink.row(&last),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,321 @@
+//! Contact laws (docs/contact-law.md): the force from the compression, checked against
+//! expected values derived independently here.
+//!
+//! - Elastic Hertz: tau = (4/5) B(2/5, 1/2) delta_max / v = 2.9432 delta_max / v with
+//!   delta_max = (5 m* v^2 / (4 k))^(2/5), P = 2 m U(0), the outgoing state of the paper's
+//!   closed form (eqs 24-35, 52).
+//! - Hunt-Crossley: m* w dw / (1 + beta w) = -k delta^(3/2) d delta integrates, from w = v at
+//!   delta = 0 back to delta = 0 with w = -e v, to
+//!   -beta e v - ln(1 - beta e v) = beta v - ln(1 + beta v):
+//!   e depends on beta v alone, and e = 1 - (2/3) beta v + O((beta v)^2).
+//! - Kuwabara-Kono: in units of the elastic delta_max and delta_max / v the damping is
+//!   gamma v / delta_max, proportional to gamma v^(1/5); for small damping 1 - e is
+//!   proportional to it.
+//! - Every law: the closed form at the realised impulse P (the outgoing state is a function
+//!   of P alone), and the normal dissipation m U(0)^2 (1 - e^2) (eq 50 with that P).
+
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::profile::Hertz;
+use billiard_contact::*;
+
+const M: f64 = 0.17;
+const R: f64 = 0.028575;
+/// Pool balls: k = (4/3) E* sqrt(R), E* = E / (2 (1 - nu^2)), R = r / 2.
+fn pool_stiffness() -> f64 {
+    let e_star = 5.4e9 / (2.0 * (1.0 - 0.34 * 0.34));
+    4.0 / 3.0 * e_star * (R / 2.0).sqrt()
+}
+/// B(2/5, 1/2) = Gamma(2/5) Gamma(1/2) / Gamma(9/10).
+const BETA_2_5_1_2: f64 = 3.679_093_980_405_881;
+/// Scaled state error of every law against the closed form at its realised impulse.
+const CLOSED_FORM_TOL: f64 = 1e-10;
+
+fn collision(u: Vector3<f64>, spin_a: Vector3<f64>, mu: f64) -> Collision {
+    let ball = Ball::new(M, R, 0.4).unwrap();
+    let contact = Contact {
+        friction: Friction::constant(mu).unwrap(),
+        impulse: ImpulseRule::ELASTIC,
+    };
+    let s = CmState::new(u, spin_a, Vector3::zeros());
+    Collision::new(ball, contact, Effects::default(), s).unwrap()
+}
+
+/// Tolerances 1e-12; rk4 with 4000 steps per elastic contact time.
+fn tight(method: Method) -> SolverSettings {
+    SolverSettings::default()
+        .with_method(method)
+        .with_rtol(1e-12)
+        .unwrap()
+        .with_atol(1e-12)
+        .unwrap()
+        .with_steps(4000)
+        .unwrap()
+}
+
+/// The Hunt-Crossley restitution of beta v = `x`: the root y = beta e v in (0, 1) of
+/// -y - ln(1 - y) = x - ln(1 + x), by bisection; e = y / x.
+fn hunt_crossley_e(x: f64) -> f64 {
+    let rhs = x - x.ln_1p();
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..200 {
+        let y = 0.5 * (lo + hi);
+        if -y - (-y).ln_1p() < rhs {
+            lo = y;
+        } else {
+            hi = y;
+        }
+    }
+    0.5 * (lo + hi) / x
+}
+
+/// Elastic Hertz against the exact `hertz` profile: impulse 2 m U(0), the contact time
+/// 2.9432 delta_max / v, the outgoing state and the stop of sliding.
+#[test]
+fn elastic_law_is_the_hertz_profile() {
+    let k = pool_stiffness();
+    let law = ContactLaw::elastic(k).unwrap();
+    // Largest relative errors of P, tau, the state (scaled) and the stick time (over tau).
+    let mut worst = [0.0f64; 4];
+    for (u, spin) in [
+        (Vector3::new(0.5, 0.05, 0.0), Vector3::zeros()), // sticks
+        (Vector3::new(0.5, 0.4, 0.1), Vector3::new(0.0, 10.0, -20.0)), // slides throughout
+    ] {
+        let c = collision(u, spin, 0.06);
+        let v = 2.0 * u.x;
+        let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
+        let tau = 0.8 * BETA_2_5_1_2 * d / v;
+        let profile = Hertz::new(tau).unwrap();
+        let reference = solve(&c, &profile, &tight(Method::ClosedForm), None).unwrap();
+        for method in [
+            Method::ClosedForm,
+            Method::Rk4,
+            Method::Dopri5,
+            Method::Dop853,
+        ] {
+            let o = solve_law(&c, &law, &tight(method), None).unwrap();
+            let l = o.law.unwrap();
+            let p = 2.0 * M * u.x;
+            assert!(
+                (l.impulse - p).abs() < 1e-10 * p,
+                "{method}: P {} vs {p}",
+                l.impulse
+            );
+            assert!(
+                (l.duration - tau).abs() < 1e-10 * tau,
+                "{method}: {} vs {tau}",
+                l.duration
+            );
+            assert!((l.max_compression - d).abs() < 1e-9 * d, "{method}");
+            let f_max = k * d.powf(1.5);
+            assert!((l.peak_force - f_max).abs() < 1e-8 * f_max, "{method}");
+            let err = details::state_error(&c, &o.result.out, &reference.result.out);
+            assert!(err < CLOSED_FORM_TOL, "{method}: state {err:e}");
+            worst[0] = worst[0].max((l.impulse - p).abs() / p);
+            worst[1] = worst[1].max((l.duration - tau).abs() / tau);
+            worst[2] = worst[2].max(err);
+            match (o.stick_time, reference.stick_time) {
+                (Some(t), Some(t_ref)) => {
+                    worst[3] = worst[3].max((t - t_ref).abs() / tau);
+                    assert!((t - t_ref).abs() < 1e-10 * tau, "{method}: {t} vs {t_ref}")
+                }
+                (None, None) => {}
+                other => panic!("{method}: {other:?}"),
+            }
+        }
+    }
+    println!(
+        "largest errors: P {:e}, tau {:e}, state {:e}, stick time {:e}",
+        worst[0], worst[1], worst[2], worst[3]
+    );
+}
+
+/// Every law and method: the outgoing state is the closed form's at the realised impulse,
+/// and the heat beyond the sliding heat is the normal loss m U(0)^2 (1 - e^2).
+#[test]
+fn every_law_meets_the_closed_form_at_its_impulse() {
+    let k = pool_stiffness();
+    let laws = [
+        ContactLaw::elastic(k).unwrap(),
+        ContactLaw::new(k, Damping::HuntCrossley, 0.3).unwrap(),
+        ContactLaw::new(k, Damping::KuwabaraKono, 5e-6).unwrap(),
+    ];
+    let shots = [
+        (Vector3::new(1.0, 0.02, 0.0), Vector3::zeros()),
+        (Vector3::new(1.0, 0.6, -0.2), Vector3::new(5.0, 30.0, 0.0)),
+        (Vector3::new(0.3, 0.0, 0.0), Vector3::zeros()),
+    ];
+    let mut worst = [0.0f64; 2];
+    for law in &laws {
+        for (u, spin) in shots {
+            let c = collision(u, spin, 0.06);
+            for method in [
+                Method::ClosedForm,
+                Method::Rk4,
+                Method::Dopri5,
+                Method::Dop853,
+            ] {
+                let o = solve_law(&c, law, &tight(method), None).unwrap();
+                let l = o.law.unwrap();
+                assert!(
+                    o.check.closed_form_error < CLOSED_FORM_TOL,
+                    "{} {method}: {:e}",
+                    law.damping(),
+                    o.check.closed_form_error
+                );
+                let loss = M * u.x * u.x * (1.0 - l.restitution * l.restitution);
+                let normal = o.result.heat - o.result.heat_sliding;
+                let scale = M * c.scales.speed * c.scales.speed;
+                let err = (normal - loss).abs() / scale;
+                assert!(
+                    err < CLOSED_FORM_TOL,
+                    "{} {method}: {normal} vs {loss}",
+                    law.damping()
+                );
+                worst[0] = worst[0].max(o.check.closed_form_error);
+                worst[1] = worst[1].max(err);
+                if law.damping() == Damping::HuntCrossley {
+                    let e = hunt_crossley_e(0.3 * 2.0 * u.x);
+                    assert!(
+                        (l.restitution - e).abs() < 1e-9,
+                        "{method}: {} vs {e}",
+                        l.restitution
+                    );
+                }
+            }
+        }
+    }
+    println!(
+        "largest closed-form error {:e}, energy {:e}",
+        worst[0], worst[1]
+    );
+}
+
+/// Hunt-Crossley: the same e for the same beta v at other beta, v and k; e against the
+/// integrated energy relation from beta v = 1e-3 to 5, and the small-damping slope 2/3.
+#[test]
+fn hunt_crossley_restitution_depends_on_beta_v_alone() {
+    let head_on = |k: f64, beta: f64, v: f64| {
+        ContactLaw::new(k, Damping::HuntCrossley, beta)
+            .unwrap()
+            .head_on(M / 2.0, v, 1e-12)
+            .unwrap()
+            .restitution
+    };
+    let mut worst = 0.0f64;
+    for x in [1e-3, 0.1, 0.5, 0.99, 5.0] {
+        let e = hunt_crossley_e(x);
+        for (k, v) in [(1e9, 1.0), (1e7, 0.01), (1e12, 20.0), (1e4, 1e-4)] {
+            let got = head_on(k, x / v, v);
+            assert!(
+                (got - e).abs() < 1e-9,
+                "beta v = {x}, k {k}, v {v}: {got} vs {e}"
+            );
+            worst = worst.max((got - e).abs());
+        }
+    }
+    for x in [1e-4, 1e-3] {
+        let slope = (1.0 - head_on(1e9, x, 1.0)) / x;
+        assert!(
+            (slope - 2.0 / 3.0).abs() < 1.0 * x,
+            "beta v {x}: slope {slope}"
+        );
+    }
+    println!("largest |e - e(beta v)| {worst:e}");
+}
+
+/// Kuwabara-Kono: 1 - e against v over two decades fits a power 1/5 (small damping).
+#[test]
+fn kuwabara_kono_loss_grows_as_v_to_the_fifth_root() {
+    let law = ContactLaw::new(pool_stiffness(), Damping::KuwabaraKono, 1e-8).unwrap();
+    let speeds = [0.08, 0.2, 0.5, 1.0, 2.0, 4.0, 8.0];
+    let pts: Vec<(f64, f64)> = speeds
+        .iter()
+        .map(|&v| {
+            let e = law.head_on(M / 2.0, v, 1e-13).unwrap().restitution;
+            (v.ln(), (1.0 - e).ln())
+        })
+        .collect();
+    let n = pts.len() as f64;
+    let (sx, sy) = pts.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+    let (mx, my) = (sx / n, sy / n);
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    let slope = sxy / sxx;
+    println!("fitted exponent {slope}");
+    assert!((slope - 0.2).abs() < 2e-3, "exponent {slope}");
+}
+
+/// Calibration: e = 0.95 at 1 m/s for both laws, to 1e-10 in a scene run head on at that
+/// speed; the Hunt-Crossley coefficient against the energy relation.
+#[test]
+fn calibration_reaches_its_restitution() {
+    let k = pool_stiffness();
+    for damping in [Damping::HuntCrossley, Damping::KuwabaraKono] {
+        let law = ContactLaw::calibrated(k, damping, 0.95, 1.0, M / 2.0).unwrap();
+        let c = collision(Vector3::new(0.5, 0.0, 0.0), Vector3::zeros(), 0.06);
+        let o = solve_law(&c, &law, &tight(Method::Dop853), None).unwrap();
+        let e = o.law.unwrap().restitution;
+        assert!((e - 0.95).abs() < 1e-10, "{damping}: {e}");
+        println!(
+            "{damping}: coefficient {:e}, e - 0.95 = {:e}",
+            law.coefficient(),
+            e - 0.95
+        );
+        if damping == Damping::HuntCrossley {
+            // beta v = x with e(x) = 0.95, by bisection on the energy relation.
+            let (mut lo, mut hi) = (1e-6, 1.0);
+            for _ in 0..200 {
+                let x = 0.5 * (lo + hi);
+                if hunt_crossley_e(x) > 0.95 {
+                    lo = x
+                } else {
+                    hi = x
+                }
+            }
+            let beta = 0.5 * (lo + hi);
+            assert!((law.coefficient() - beta).abs() < 1e-8 * beta, "{beta}");
+        }
+    }
+}
+
+/// Hard cases: very soft and very stiff contacts, beta v near 1, speeds from 1e-4 to 20 m/s:
+/// no failure, finite numbers, the checks hold.
+#[test]
+fn hard_cases_hold() {
+    let mut worst = 0.0f64;
+    for k in [1e4, 1e12] {
+        for v in [1e-4, 1e-2, 1.0, 20.0] {
+            let u0 = v / 2.0;
+            for law in [
+                ContactLaw::elastic(k).unwrap(),
+                ContactLaw::new(k, Damping::HuntCrossley, 0.99 / v).unwrap(),
+                ContactLaw::calibrated(k, Damping::KuwabaraKono, 0.9, v, M / 2.0).unwrap(),
+            ] {
+                let c = collision(Vector3::new(u0, 0.3 * u0, 0.0), Vector3::zeros(), 0.2);
+                for method in [
+                    Method::ClosedForm,
+                    Method::Rk4,
+                    Method::Dopri5,
+                    Method::Dop853,
+                ] {
+                    let o = solve_law(&c, &law, &tight(method), None)
+                        .unwrap_or_else(|e| panic!("k {k} v {v} {} {method}: {e}", law.damping()));
+                    let l = o.law.unwrap();
+                    assert!(
+                        l.restitution.is_finite() && l.duration > 0.0 && l.peak_force > 0.0,
+                        "{l:?}"
+                    );
+                    assert!(
+                        o.check.closed_form_error < 1e-9,
+                        "k {k} v {v} {} {method}: {:e}",
+                        law.damping(),
+                        o.check.closed_form_error
+                    );
+                    assert!(o.check.energy_balance_error < 1e-9);
+                    worst = worst.max(o.check.closed_form_error);
+                }
+            }
+        }
+    }
+    println!("largest closed-form error {worst:e}");
+}

@@ -1,0 +1,162 @@
+//! Contact-law scenes (docs/formats.md#contact-law): the keys, the refusals naming both
+//! fields, the JSON object, the trace's compression column, and a Kuwabara-Kono contact that
+//! ends with the balls still compressed.
+
+use billiard_contact::*;
+use std::path::Path;
+
+const BASE: &str = r#"
+[balls]
+mass = 0.17
+radius = 0.028575
+[contact]
+mu = 0.06
+[contact.law]
+model = "hertz"
+stiffness = 4.5e8
+damping = "kuwabara-kono"
+coefficient = 2e-6
+[incoming.cm]
+u = [1.0, 0.5, 0.0]
+"#;
+
+fn parse(text: &str) -> Result<Scene, Error> {
+    Scene::parse(text, Path::new("."), None)
+}
+
+fn refused(text: &str, needles: &[&str]) {
+    let e = parse(text).unwrap_err().to_string();
+    for n in needles {
+        assert!(e.contains(n), "{e:?} lacks {n:?}");
+    }
+}
+
+#[test]
+fn refusals_name_the_fields() {
+    refused(
+        &BASE.replace("mu = 0.06", "mu = 0.06\nrestitution = 0.9"),
+        &["contact.law", "contact.restitution = 0.9"],
+    );
+    refused(
+        &BASE.replace("mu = 0.06", "mu = 0.06\nimpulse = 0.3"),
+        &["contact.law", "contact.impulse = 0.3"],
+    );
+    refused(
+        &format!("{BASE}[contact.profile]\nshape = \"half-sine\"\nduration = 2.5e-4\n"),
+        &["contact.law", "[contact.profile]"],
+    );
+    refused(
+        &BASE.replace("stiffness = 4.5e8\n", ""),
+        &["contact.law.stiffness", "missing"],
+    );
+    refused(
+        &BASE.replace(
+            "radius = 0.028575",
+            "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34",
+        ),
+        &["contact.law.stiffness", "balls.youngs_modulus"],
+    );
+    refused(
+        &BASE.replace(
+            "coefficient = 2e-6",
+            "coefficient = 2e-6\nrestitution = 0.9\nat_speed = 1.0",
+        ),
+        &["contact.law.coefficient", "contact.law.restitution"],
+    );
+    refused(
+        &BASE.replace("coefficient = 2e-6", "restitution = 0.9"),
+        &["contact.law.at_speed", "missing"],
+    );
+    refused(
+        &BASE.replace("damping = \"kuwabara-kono\"", "damping = \"viscous\""),
+        &["contact.law.damping = \"viscous\"", "hunt-crossley"],
+    );
+    refused(
+        &BASE.replace("u = [1.0", "u = [-1.0"),
+        &["incoming", "approach"],
+    );
+    refused(
+        &BASE.replace("coefficient = 2e-6", "coefficient = -1"),
+        &["contact.law.coefficient = -1"],
+    );
+}
+
+/// The material gives the stiffness k = (4/3) E* sqrt(R), E* = E / (2 (1 - nu^2)), R = r / 2.
+#[test]
+fn the_material_gives_the_stiffness() {
+    let text = BASE.replace("stiffness = 4.5e8\n", "").replace(
+        "radius = 0.028575",
+        "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34",
+    );
+    let law = parse(&text).unwrap().law.unwrap();
+    let k = 4.0 / 3.0 * 5.4e9 / (2.0 * (1.0 - 0.34 * 0.34)) * (0.028575f64 / 2.0).sqrt();
+    assert!((law.stiffness() - k).abs() < 1e-12 * k);
+}
+
+/// Kuwabara-Kono separates at delta + gamma delta' = 0 with delta > 0: the last trace row has
+/// zero force and a positive compression; the JSON carries the law's object and the realised
+/// impulse and duration.
+#[test]
+fn kuwabara_kono_ends_compressed() {
+    let scene = parse(BASE).unwrap();
+    for method in [Method::ClosedForm, Method::Rk4, Method::Dop853] {
+        let mut rows: Vec<TraceRow> = Vec::new();
+        let settings = scene.solver.with_method(method);
+        let run = run_scene(&scene, &settings, Some((&mut rows, Sampling::Steps))).unwrap();
+        let last = rows.last().unwrap();
+        let first = rows.first().unwrap();
+        let l = run.outcome.law.unwrap();
+        assert_eq!(first.compression, Some(0.0));
+        let delta = last.compression.unwrap();
+        assert!(delta > 1e-3 * l.max_compression, "{method}: {delta}");
+        assert!(last.force < 1e-6 * l.peak_force, "{method}: {}", last.force);
+        // The closed form's trace integrates the normal law again, stepping to the samples:
+        // its end agrees with the first run's to the tolerance.
+        assert!((last.t - l.duration).abs() < 1e-9 * l.duration, "{method}");
+        assert!(
+            (last.impulse - l.impulse).abs() < 1e-9 * l.impulse,
+            "{method}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&Report::new(&scene, &run).to_json().unwrap()).unwrap();
+        assert_eq!(json["profile"], "contact-law");
+        assert_eq!(json["duration"].as_f64().unwrap(), l.duration);
+        assert_eq!(json["impulse"].as_f64().unwrap(), l.impulse);
+        let cl = &json["contact_law"];
+        for key in [
+            "restitution",
+            "max_compression",
+            "peak_force",
+            "coefficient",
+        ] {
+            assert!(cl[key].as_f64().is_some(), "{key}");
+        }
+        assert_eq!(cl["coefficient"].as_f64().unwrap(), 2e-6);
+        assert!(json.get("hertz").is_none());
+    }
+}
+
+/// The trace CSV of a law has `delta (m)` after `H_sfr (J)`; without a law it has not.
+#[test]
+fn trace_gains_the_compression_column() {
+    let mut csv = CsvTrace::with_columns(Vec::new(), true).unwrap();
+    let scene = parse(BASE).unwrap();
+    run_scene(
+        &scene,
+        &scene.solver,
+        Some((&mut csv, Sampling::Uniform(10))),
+    )
+    .unwrap();
+    let text = String::from_utf8(csv.finish().unwrap()).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(header.ends_with("H_sfr (J),delta (m)"), "{header}");
+    let widths: Vec<usize> = text.lines().map(|l| l.split(',').count()).collect();
+    assert!(widths.iter().all(|&w| w == 16), "{widths:?}");
+    // 10 samples of tau_0 / 10 before the end (the contact lasts about tau_0), and the end.
+    assert!((11..=13).contains(&widths.len()), "{}", widths.len());
+    let plain = CsvTrace::new(Vec::new()).unwrap().finish().unwrap();
+    assert!(String::from_utf8(plain)
+        .unwrap()
+        .trim_end()
+        .ends_with("H_sfr (J)"));
+}
