@@ -121,7 +121,7 @@ fn main() {
             for (l, s) in black_box(&rows).iter().zip(&cms) {
                 let f = Frame::new(l, r).unwrap();
                 black_box(f.to_cm(l));
-                black_box(f.outgoing(l, s));
+                black_box(f.outgoing(l, s, true));
             }
         }),
     );

@@ -30,12 +30,14 @@ pub enum Error {
 
     /// A lab-frame scene whose balls do not touch: the distance of the centres is not
     /// r_A + r_B (2r for identical balls) within a relative `tolerance` (the message names
-    /// the field `incoming.lab.b.position`).
+    /// the field `incoming.lab.b.position`, and a unit slip that explains the distance: a
+    /// radius or positions in millimetres).
     #[error(
         "incoming.lab.b.position = [{}, {}, {}] (|p_B - p_A| = {distance} m): the balls must \
          touch: |p_B - p_A| = {contact_term} = {contact_distance} m within a relative \
-         {tolerance:e}",
-        .position_b[0], .position_b[1], .position_b[2]
+         {tolerance:e}{}",
+        .position_b[0], .position_b[1], .position_b[2],
+        crate::formats::plausible::not_touching_hint(*.distance, *.contact_distance, .contact_term)
     )]
     NotTouching {
         /// Position of ball B (m, lab frame), as given.

@@ -6,7 +6,9 @@
 
 mod cli;
 
-use clap::{Parser, Subcommand};
+use billiard_contact::formats::names::closest;
+use clap::{CommandFactory, Parser, Subcommand};
+use std::ffi::OsString;
 use std::process::ExitCode;
 
 /// Contact phase of billiard-ball collisions (Peskin 2020): closed form and time stepping.
@@ -39,7 +41,12 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let args = arguments();
+    if let Some(message) = misspelt_subcommand(&args) {
+        eprintln!("{message}");
+        return ExitCode::from(2);
+    }
+    let cli = match Cli::try_parse_from(&args) {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -74,4 +81,39 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// The command line, with `help --help` read as `help` (clap's `help` subcommand takes no
+/// options: `help --help` would fail).
+fn arguments() -> Vec<OsString> {
+    let mut args: Vec<OsString> = std::env::args_os().collect();
+    if args.get(1).is_some_and(|a| a == "help") {
+        args.retain(|a| a != "--help" && a != "-h");
+    }
+    args
+}
+
+/// The error for a first argument that is neither a subcommand nor an existing file but
+/// close to a subcommand's name (`runn base.toml`): without it clap reads `runn` as the
+/// scene of the default `run` and blames the next argument.
+fn misspelt_subcommand(args: &[OsString]) -> Option<String> {
+    let first = args.get(1)?.to_str()?;
+    if first.starts_with('-') || std::path::Path::new(first).exists() {
+        return None;
+    }
+    let command = Cli::command();
+    let names: Vec<&str> = command
+        .get_subcommands()
+        .map(|c| c.get_name())
+        .chain(["help"])
+        .collect();
+    if names.contains(&first) {
+        return None;
+    }
+    let best = closest(first, &names)?;
+    Some(format!(
+        "error: `{first}` is neither a subcommand nor a scene file (did you mean `{best}`?); \
+         subcommands: {} (see --help)",
+        names.join(", ")
+    ))
 }

@@ -68,6 +68,20 @@ fn run(
     (rd.records().map(|r| r.unwrap()).collect(), header)
 }
 
+/// The error of a batch of `text` (named `in.csv`), read in chunks of 2 rows.
+fn batch_error(setup: &BatchSetup, text: &str) -> String {
+    run_csv(
+        setup,
+        text.as_bytes(),
+        Path::new("in.csv"),
+        Vec::new(),
+        2,
+        |_, _| {},
+    )
+    .unwrap_err()
+    .to_string()
+}
+
 fn col(header: &csv::StringRecord, name: &str) -> usize {
     header
         .iter()
@@ -307,18 +321,7 @@ fn dop853_slice_agrees_with_closed_form() {
 #[test]
 fn errors_name_the_line() {
     let s = setup(Method::ClosedForm);
-    let e = |text: &str| {
-        run_csv(
-            &s,
-            text.as_bytes(),
-            Path::new("in.csv"),
-            Vec::new(),
-            2,
-            |_, _| {},
-        )
-        .unwrap_err()
-        .to_string()
-    };
+    let e = |text: &str| batch_error(&s, text);
     let msg = e("u_x,u_y,u_z\n1,0,0\n1,0.1,0\n1,0.2,0\n1,abc,0\n");
     assert!(msg.starts_with("in.csv:5:") && msg.contains("u_y"), "{msg}");
     let msg = e("u_x,u_y,u_z,mass\n1,0,0,-2\n");
@@ -446,4 +449,92 @@ fn ids_are_quoted_when_needed() {
     let (rows, h) = run(&s, text, 8);
     assert_eq!(&rows[0][col(&h, "id")], "shot 1, rack 2");
     assert_eq!(&rows[1][col(&h, "id")], "say \"hi\"");
+}
+
+/// Windows line ends: the same rows with CRLF give the same output (the `line` column
+/// included) and a bad row is blamed on its own line, also after a blank line and in a
+/// quoted last cell. (The CSV reader's CRLF terminator counted each record's line one too
+/// low.)
+#[test]
+fn crlf_input_keeps_its_line_numbers() {
+    let s = setup(Method::ClosedForm);
+    let lf = "u_x,u_y,u_z,id\n1,0.2,0,\"a, b\"\n1,0.1,0,c\n\n1,0,0,d\n";
+    let crlf = lf.replace('\n', "\r\n");
+    let (rows_lf, h) = run(&s, lf, 2);
+    let (rows_crlf, h_crlf) = run(&s, &crlf, 2);
+    assert_eq!(h, h_crlf);
+    assert_eq!(rows_lf, rows_crlf);
+    // Lines 2, 3 and (after the blank line 4) 5; the quoted id keeps its comma.
+    let lines: Vec<&str> = rows_crlf.iter().map(|r| &r[col(&h, "line")]).collect();
+    assert_eq!(lines, ["2", "3", "5"]);
+    assert_eq!(&rows_crlf[0][col(&h, "id")], "a, b");
+    let bad = "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,x,0\r\n";
+    let e = batch_error(&s, bad);
+    assert!(e.starts_with("in.csv:4: u_y"), "{e}");
+}
+
+/// Balls that move apart do not collide, and without a collision there is no throw: the
+/// lab row's `throw_angle_deg` is empty (B's velocity change is the round-off of the change
+/// of frame: these velocities once gave a throw of 0.0). The state comes back unchanged.
+#[test]
+fn no_throw_without_a_collision() {
+    let r = 0.028575;
+    // B runs away from A along the line of centres faster than A follows: U(0) =
+    // (v_A - v_B) . x / 2 = (0.814 - 3.3) / 2 < 0.
+    let text = format!(
+        "a_px,a_py,a_pz,a_vx,a_vy,a_vz,b_px,b_py,b_pz,b_vx,b_vy,b_vz\n\
+         {},0,{r},0.814,1.562,0,{r},0,{r},3.3,5.7,0\n",
+        -r
+    );
+    for method in [Method::ClosedForm, Method::Dop853] {
+        let (rows, h) = run(&setup(method), &text, 4);
+        assert_eq!(&rows[0][col(&h, "collision")], "false");
+        assert_eq!(&rows[0][col(&h, "throw_angle_deg")], "", "{method}");
+        for (name, want) in [("b_vx", 3.3), ("b_vy", 5.7), ("a_vx", 0.814)] {
+            let got = num(&rows[0], col(&h, name));
+            assert!((got - want).abs() <= 1e-15 * want, "{name}: {got}");
+        }
+    }
+}
+
+/// Every header cell must name an input column: an unknown one (a misspelt spin that would
+/// silently be 0) is refused with the accepted names and the closest, as a scene file's
+/// unknown key is; a column of the other frame and an unnamed column too.
+#[test]
+fn unknown_columns_are_refused() {
+    let s = setup(Method::ClosedForm);
+    let e = |text: &str| batch_error(&s, text);
+    let msg = e("u_x,u_y,u_z,omega_a_xx\n1,0.2,0,5\n");
+    assert!(
+        msg.starts_with("in.csv:1: column `omega_a_xx`: unknown column, expected one of `id`,")
+            && msg.ends_with("(did you mean `omega_a_x`?)"),
+        "{msg}"
+    );
+    assert!(!msg.contains('\n'), "{msg}");
+    let msg = e("u_x,u_y,u_z,a_wx\n1,0.2,0,5\n");
+    assert!(
+        msg.starts_with("in.csv:1: column `a_wx` belongs to the other frame")
+            && msg.contains("centre-of-mass"),
+        "{msg}"
+    );
+    let msg = e("u_x,u_y,u_z,\n1,0.2,0,5\n");
+    assert!(msg.starts_with("in.csv:1: column 4 has no name"), "{msg}");
+    // A unit in parentheses is not part of the name.
+    let (rows, _) = run(&s, "u_x (m/s),u_y,u_z,omega_a_x (rad/s)\n1,0.2,0,5\n", 2);
+    assert_eq!(rows.len(), 1);
+}
+
+/// A row with too few cells is blamed on its own line, after CRLF and blank lines, in
+/// words (not the CSV reader's own, off-by-one, record position).
+#[test]
+fn short_rows_name_their_line() {
+    let s = setup(Method::ClosedForm);
+    for text in [
+        "u_x,u_y,u_z\n1,0,0\n\n1,0\n",
+        "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,0\r\n",
+        "u_x,u_y,u_z\r\n1,0,0\r\n\r\n1,0",
+    ] {
+        let e = batch_error(&s, text);
+        assert_eq!(e, "in.csv:4: 2 cells where the header has 3", "{text:?}");
+    }
 }

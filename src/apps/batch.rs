@@ -44,6 +44,7 @@ use crate::contact::law_outcome::solve_law;
 use crate::contact::outcome::solve;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
+use crate::formats::names::did_you_mean;
 use crate::formats::number::{finite_output, Shortest};
 use crate::formats::scene::{Incoming, LabFrame, Scene};
 use crate::integrator::{Method, SolverSettings};
@@ -249,8 +250,7 @@ pub(crate) fn resolve_with(
     if let Some(law) = &setup.law {
         let mut out = resolve_law(setup, law, &input.overrides, balls, contact, &cm)?;
         if let Some(LabFrame { frame, lab }) = lab {
-            let (a, b) = frame.to_lab(&out.result.out);
-            out.lab = Some((a, b, frame.throw_angle_deg(&(b.velocity - lab.b.velocity))));
+            out.lab = Some(frame.outgoing(lab, &out.result.out, out.result.collided()));
         }
         return Ok(out);
     }
@@ -289,7 +289,7 @@ pub(crate) fn resolve_with(
         }
     };
     if let Some(LabFrame { frame, lab }) = lab {
-        out.lab = Some(frame.outgoing(lab, &out.result.out));
+        out.lab = Some(frame.outgoing(lab, &out.result.out, out.result.collided()));
     }
     Ok(out)
 }
@@ -437,15 +437,71 @@ fn bare(cell: &str) -> &str {
     }
 }
 
+/// Prefixes of the x, y, z columns of the centre-of-mass frame's state.
+const CM_PREFIXES: [&str; 3] = ["u_", "omega_a_", "omega_b_"];
+
+/// Prefixes of the x, y, z columns of the lab frame's state.
+const LAB_PREFIXES: [&str; 7] = ["a_p", "a_v", "a_w", "b_p", "b_v", "b_w", "up_"];
+
+/// The input columns accepted with the state columns of `prefixes`: `id`, the state's x, y
+/// and z columns, the overrides.
+fn accepted_columns(prefixes: &[&str]) -> Vec<String> {
+    let mut names = vec!["id".to_string()];
+    for p in prefixes {
+        names.extend(["x", "y", "z"].map(|axis| format!("{p}{axis}")));
+    }
+    names.extend(OVERRIDES.map(String::from));
+    names
+}
+
+/// Every header cell names an input column (`id`, a state column of either frame, an
+/// override), once: an unknown column is refused with the accepted names and the closest
+/// one, as a scene file's unknown key is.
+fn check_names(names: &[&str]) -> Result<(), String> {
+    let all = accepted_columns(&[&CM_PREFIXES[..], &LAB_PREFIXES[..]].concat());
+    let all: Vec<&str> = all.iter().map(String::as_str).collect();
+    let mut seen = std::collections::HashSet::new();
+    for (k, n) in names.iter().enumerate() {
+        if n.is_empty() {
+            return Err(format!(
+                "column {} has no name: every column needs one (see docs/formats.md#input-columns)",
+                k + 1
+            ));
+        }
+        if !all.contains(n) {
+            return Err(format!(
+                "column `{n}`: unknown column, expected one of {}{}",
+                all.iter()
+                    .map(|a| format!("`{a}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                did_you_mean(n, &all)
+            ));
+        }
+        if !seen.insert(*n) {
+            return Err(format!("column `{n}` appears twice"));
+        }
+    }
+    Ok(())
+}
+
+/// Every state column belongs to the input's frame (`prefixes`, named `frame`): a column of
+/// the other frame would be ignored.
+fn check_frame(names: &[&str], prefixes: &[&str], frame: &str) -> Result<(), String> {
+    let own = accepted_columns(prefixes);
+    match names.iter().find(|n| !own.iter().any(|o| o == *n)) {
+        Some(n) => Err(format!(
+            "column `{n}` belongs to the other frame; this input is in the {frame} frame: give \
+             the columns of one frame"
+        )),
+        None => Ok(()),
+    }
+}
+
 impl Columns {
     fn from_header(header: &csv::StringRecord) -> Result<Self, String> {
         let names: Vec<&str> = header.iter().map(bare).collect();
-        let mut seen = std::collections::HashSet::new();
-        for n in &names {
-            if !n.is_empty() && !seen.insert(*n) {
-                return Err(format!("column `{n}` appears twice"));
-            }
-        }
+        check_names(&names)?;
         let find = |n: &str| names.iter().position(|h| *h == n);
         let xyz = |prefix: &str| {
             [
@@ -466,6 +522,7 @@ impl Columns {
                 return Err("no state columns: give u_x, u_y, u_z (centre-of-mass frame) or a_px .. b_vz (lab frame)".into())
             }
             (true, false) => {
+                check_frame(&names, &CM_PREFIXES, "centre-of-mass")?;
                 let mut req = [0; 3];
                 for (k, c) in u.iter().enumerate() {
                     req[k] = c.ok_or_else(|| format!("missing column `u_{}`", ["x", "y", "z"][k]))?;
@@ -477,6 +534,7 @@ impl Columns {
                 })
             }
             (false, true) => {
+                check_frame(&names, &LAB_PREFIXES, "lab")?;
                 for p in lab_names {
                     for (k, c) in xyz(p).iter().enumerate() {
                         if c.is_none() {
@@ -740,17 +798,116 @@ fn read_chunk<R: Read>(
             records.push(csv::StringRecord::new());
             lines.push(0);
         }
-        let more = rd.read_record(&mut records[n]).map_err(|e| {
-            let line = e.position().map(|p| p.line()).unwrap_or(0);
-            bad(line, e.to_string())
-        })?;
+        let more = rd
+            .read_record(&mut records[n])
+            .map_err(|e| bad(line_read(rd, None), csv_cause(&e)))?;
         if !more {
             break;
         }
-        lines[n] = records[n].position().map(|p| p.line()).unwrap_or(0);
+        lines[n] = line_read(rd, Some(&records[n]));
         n += 1;
     }
     Ok(n)
+}
+
+/// The input line where the record just read (`record`; `None` for one that failed to
+/// read, counted as one line) starts. The CSV reader's own record positions are counted
+/// before the blank lines it skips; its position after a record is exact: the line after
+/// the record's terminating LF (every record has one: [`CrlfAsLf`]).
+fn line_read<R: Read>(rd: &csv::Reader<R>, record: Option<&csv::StringRecord>) -> u64 {
+    let inside = record.map_or(0, |r| r.iter().map(|f| f.matches('\n').count()).sum());
+    rd.position()
+        .line()
+        .saturating_sub(1 + inside as u64)
+        .max(1)
+}
+
+/// A CSV reading error's cause in words, without the reader's own record position (whose
+/// line can be off; the caller names the line).
+fn csv_cause(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => format!("{len} cells where the header has {expected_len}"),
+        csv::ErrorKind::Utf8 { err, .. } => {
+            format!("cell {} is not valid UTF-8", err.field() + 1)
+        }
+        _ => e.to_string(),
+    }
+}
+
+/// A reader that passes its input on with every CRLF line end as LF (a lone CR stays), and
+/// ends it with an LF if it does not end with one.
+struct CrlfAsLf<R> {
+    inner: R,
+    buf: Box<[u8]>,
+    /// The unread part of `buf` is `start..end`.
+    start: usize,
+    end: usize,
+    eof: bool,
+    /// The last byte passed on.
+    last: Option<u8>,
+}
+
+impl<R: Read> CrlfAsLf<R> {
+    fn new(inner: R) -> Self {
+        CrlfAsLf {
+            inner,
+            buf: vec![0; 1 << 16].into_boxed_slice(),
+            start: 0,
+            end: 0,
+            eof: false,
+            last: None,
+        }
+    }
+
+    /// Whether more input is needed before a byte can be passed on: none is left, or only a
+    /// CR whose next byte is still to come.
+    fn needs_input(&self) -> bool {
+        match self.end - self.start {
+            0 => !self.eof,
+            1 => !self.eof && self.buf[self.start] == b'\r',
+            _ => false,
+        }
+    }
+}
+
+impl<R: Read> Read for CrlfAsLf<R> {
+    fn read(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
+        while self.needs_input() {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end -= self.start;
+            self.start = 0;
+            let n = self.inner.read(&mut self.buf[self.end..])?;
+            self.eof = n == 0;
+            self.end += n;
+        }
+        let mut written = 0;
+        while written < out.len() && self.start < self.end {
+            let b = self.buf[self.start];
+            if b == b'\r' {
+                match self.buf[self.start + 1..self.end].first() {
+                    Some(b'\n') => {
+                        self.start += 1;
+                        continue;
+                    }
+                    None if !self.eof => break,
+                    _ => {}
+                }
+            }
+            out[written] = b;
+            written += 1;
+            self.start += 1;
+        }
+        if written == 0 && self.eof && !out.is_empty() && self.last.is_some_and(|b| b != b'\n') {
+            out[0] = b'\n';
+            written = 1;
+        }
+        if written > 0 {
+            self.last = Some(out[written - 1]);
+        }
+        Ok(written)
+    }
 }
 
 /// Streams a batch: reads CSV rows from `input` (`input_name` in errors), resolves them
@@ -773,9 +930,11 @@ pub fn run_csv<R: Read, W: Write>(
         line,
         message,
     };
+    // CRLF read as LF: the CSV reader counts the line of a record that follows a CRLF one
+    // too low.
     let mut rd = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
-        .from_reader(input);
+        .from_reader(CrlfAsLf::new(input));
     let header = rd.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let cols = Columns::from_header(&header).map_err(|m| bad(1, m))?;
     let method = setup.settings.method();
@@ -824,4 +983,50 @@ pub fn run_csv<R: Read, W: Write>(
     }
     w.flush().map_err(io)?;
     Ok((w, summary))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A reader that hands out one byte per call: every CR meets the end of a read.
+    struct ByteByByte<'a>(&'a [u8]);
+
+    impl Read for ByteByByte<'_> {
+        fn read(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
+            match (self.0.split_first(), out.is_empty()) {
+                (Some((b, rest)), false) => {
+                    out[0] = *b;
+                    self.0 = rest;
+                    Ok(1)
+                }
+                _ => Ok(0),
+            }
+        }
+    }
+
+    fn through(input: &[u8], out_len: usize) -> Vec<u8> {
+        let mut r = CrlfAsLf::new(ByteByByte(input));
+        let mut all = Vec::new();
+        let mut buf = vec![0; out_len];
+        loop {
+            let n = r.read(&mut buf).unwrap();
+            if n == 0 {
+                return all;
+            }
+            all.extend_from_slice(&buf[..n]);
+        }
+    }
+
+    /// CRLF becomes LF wherever the reads split it, a lone CR stays, and the text ends with
+    /// one LF (added only when missing).
+    #[test]
+    fn crlf_reads_as_lf() {
+        for out_len in [1, 2, 7] {
+            assert_eq!(through(b"a,b\r\n1,2\r\n", out_len), b"a,b\n1,2\n");
+            assert_eq!(through(b"a\rb\r\n\r\nc", out_len), b"a\rb\n\nc\n");
+            assert_eq!(through(b"x\r", out_len), b"x\r\n");
+            assert_eq!(through(b"", out_len), b"");
+        }
+    }
 }

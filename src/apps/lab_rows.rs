@@ -278,7 +278,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
                 w.put(
                     first + q,
                     r,
-                    &block.frames[q].outgoing(&block.labs[q], &r.out),
+                    &block.frames[q].outgoing(&block.labs[q], &r.out, r.collided()),
                 );
             }
             if let Some(e) = failed {
@@ -298,7 +298,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
             Some(k) => k.resolve_without_theta(&cm)?,
             None => resolve_with(self.setup, None, &BatchInput::cm(cm))?.result,
         };
-        Ok((result, frame.outgoing(&lab, &result.out)))
+        Ok((result, frame.outgoing(&lab, &result.out, result.collided())))
     }
 }
 

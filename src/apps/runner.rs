@@ -3,6 +3,7 @@
 
 use crate::contact::law_outcome::solve_law;
 use crate::contact::outcome::{solve, Outcome};
+use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::{table_needs_lab_scene, LabFrame, Scene};
 use crate::formats::trace::TraceSink;
@@ -10,6 +11,7 @@ use crate::integrator::{Sampling, SolverSettings};
 use crate::model::frame::{Frame, LabScene};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::table_phase::TableOutcome;
+use nalgebra::Vector3;
 
 /// The outcome of a scene, with the lab-frame motions for lab scenes.
 #[derive(Debug, Clone, PartialEq)]
@@ -43,7 +45,7 @@ pub fn run_scene(
     let out = outcome.result.out;
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
-            let (a, b, throw) = frame.outgoing(lab, &out);
+            let (a, b, throw) = frame.outgoing(lab, &out, outcome.result.collided());
             // m_A (v_A + (m_B/m_A) v_B): m (v_A + v_B) exactly for identical balls.
             let (m, ratio) = (
                 scene.balls.a.mass(),
@@ -64,8 +66,10 @@ pub fn run_scene(
             if scene.effects.table {
                 return Err(table_needs_lab_scene());
             }
-            let du = out.u_cm - collision.incoming.u_cm;
-            (None, Frame::paper().throw_angle_deg(&-du), 0.0, None)
+            // B's velocity in the paper's frame is -U.
+            let (b_in, b_out) = (-collision.incoming.u_cm, -out.u_cm);
+            let throw = throw_angle_deg(&outcome.result, &Frame::paper(), &b_in, &b_out);
+            (None, throw, 0.0, None)
         }
     };
     // The lab momentum of both balls is conserved: fold its error into the check.
@@ -85,6 +89,22 @@ pub fn run_scene(
         throw_angle_deg: throw,
         table,
     })
+}
+
+/// The throw angle (degrees) of a collision in `frame` from B's velocity before and after
+/// (m/s, lab): [`Frame::throw_angle_deg`] of its change; `None` without a collision, where
+/// the change is the round-off of the change of frame, not a throw.
+pub(crate) fn throw_angle_deg(
+    result: &ContactResult,
+    frame: &Frame,
+    b_in: &Vector3<f64>,
+    b_out: &Vector3<f64>,
+) -> Option<f64> {
+    if result.collided() {
+        frame.throw_angle_deg(&(b_out - b_in))
+    } else {
+        None
+    }
 }
 
 /// The effect `table` of a lab scene: both balls from separation, with the outgoing lab

@@ -1,10 +1,11 @@
 //! `billiard-contact batch`: one collision per row of a CSV file, streamed in chunks over a
 //! thread pool, with a progress bar and a one-line account on stderr.
 
-use super::choice::MethodChoice;
-use super::{load_scene, progress_bar};
+use super::choice::{number, whole, MethodChoice};
+use super::{load_scene, progress_bar, solver_options_unused, warn};
 use billiard_contact::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS};
 use billiard_contact::formats::atomic_file::AtomicFile;
+use billiard_contact::formats::number::count;
 use billiard_contact::formats::scene::SolverOverrides;
 use billiard_contact::{Error, Method};
 use clap::Args;
@@ -22,10 +23,10 @@ pub struct BatchArgs {
     #[arg(long, value_name = "M", default_value = "closed-form")]
     method: MethodChoice,
     /// Relative tolerance of dopri5 / dop853 (atol = rtol); default: the scene's.
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
     rtol: Option<f64>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<usize>)]
     threads: Option<usize>,
     /// Scene giving balls, friction, impulse rule, profile and effects (default: the
     /// built-in default scene); rows may override some of them.
@@ -36,7 +37,13 @@ pub struct BatchArgs {
     #[arg(long, value_name = "BOOL")]
     time_transform: Option<bool>,
     /// Rows per chunk (memory holds one chunk).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_CHUNK_ROWS)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = DEFAULT_CHUNK_ROWS,
+        allow_hyphen_values = true,
+        value_parser = whole::<usize>
+    )]
     chunk: usize,
 }
 
@@ -51,6 +58,20 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
         ..SolverOverrides::default()
     };
     let settings = overrides.apply(&scene.solver)?;
+    let given = [
+        ("--rtol", args.rtol.is_some()),
+        ("--time-transform", args.time_transform.is_some()),
+    ];
+    for w in solver_options_unused(&given, &settings) {
+        warn(w);
+    }
+    if scene.effects.table {
+        warn(format!(
+            "--scene {}: the effect table is not simulated by batch (each row ends at \
+             separation); `run --path` follows a lab scene on the table",
+            scene_name(args)
+        ));
+    }
     if args.threads == Some(0) {
         return Err(Error::invalid("--threads", 0, "at least 1"));
     }
@@ -58,7 +79,8 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
         return Err(Error::invalid("--chunk", 0, "at least 1"));
     }
     let setup = BatchSetup::from_scene(&scene, settings);
-    let input = std::fs::File::open(&args.input).map_err(|e| Error::io(&args.input, e))?;
+    let input = std::fs::File::open(&args.input)
+        .map_err(|e| Error::io_doing(&args.input, "cannot read the batch input", e))?;
     let size = input.metadata().map(|m| m.len()).unwrap_or(0);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = args.threads {
@@ -77,7 +99,7 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
             args.chunk,
             |rows, bytes| {
                 bar.set_position(bytes);
-                bar.set_message(format!("{rows} rows"));
+                bar.set_message(count(rows, "row", "rows"));
             },
         )
     })?;
@@ -85,15 +107,22 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
-        "{} rows ({} collisions, {} stick) in {:.2} s ({:.0} rows/s, {} threads, {}) -> {}",
-        summary.rows,
-        summary.collisions,
+        "{} ({}, {} stick) in {:.2} s ({:.0} rows/s, {}, {}) -> {}",
+        count(summary.rows, "row", "rows"),
+        count(summary.collisions, "collision", "collisions"),
         summary.sticks,
         secs,
         summary.rows as f64 / secs.max(1e-9),
-        pool.current_num_threads(),
+        count(pool.current_num_threads() as u64, "thread", "threads"),
         method,
         args.out.display()
     );
     Ok(())
+}
+
+/// The scene as the user named it: its file, or the built-in scene.
+fn scene_name(args: &BatchArgs) -> String {
+    args.scene
+        .as_ref()
+        .map_or_else(|| "(built-in)".into(), |p| p.display().to_string())
 }

@@ -1,6 +1,7 @@
 //! The closed choices of the options (`--method`, `--profiles`) as clap value enums over the
 //! library's own lists ([`Method::ALL`], [`ProfileKind::ALL`]) and names, so that each name
-//! is defined once and clap lists the accepted values in the help and in its errors.
+//! is defined once and clap lists the accepted values in the help and in its errors; and
+//! the parsers of numeric options, whose errors say what is accepted.
 
 use billiard_contact::profile::ProfileKind;
 use billiard_contact::Method;
@@ -93,6 +94,25 @@ impl<E: ValueEnum + Clone + Send + Sync + 'static> TypedValueParser for Trimmed<
     }
 }
 
+/// A whole-number option (`--samples`, `--steps`, `--threads`, ...), white space around it
+/// ignored; the error says what is accepted.
+pub fn whole<T: std::str::FromStr>(value: &str) -> Result<T, String> {
+    value
+        .trim()
+        .parse()
+        .map_err(|_| "a whole number (0, 1, 2, ...)".to_string())
+}
+
+/// A real-number option (`--rtol`, `--atol`), white space around it ignored; the error
+/// says what is accepted. NaN and infinities parse: the settings refuse them, naming the
+/// field.
+pub fn number(value: &str) -> Result<f64, String> {
+    value
+        .trim()
+        .parse()
+        .map_err(|_| "a number such as 1e-10".to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -115,5 +135,16 @@ mod tests {
             Ok(ProfileChoice(ProfileKind::SinePower))
         );
         assert!(ProfileChoice::from_str("sine", false).is_err());
+    }
+
+    #[test]
+    fn numbers_parse_or_say_what_is_accepted() {
+        assert_eq!(whole::<u64>(" 12 "), Ok(12));
+        assert_eq!(
+            whole::<u64>("-5"),
+            Err("a whole number (0, 1, 2, ...)".into())
+        );
+        assert_eq!(number("-1e-6"), Ok(-1e-6));
+        assert_eq!(number("abc"), Err("a number such as 1e-10".into()));
     }
 }

@@ -8,46 +8,116 @@ pub mod run;
 pub mod sweep;
 pub mod work_precision;
 
-use billiard_contact::{Error, Scene};
+use billiard_contact::formats::plausible::scene_warnings;
+use billiard_contact::{Error, Method, Scene, SolverSettings};
 use std::path::Path;
 
-/// The scene file, or the built-in default scene when none is given.
+/// The scene file, or the built-in default scene when none is given; a warning on stderr
+/// for each value far outside the range of any ball game (a likely unit slip).
 pub fn load_scene(path: Option<&Path>) -> Result<Scene, Error> {
-    match path {
-        Some(p) => Scene::load(p),
-        None => Ok(Scene::default_scene()),
+    let scene = match path {
+        Some(p) => Scene::load(p)?,
+        None => Scene::default_scene(),
+    };
+    for w in scene_warnings(&scene) {
+        warn(w);
     }
+    Ok(scene)
+}
+
+/// The warnings for solver options (`given`: each option's name and whether it was given)
+/// that the run's method does not use: tolerances outside dopri5 and dop853, the time
+/// transform with the closed form.
+pub fn solver_options_unused(given: &[(&str, bool)], settings: &SolverSettings) -> Vec<String> {
+    let method = settings.method();
+    given
+        .iter()
+        .filter(|(_, on)| *on)
+        .filter_map(|(option, _)| {
+            let unused = match *option {
+                "--rtol" | "--atol" => matches!(method, Method::ClosedForm | Method::Rk4),
+                _ => method == Method::ClosedForm,
+            };
+            unused.then(|| {
+                format!(
+                    "{option} has no effect with the method {method} (tolerances act on dopri5 \
+                     and dop853; the time transform on the time-stepping methods)"
+                )
+            })
+        })
+        .collect()
 }
 
 /// A bad command line in one line, for stderr (bad options are bad input: exit code 2):
-/// for a value outside a closed choice, the option, the value and the accepted values;
-/// otherwise clap's first line.
+/// for a value outside a closed choice, the option, the value and the accepted values; for
+/// a value that does not parse, the option, the value and what is accepted; otherwise
+/// clap's whole message (the missing argument's name, its tip, the usage) joined into one
+/// line.
 pub fn one_line(e: &clap::Error) -> String {
-    use clap::error::{ContextKind, ContextValue};
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
     let text = |kind| match e.get(kind) {
         Some(ContextValue::String(s)) => Some(s.as_str()),
         _ => None,
     };
-    if let (Some(arg), Some(value), Some(ContextValue::Strings(accepted))) = (
+    if let (Some(arg), Some(value)) = (
         text(ContextKind::InvalidArg),
         text(ContextKind::InvalidValue),
-        e.get(ContextKind::ValidValue),
     ) {
         // "--method <M>": the option without its value name.
         let option = arg.split_whitespace().next().unwrap_or(arg);
-        let hint = text(ContextKind::SuggestedValue)
-            .map(|s| format!(" (did you mean `{s}`?)"))
-            .unwrap_or_default();
-        let accepted = accepted.join(", ");
-        return if value.is_empty() {
-            format!("error: {option} needs a value: one of {accepted} (see --help)")
-        } else {
-            format!("error: {option} = \"{value}\": one of {accepted}{hint} (see --help)")
+        let accepted = match e.get(ContextKind::ValidValue) {
+            Some(ContextValue::Strings(names)) if !names.is_empty() => {
+                Some(format!("one of {}", names.join(", ")))
+            }
+            _ if e.kind() == ErrorKind::ValueValidation => {
+                std::error::Error::source(e).map(|cause| cause.to_string())
+            }
+            _ => None,
         };
+        if let Some(accepted) = accepted {
+            let hint = text(ContextKind::SuggestedValue)
+                .map(|s| format!(" (did you mean `{s}`?)"))
+                .unwrap_or_default();
+            return if value.is_empty() {
+                format!("error: {option} needs a value: {accepted} (see --help)")
+            } else {
+                format!("error: {option} = \"{value}\": {accepted}{hint} (see --help)")
+            };
+        }
     }
     let text = e.to_string();
-    let first = text.lines().next().unwrap_or("error: invalid arguments");
-    format!("{} (see --help)", first.trim_end())
+    let mut line = String::new();
+    // Inside a list (indented lines after a line ending in ':'): items joined by ", ".
+    let mut in_list = false;
+    for raw in text.lines().filter(|l| !l.trim().is_empty()) {
+        let part = raw.trim();
+        if part.starts_with("For more information") {
+            continue;
+        }
+        let item = raw.starts_with(' ') && (in_list || line.ends_with(':'));
+        let part = match part.strip_prefix("tip: a similar argument exists: ") {
+            Some(name) => format!("did you mean {name}?"),
+            None => part.replacen("Usage:", "usage:", 1),
+        };
+        if !line.is_empty() {
+            line.push_str(match (item, in_list) {
+                (true, true) => ", ",
+                _ if line.ends_with(':') => " ",
+                _ => "; ",
+            });
+        }
+        in_list = item;
+        line.push_str(&part);
+    }
+    if line.is_empty() {
+        line.push_str("error: invalid arguments");
+    }
+    format!("{line} (see --help)")
+}
+
+/// A warning on stderr: one line starting `warning: `; the run goes on.
+pub fn warn(message: impl std::fmt::Display) {
+    eprintln!("warning: {message}");
 }
 
 /// A progress bar on stderr with `template` (indicatif's syntax).
@@ -100,10 +170,16 @@ mod tests {
             one_line(&error_of(&["t", "--method"])),
             "error: --method needs a value: one of closed-form, rk4, dopri5, dop853 (see --help)"
         );
-        // Other errors: clap's first line.
+        // A value that does not parse: the option, the value and the parser's words.
         let other = one_line(&error_of(&["t", "--rtol", "abc"]));
+        assert_eq!(
+            other,
+            "error: --rtol = \"abc\": invalid float literal (see --help)"
+        );
+        // Other errors: clap's whole message in one line, the usage included.
+        let other = one_line(&error_of(&["t", "extra"]));
         assert!(
-            other.starts_with("error: invalid value 'abc' for '--rtol"),
+            other.starts_with("error: unexpected argument 'extra' found; usage: t "),
             "{other}"
         );
         assert!(!other.contains('\n'), "{other}");

@@ -1,8 +1,8 @@
 //! `billiard-contact run`: one scene, its report or summary on stdout, and optionally its
 //! trace, the balls' paths on the table and their top view.
 
-use super::choice::MethodChoice;
-use super::load_scene;
+use super::choice::{number, whole, MethodChoice};
+use super::{load_scene, solver_options_unused, warn};
 use billiard_contact::formats::atomic_file::AtomicFile;
 use billiard_contact::formats::ball_paths::{
     ball_path_rows, write_ball_paths, DEFAULT_BALL_PATH_SAMPLES,
@@ -14,7 +14,7 @@ use billiard_contact::plot::paths::TopView;
 use billiard_contact::plot::trace::TraceFigure;
 use billiard_contact::plot::FigureFormat;
 use billiard_contact::table_phase::TableOutcome;
-use billiard_contact::{run_scene, Error, Sampling, Scene, SceneOutcome};
+use billiard_contact::{run_scene, Error, Method, Sampling, Scene, SceneOutcome, SolverSettings};
 use clap::Args;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -30,21 +30,21 @@ pub struct RunArgs {
     /// Write a CSV trace (centre-of-mass frame) to this file.
     #[arg(long, value_name = "FILE.csv")]
     trace: Option<PathBuf>,
-    /// Trace rows at t = i duration / N, i = 0..N (plus the stick event), instead of one row
-    /// per accepted step.
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// Trace rows at t = i duration / N, i = 0..N (plus the stop of sliding), instead of a
+    /// row per step of the integrator (needs --trace).
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u64>)]
     samples: Option<u64>,
     /// Method (overrides the scene).
     #[arg(long, value_name = "M")]
     method: Option<MethodChoice>,
-    /// Relative tolerance (overrides the scene).
-    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    /// Relative tolerance of dopri5 and dop853 (overrides the scene).
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
     rtol: Option<f64>,
-    /// Absolute tolerance on the scaled variables (default: rtol).
-    #[arg(long, value_name = "X", allow_negative_numbers = true)]
+    /// Absolute tolerance of dopri5 and dop853 on the scaled variables (default: rtol).
+    #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
     atol: Option<f64>,
-    /// RK4 steps over the contact (overrides the scene).
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// RK4 steps over the contact (overrides the scene; only with the method rk4).
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u32>)]
     steps: Option<u32>,
     /// Integrate hertz and fractional sine-power pulses in a smoothed time variable
     /// (default true; false: steps graded toward the ends instead). Overrides the scene.
@@ -54,8 +54,14 @@ pub struct RunArgs {
     /// (needs `[effects] table = true`).
     #[arg(long = "path", value_name = "FILE.csv")]
     ball_paths: Option<PathBuf>,
-    /// Uniform intervals of the path CSV (plus every change of phase; default 200).
-    #[arg(long = "path-samples", value_name = "N")]
+    /// Uniform intervals of the path CSV (plus every change of phase; default 200; needs
+    /// --path).
+    #[arg(
+        long = "path-samples",
+        value_name = "N",
+        allow_hyphen_values = true,
+        value_parser = whole::<u64>
+    )]
     ball_path_samples: Option<u64>,
     /// Draw a top view of both balls' paths with the line of centres (`.svg` or `.png`;
     /// needs `[effects] table = true`).
@@ -79,27 +85,71 @@ impl RunArgs {
         }
     }
 
-    /// The checks of the options that need the scene.
-    fn validate(&self, scene: &Scene) -> Result<(), Error> {
+    /// The checks of the options that need the scene and the settings: refused when they
+    /// could not act (exit code 2), a warning when an option has no effect on this run.
+    fn validate(&self, scene: &Scene, settings: &SolverSettings) -> Result<(), Error> {
         for (option, path) in [("--plot", &self.plot), ("--plot-trace", &self.plot_trace)] {
             if let Some(path) = path {
                 FigureFormat::of(option, path)?;
             }
         }
-        if self.samples == Some(0) {
-            return Err(Error::invalid("--samples", 0, "at least 1"));
+        if let Some(n) = self.samples {
+            if n == 0 {
+                return Err(Error::invalid("--samples", 0, "at least 1"));
+            }
+            if self.trace.is_none() && self.plot_trace.is_none() {
+                return Err(Error::invalid(
+                    "--samples",
+                    n,
+                    "only with --trace FILE.csv or --plot-trace FILE.svg|png (it sets the \
+                     trace's rows)",
+                ));
+            }
         }
-        if (self.ball_paths.is_some() || self.plot.is_some()) && !scene.effects.table {
-            return Err(Error::invalid(
-                if self.ball_paths.is_some() {
-                    "--path"
-                } else {
-                    "--plot"
-                },
-                "given",
-                "the table effect: set `table = true` under [effects] in the scene (lab frame, \
-                 horizontal line of centres)",
-            ));
+        if let Some(n) = self.ball_path_samples {
+            if self.ball_paths.is_none() {
+                return Err(Error::invalid(
+                    "--path-samples",
+                    n,
+                    "only with --path FILE.csv (it sets the path's rows)",
+                ));
+            }
+        }
+        if let Some(n) = self.steps {
+            if settings.method() != Method::Rk4 {
+                return Err(Error::invalid(
+                    "--steps",
+                    n,
+                    format!(
+                        "only with the method rk4 (this run's is {}, which {}): add --method rk4",
+                        settings.method(),
+                        if settings.method() == Method::ClosedForm {
+                            "does not step"
+                        } else {
+                            "chooses its own steps from --rtol"
+                        }
+                    ),
+                ));
+            }
+        }
+        let given = [
+            ("--rtol", self.rtol.is_some()),
+            ("--atol", self.atol.is_some()),
+            ("--time-transform", self.time_transform.is_some()),
+        ];
+        for w in solver_options_unused(&given, settings) {
+            warn(w);
+        }
+        let table_options = [("--path", &self.ball_paths), ("--plot", &self.plot)];
+        if let Some((option, Some(path))) = table_options.iter().find(|(_, p)| p.is_some()) {
+            if !scene.effects.table {
+                return Err(Error::invalid(
+                    *option,
+                    path.display(),
+                    "only with the table effect: set `table = true` under [effects] in the \
+                     scene (lab frame, horizontal line of centres)",
+                ));
+            }
         }
         if self.ball_path_samples == Some(0) {
             return Err(Error::invalid("--path-samples", 0, "at least 1"));
@@ -112,7 +162,7 @@ impl RunArgs {
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
     let settings = args.solver_overrides().apply(&scene.solver)?;
-    args.validate(&scene)?;
+    args.validate(&scene, &settings)?;
     let sampling = match args.samples {
         Some(n) => Sampling::Uniform(n),
         None => Sampling::Steps,
@@ -162,6 +212,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         if let Some(path) = &args.plot {
             write_plot(path, table_phase, &scene, &outcome)?;
         }
+    }
+    for w in &outcome.outcome.warnings {
+        warn(w);
     }
     let mut stdout = std::io::stdout().lock();
     stdout

@@ -1,7 +1,7 @@
 //! `billiard-contact work-precision`: the study's CSV, figure, cost tables and summary, or
 //! only the figure and tables redrawn from an existing CSV.
 
-use super::choice::{ProfileChoice, Trimmed};
+use super::choice::{whole, ProfileChoice, Trimmed};
 use super::{load_scene, progress_bar};
 use billiard_contact::formats::atomic_file::AtomicFile;
 use billiard_contact::plot::work_precision as figure;
@@ -24,13 +24,19 @@ pub struct StudyArgs {
     #[arg(long, value_delimiter = ',', value_name = "P,...", value_parser = Trimmed::<ProfileChoice>::new())]
     profiles: Option<Vec<ProfileChoice>>,
     /// Timed samples per setting (the median is reported).
-    #[arg(long, value_name = "N", default_value_t = 9)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 9,
+        allow_hyphen_values = true,
+        value_parser = whole::<usize>
+    )]
     repeats: usize,
     /// Leave out the companion scene in which sliding stops during contact.
     #[arg(long)]
     no_sticking: bool,
     /// Only redraw the figure and the cost tables from DIR/work_precision.csv (e.g. after
-    /// the peers' script appended its rows).
+    /// benches/peers/scipy_contact.py appended scipy's rows).
     #[arg(long)]
     replot: bool,
 }

@@ -13,6 +13,7 @@ use crate::contact::check::Checks;
 use crate::contact::law_outcome::LawOutcome;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
+use crate::formats::number::{count, decimal, sci, si};
 use crate::formats::scene::Scene;
 use crate::integrator::{SolverSettings, Stats};
 use crate::model::material::HertzContact;
@@ -485,7 +486,10 @@ impl Serialize for Report<'_> {
     }
 }
 
-/// A human-readable summary.
+/// A human-readable summary: numbers for people ([`crate::formats::number::si`] prefixes,
+/// plain decimals), a heat within the run's round-off of zero as 0 (the checks line gives
+/// the size of the round-off). The outcome's warnings are not part of it (the command
+/// line prints them on stderr; they are in [`SceneOutcome`] and the JSON report).
 pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     use std::fmt::Write;
     let o = &so.outcome;
@@ -495,31 +499,22 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     let (force, duration) = force_and_duration(scene, so);
     let _ = writeln!(
         s,
-        "  profile {} over {:.4e} s, method {}, effects: {}",
+        "  profile {} over {}, method {}, effects: {}",
         force,
-        duration,
+        si(duration, "s", 5),
         so.settings.method(),
         scene.effects.simulated(&scene.contact.friction).join(", ")
     );
     if let Some(l) = &o.law {
-        let _ = writeln!(
-            s,
-            "  contact law hertz, damping {} (coefficient {:.6e} {}): restitution {:.9}, \
-             compression {:.4e} m, peak force {:.4e} N",
-            l.law.damping(),
-            l.law.coefficient(),
-            l.law.damping().unit(),
-            l.restitution,
-            l.max_compression,
-            l.peak_force
-        );
+        s.push_str(&law_summary(l));
     }
     if let Ok(Some(h)) = scene.hertz() {
         let _ = writeln!(
             s,
-            "  Hertz contact of the material: compression {:.4e} m, peak force {:.4e} N, \
-             contact radius {:.4e} m",
-            h.max_compression, h.peak_force, h.contact_radius
+            "  Hertz contact of the material: compression {}, peak force {}, contact radius {}",
+            si(h.max_compression, "m", 5),
+            si(h.peak_force, "N", 5),
+            si(h.contact_radius, "m", 5)
         );
     }
     if HeldFrictionJson::new(&scene.contact.friction, r.s0).is_some() {
@@ -537,7 +532,7 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         );
         return s;
     }
-    s.push_str(&contact_summary(r, o.stick_time));
+    s.push_str(&contact_summary(r, o.stick_time, heat_round_off(scene, so)));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     let _ = writeln!(s, "  centre-of-mass frame, out:");
     let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
@@ -556,54 +551,106 @@ pub fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     let c = &o.check;
     let _ = writeln!(
         s,
-        "  checks (scaled): closed form {:.1e}, theta drift {:.1e}, momentum {:.1e}, angular momentum {:.1e}, energy balance {:.1e}",
-        c.closed_form_error, c.theta_drift, c.momentum_error, c.angular_momentum_error, c.energy_balance_error
+        "  checks (scaled): closed form {}, theta drift {}, momentum {}, angular momentum {}, \
+         energy balance {}",
+        sci(c.closed_form_error, 2),
+        sci(c.theta_drift, 2),
+        sci(c.momentum_error, 2),
+        sci(c.angular_momentum_error, 2),
+        sci(c.energy_balance_error, 2)
     );
     let _ = writeln!(
         s,
-        "  solver: {} rhs evaluations, {} accepted and {} rejected steps",
-        o.stats.rhs_evaluations, o.stats.accepted_steps, o.stats.rejected_steps
+        "  solver: {}, {} accepted and {} rejected steps",
+        count(o.stats.rhs_evaluations, "rhs evaluation", "rhs evaluations"),
+        o.stats.accepted_steps,
+        o.stats.rejected_steps
     );
     if let Some(t) = &so.table {
         s.push_str(&table_summary(t));
     }
-    for w in &o.warnings {
-        let _ = writeln!(s, "  warning: {w}");
-    }
     s
 }
 
-/// The contact of a collision, human-readable: impulse, sliding, heat.
-fn contact_summary(r: &ContactResult, stick_time: Option<f64>) -> String {
+/// The contact law's line of the summary: its damping, the restitution it gave, the
+/// largest compression and force.
+fn law_summary(l: &LawOutcome) -> String {
+    format!(
+        "  contact law hertz, damping {} (coefficient {} {}): restitution {:.9}, compression \
+         {}, peak force {}\n",
+        l.law.damping(),
+        decimal(l.law.coefficient(), 7),
+        l.law.damping().unit(),
+        l.restitution,
+        si(l.max_compression, "m", 5),
+        si(l.peak_force, "N", 5)
+    )
+}
+
+/// The least round-off of a heat, relative to the energy scale m v_ref^2: a few ulps of the
+/// kinetic energies whose difference it is (eq 38).
+const HEAT_ROUND_OFF: f64 = 16.0 * f64::EPSILON;
+
+/// The size of the energy's round-off in a run (J): the energy balance check's, and at
+/// least a few ulps of the energy scale m v_ref^2.
+fn heat_round_off(scene: &Scene, so: &SceneOutcome) -> f64 {
+    scene.collision().map_or(0.0, |(c, _)| {
+        so.outcome.check.energy_balance_error.max(HEAT_ROUND_OFF) * c.scales.energy
+    })
+}
+
+/// A heat (J) for people: 0 within `round_off` (J) of zero, where its sign and digits are
+/// the round-off of the difference of two kinetic energies.
+fn heat_text(heat: f64, round_off: f64) -> String {
+    si(if heat.abs() <= round_off { 0.0 } else { heat }, "J", 10)
+}
+
+/// The contact of a collision, human-readable: impulse, sliding, heat (within
+/// `heat_round_off` J of zero: 0).
+fn contact_summary(r: &ContactResult, stick_time: Option<f64>, heat_round_off: f64) -> String {
     use std::fmt::Write;
     let mut s = String::new();
-    let _ = writeln!(s, "  impulse P         {:.9e} N s", r.impulse);
-    let theta = r
-        .theta
-        .map(|t| format!("{:.6} deg", t.to_degrees()))
-        .unwrap_or_else(|| "undefined (no slip)".into());
-    let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
-    match (r.sticks, stick_time) {
-        (true, Some(t)) => {
-            let _ = writeln!(
-                s,
-                "  sliding stops     at t = {t:.6e} s, p = {:.6e} N s; then purely normal",
-                r.stick_impulse.unwrap_or(0.0)
-            );
-        }
-        _ => {
-            let _ = writeln!(
-                s,
-                "  sliding           throughout, S_out = {:.9} m/s",
-                r.s_out
-            );
+    let _ = writeln!(s, "  impulse P         {} N s", decimal(r.impulse, 10));
+    if r.s0 == 0.0 {
+        // docs/model.md#no-initial-sliding: the surfaces never slide.
+        let _ = writeln!(
+            s,
+            "  sliding           none: S(0) = 0, theta undefined; purely normal throughout"
+        );
+    } else {
+        let theta = r
+            .theta
+            .map(|t| format!("{:.6} deg", t.to_degrees()))
+            .unwrap_or_else(|| "undefined (no slip)".into());
+        let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
+        match (r.sticks, stick_time) {
+            (true, Some(t)) => {
+                let _ = writeln!(
+                    s,
+                    "  sliding stops     at t = {}, p = {} N s; then purely normal",
+                    si(t, "s", 7),
+                    decimal(r.stick_impulse.unwrap_or(0.0), 7)
+                );
+            }
+            _ => {
+                let _ = writeln!(
+                    s,
+                    "  sliding           throughout, S_out = {:.9} m/s",
+                    r.s_out
+                );
+            }
         }
     }
-    let _ = writeln!(s, "  tangential J      {:.9e} N s", r.tangential_impulse);
     let _ = writeln!(
         s,
-        "  heat H            {:.9e} J (sliding {:.9e} J)",
-        r.heat, r.heat_sliding
+        "  tangential J      {} N s",
+        decimal(r.tangential_impulse, 10)
+    );
+    let _ = writeln!(
+        s,
+        "  heat H            {} (sliding {})",
+        heat_text(r.heat, heat_round_off),
+        heat_text(r.heat_sliding, heat_round_off)
     );
     s
 }
@@ -616,41 +663,33 @@ fn table_summary(t: &TableOutcome) -> String {
     let fmt = |v: &Vector3<f64>| vec3_text(v, 6);
     let _ = writeln!(
         s,
-        "  table (cloth mu {}, restitution {}, g {} m/s^2): until both roll, {:.6} s",
+        "  table (cloth mu {}, restitution {}, g {} m/s^2): until both roll, {}",
         p.mu(),
         p.restitution(),
         p.g(),
-        t.end_time()
+        si(t.end_time(), "s", 7)
     );
     for (i, (name, r)) in [("A", &t.a), ("B", &t.b)].into_iter().enumerate() {
         let imp = &r.impacts[0];
-        if r.hop_time > 0.0 {
-            let _ = writeln!(
-                s,
-                "    {name}: hops {:.6e} s, {:.6e} m high, lands at t = {:.6e} s",
-                r.hop_time, r.hop_height, imp.time
-            );
-        } else {
-            let _ = writeln!(s, "    {name}: stays on the cloth (no hop)");
-        }
+        let _ = writeln!(s, "    {name}: {}", leaves_the_cloth(r, &t.table.up, p.g()));
         let _ = writeln!(
             s,
-            "       impact: normal {:.6e} N s, tangential {:.6e} N s ({}), {} bounce(s)",
-            imp.normal_impulse,
-            imp.tangential_impulse,
+            "       impact: normal {} N s, tangential {} N s ({}), {}",
+            decimal(imp.normal_impulse, 7),
+            decimal(imp.tangential_impulse, 7),
             if imp.sticks {
                 "slip stopped"
             } else {
                 "slips on"
             },
-            r.bounces
+            count(u64::from(r.bounces), "bounce", "bounces")
         );
         let _ = writeln!(
             s,
-            "       slides {:.6e} s over {} m, rolls from t = {:.6e} s",
-            r.slide_time,
+            "       slides {} over {} m, rolls from t = {}",
+            si(r.slide_time, "s", 7),
             fmt(&r.slide_displacement),
-            r.roll_time
+            si(r.roll_time, "s", 7)
         );
         let _ = writeln!(
             s,
@@ -668,15 +707,45 @@ fn table_summary(t: &TableOutcome) -> String {
             .unwrap_or_default();
         let _ = writeln!(s, "       direction: {dir}{defl}");
         if let Some((time, pos)) = r.rest {
-            let _ = writeln!(s, "       rests at t = {time:.6} s at {} m", fmt(&pos));
+            let _ = writeln!(
+                s,
+                "       rests at t = {} at {} m",
+                si(time, "s", 7),
+                fmt(&pos)
+            );
         }
     }
     let _ = writeln!(
         s,
-        "    checks (scaled): energy increase {:.1e}, momentum {:.1e}",
-        t.check.energy_increase, t.check.momentum_error
+        "    checks (scaled): energy increase {}, momentum {}",
+        sci(t.check.energy_increase, 2),
+        sci(t.check.momentum_error, 2)
     );
     s
+}
+
+/// How a ball leaves the contact with respect to the cloth (unit vertical `up`, gravity `g`
+/// m/s^2): a hop when it moves up at separation; a bounce off the cloth at t = 0 when it is
+/// pressed into a cloth with restitution (the flight the ball path shows, up to (v.n)^2 /
+/// (2 g) after that first impact, docs/model.md#the-table-phase); else it stays on the cloth.
+fn leaves_the_cloth(r: &RollOut, up: &Vector3<f64>, g: f64) -> String {
+    let first = &r.impacts[0];
+    if r.hop_time > 0.0 {
+        format!(
+            "hops {}, {} high, lands at t = {}",
+            si(r.hop_time, "s", 7),
+            si(r.hop_height, "m", 7),
+            si(first.time, "s", 7)
+        )
+    } else if r.bounces > 0 {
+        let vn = first.velocity.dot(up);
+        format!(
+            "pressed into the cloth at separation, bounces off it at t = 0, up to {} high",
+            si(vn * vn / (2.0 * g), "m", 7)
+        )
+    } else {
+        "stays on the cloth (no hop)".into()
+    }
 }
 
 /// `[+x, +y, +z]` with `prec` decimals; a component that rounds to zero prints as +0 (not

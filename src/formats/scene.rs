@@ -51,6 +51,7 @@
 //! ```
 
 use crate::error::Error;
+use crate::formats::names::did_you_mean;
 use crate::integrator::law::pair_mass;
 use crate::integrator::{Method, SolverSettings};
 use crate::model::collision::Collision;
@@ -864,6 +865,9 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
             format!("line {line}, column {col}: ")
         })
         .unwrap_or_default();
+    if text.parse::<toml::Table>().is_err() {
+        return not_a_scene(text, &at, &plain);
+    }
     let path = e.path().to_string();
     // The TOML table (section or inline table) where the error is.
     let section = if path.is_empty() || path == "." {
@@ -887,9 +891,7 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
                     .filter(|(i, _)| i % 2 == 1)
                     .map(|(_, s)| s)
                     .collect();
-                let hint = closest(name, &candidates)
-                    .map(|best| format!(" (did you mean `{best}`?)"))
-                    .unwrap_or_default();
+                let hint = did_you_mean(name, &candidates);
                 return if what == "field" {
                     let expected = expected.trim_start_matches(',').trim();
                     format!("{at}{}: unknown key, {expected}{hint}", join(name))
@@ -922,34 +924,27 @@ fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error
     }
 }
 
-/// The candidate within edit distance 2 (or a third of the length) of `word`.
-pub(crate) fn closest<'a>(word: &str, candidates: &[&'a str]) -> Option<&'a str> {
-    let limit = (word.len() / 3).max(2);
-    candidates
+/// The error for text that is not TOML: where the parser stopped and why; for text without
+/// a scene's sections also that it does not look like a scene file, and what one is (a CSV,
+/// e.g. a batch input, is told so).
+fn not_a_scene(text: &str, at: &str, plain: &str) -> String {
+    if ["[balls]", "[contact", "[incoming"]
         .iter()
-        .map(|c| (edit_distance(word, c), *c))
-        .filter(|(d, _)| *d <= limit)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, c)| c)
-}
-
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = if ca == *cb {
-                prev
-            } else {
-                1 + prev.min(cur).min(row[j])
-            };
-            prev = cur;
-        }
+        .any(|section| text.contains(section))
+    {
+        return format!("{at}{plain} (not valid TOML)");
     }
-    row[b.len()]
+    let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
+    let csv = first.contains(',') && !first.contains('=') && !first.trim_start().starts_with('[');
+    let what = if csv {
+        "this looks like CSV (a batch input goes to `billiard-contact batch`), not a scene file"
+    } else {
+        "this does not look like a scene file"
+    };
+    format!(
+        "{at}{plain}: {what}; a scene is TOML with [balls], [contact], [contact.profile] and \
+         [incoming.cm] or [incoming.lab] (docs/formats.md#scene-file-toml)"
+    )
 }
 
 #[cfg(test)]

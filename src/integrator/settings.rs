@@ -273,7 +273,9 @@ pub struct Stats {
 /// Which rows a trace receives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Sampling {
-    /// One row per accepted step (and the stick event).
+    /// The start, one row per step of the integration and the stop of sliding (the step
+    /// that crossed the stop, and those that locate it, count as accepted steps but have no
+    /// row: docs/formats.md#trace-csv).
     Steps,
     /// Rows at t = i duration / N, i = 0..=N (and the stick event).
     Uniform(u64),

@@ -177,9 +177,20 @@ impl Frame {
     /// lab scene `lab` (whose frame this is), and the throw angle of B's velocity change
     /// ([`Frame::throw_angle_deg`]).
     #[inline(always)]
-    pub fn outgoing(&self, lab: &LabScene, out: &CmState) -> (LabMotion, LabMotion, Option<f64>) {
+    pub fn outgoing(
+        &self,
+        lab: &LabScene,
+        out: &CmState,
+        collided: bool,
+    ) -> (LabMotion, LabMotion, Option<f64>) {
         let (a, b) = self.to_lab(out);
-        let throw = self.throw_angle_deg(&(b.velocity - lab.b.velocity));
+        // Without a collision B's velocity change is the round-off of the change of frame,
+        // not a throw.
+        let throw = if collided {
+            self.throw_angle_deg(&(b.velocity - lab.b.velocity))
+        } else {
+            None
+        };
         (a, b, throw)
     }
 

@@ -1,0 +1,200 @@
+//! The summary (`run` without `--json`) reads as physics for people: a heat within the
+//! run's round-off of zero is 0 (the checks line keeps the size of the round-off), S(0) = 0
+//! says there was no sliding, the table summary agrees with the ball path CSV, numbers
+//! carry SI prefixes or plain decimals without `e0`, and counts have their plural right.
+
+mod cli_common;
+use cli_common::scene;
+use std::path::Path;
+use std::process::Output;
+
+/// Runs the binary with `args`; the run must succeed.
+fn bin(args: &[&str]) -> Output {
+    let out = cli_common::bin(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn text(out: &Output) -> String {
+    String::from_utf8(out.stdout.clone()).unwrap()
+}
+
+/// The summary line starting with `key` (after its indent).
+fn line<'a>(summary: &'a str, key: &str) -> &'a str {
+    summary
+        .lines()
+        .map(str::trim_start)
+        .find(|l| l.starts_with(key))
+        .unwrap_or_else(|| panic!("no line `{key}` in:\n{summary}"))
+}
+
+/// Head-on stun (S(0) = 0, e = 1, no spin): no sliding and no heat (eq 50: H = H_sfr +
+/// P (2 U(0) - P/m) = 0 + 2 m U (2 U - 2 U) = 0). dop853 computes H from the kinetic
+/// energies as a round-off of about -1.6e-12 J, which the summary printed as physics:
+/// now 0 J, while the JSON keeps the computed value and the checks line its size.
+#[test]
+fn no_sliding_and_no_heat_in_a_head_on_stun() {
+    for method in ["closed-form", "dop853", "rk4"] {
+        let s = text(&bin(&[
+            "run",
+            &scene("head_on_stun.toml"),
+            "--method",
+            method,
+        ]));
+        assert_eq!(
+            line(&s, "heat H"),
+            "heat H            0 J (sliding 0 J)",
+            "{method}"
+        );
+        assert_eq!(
+            line(&s, "sliding"),
+            "sliding           none: S(0) = 0, theta undefined; purely normal throughout"
+        );
+        assert!(!s.contains("sliding stops"), "{method}: {s}");
+        assert!(line(&s, "checks").contains("energy balance"), "{s}");
+    }
+    let j: serde_json::Value =
+        serde_json::from_slice(&bin(&["run", &scene("head_on_stun.toml"), "--json"]).stdout)
+            .unwrap();
+    let heat = j["heat"].as_f64().unwrap();
+    assert!(
+        heat != 0.0 && heat.abs() < 1e-10,
+        "the round-off is still reported: {heat}"
+    );
+}
+
+/// jump_follow: B leaves the contact moving into the cloth (v_z = -0.2277 m/s) on a cloth
+/// of restitution 0.5; it bounces at once with v_z = 0.5 * 0.2277 m/s and rises
+/// (0.5 v_z)^2 / (2 g) = 0.66 mm, as its path shows. The summary said "stays on the cloth
+/// (no hop)": it now says it bounces, and the height it prints is the path's.
+#[test]
+fn the_table_summary_agrees_with_the_path() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("summary_text_jump");
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("path.csv");
+    let s = text(&bin(&[
+        "run",
+        &scene("jump_follow.toml"),
+        "--path",
+        csv.to_str().unwrap(),
+        "--path-samples",
+        "20000",
+    ]));
+    let j: serde_json::Value =
+        serde_json::from_slice(&bin(&["run", &scene("jump_follow.toml"), "--json"]).stdout)
+            .unwrap();
+    let vz = j["lab_out"]["b"]["velocity"][2].as_f64().unwrap();
+    assert!(vz < 0.0, "B is pushed into the cloth: {vz}");
+    let rise = (0.5 * vz).powi(2) / (2.0 * 9.81);
+    let b = line(&s, "B:");
+    assert!(
+        b.starts_with("B: pressed into the cloth at separation, bounces off it at t = 0, up to "),
+        "{b}"
+    );
+    let printed: f64 = b
+        .rsplit("up to ")
+        .next()
+        .unwrap()
+        .trim_end_matches(" µm high")
+        .parse()
+        .unwrap();
+    assert!(
+        (printed * 1e-6 - rise).abs() < 1e-10,
+        "{printed} um vs {rise} m"
+    );
+    // The path: B's centre rises above r (0.028575 m) by that much at most, and by nearly
+    // that much at its highest sample (20000 intervals over 1.65 s: 83 us apart).
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut rows = text.lines();
+    let header: Vec<&str> = rows.next().unwrap().split(',').collect();
+    let bz = header.iter().position(|h| *h == "b_z (m)").unwrap();
+    let top = rows
+        .map(|r| r.split(',').nth(bz).unwrap().parse::<f64>().unwrap() - 0.028575)
+        .fold(f64::MIN, f64::max);
+    assert!(
+        top <= rise * (1.0 + 1e-9) && top > 0.99 * rise,
+        "{top} vs {rise}"
+    );
+    // 7 bounces: plural; "bounce(s)" is gone.
+    assert!(s.contains(", 7 bounces") && !s.contains("bounce(s)"), "{s}");
+}
+
+/// No `e0` exponents ("1.561453e0 s", "2.0000e-4 s", "0.0e0") in any scene's summary; the
+/// duration of a 2.5e-4 s pulse reads 250 µs.
+#[test]
+fn numbers_for_people() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        for method in ["closed-form", "dop853"] {
+            let s = text(&bin(&["run", p.to_str().unwrap(), "--method", method]));
+            for (k, _) in s.match_indices("e0") {
+                let before = s[..k].chars().last().unwrap();
+                assert!(!before.is_ascii_digit(), "{}: {s}", p.display());
+            }
+        }
+    }
+    let s = text(&bin(&["run", &scene("default.toml")]));
+    assert!(line(&s, "profile").contains("over 250 µs"), "{s}");
+}
+
+/// "1 rows", "1 threads": a one-row batch on one thread says "1 row (1 collision, ...)" and
+/// "1 thread".
+#[test]
+fn counts_in_words() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("summary_text_counts");
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("in.csv");
+    std::fs::write(&input, "u_x,u_y,u_z\n1,0.2,0\n").unwrap();
+    let out = bin(&[
+        "batch",
+        input.to_str().unwrap(),
+        "--out",
+        dir.join("out.csv").to_str().unwrap(),
+        "--threads",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("1 row (1 collision, "), "{err}");
+    assert!(err.contains(", 1 thread, "), "{err}");
+}
+
+/// The trace's rows as docs/formats.md#trace-csv words them: without a stop of sliding, the
+/// start and one row per accepted step; with one, the step that crossed it and the steps
+/// that locate it count as accepted but have no row, the stop has one (stun_cut_sticks with
+/// dop853: 10 accepted steps, 9 rows, the docs' example).
+#[test]
+fn trace_rows_as_documented() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("summary_text_trace");
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("t.csv");
+    let rows_and_steps = |name: &str| {
+        let out = bin(&[
+            "run",
+            &scene(name),
+            "--json",
+            "--trace",
+            trace.to_str().unwrap(),
+        ]);
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let rows = std::fs::read_to_string(&trace).unwrap().lines().count() - 1;
+        let accepted = j["solver"]["accepted_steps"].as_u64().unwrap() as usize;
+        (rows, accepted, j["stick_time"].as_f64())
+    };
+    let (rows, accepted, stop) = rows_and_steps("default.toml");
+    assert_eq!((rows, stop), (accepted + 1, None));
+    let (rows, accepted, stop) = rows_and_steps("stun_cut_sticks.toml");
+    assert_eq!((rows, accepted), (9, 10));
+    let stop = stop.unwrap();
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.lines()
+            .skip(1)
+            .any(|l| l.split(',').next().unwrap().parse::<f64>().unwrap() == stop),
+        "a row at the stop, t = {stop}"
+    );
+}
