@@ -3,7 +3,6 @@
 
 use crate::contact::law_outcome::solve_law;
 use crate::contact::outcome::{solve, Outcome};
-use crate::contact::result::ContactResult;
 use crate::error::Error;
 use crate::formats::scene::{table_needs_lab_scene, LabFrame, Scene};
 use crate::formats::trace::TraceSink;
@@ -11,7 +10,6 @@ use crate::integrator::{Sampling, SolverSettings};
 use crate::model::frame::{Frame, LabScene};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::table_phase::TableOutcome;
-use nalgebra::Vector3;
 
 /// The outcome of a scene, with the lab-frame motions for lab scenes.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,7 +66,7 @@ pub fn run_scene(
             }
             // B's velocity in the paper's frame is -U.
             let (b_in, b_out) = (-collision.incoming.u_cm, -out.u_cm);
-            let throw = throw_angle_deg(&outcome.result, &Frame::paper(), &b_in, &b_out);
+            let throw = Frame::paper().throw_of(&(b_out - b_in), outcome.result.collided());
             (None, throw, 0.0, None)
         }
     };
@@ -89,22 +87,6 @@ pub fn run_scene(
         throw_angle_deg: throw,
         table,
     })
-}
-
-/// The throw angle (degrees) of a collision in `frame` from B's velocity before and after
-/// (m/s, lab): [`Frame::throw_angle_deg`] of its change; `None` without a collision, where
-/// the change is the round-off of the change of frame, not a throw.
-pub(crate) fn throw_angle_deg(
-    result: &ContactResult,
-    frame: &Frame,
-    b_in: &Vector3<f64>,
-    b_out: &Vector3<f64>,
-) -> Option<f64> {
-    if result.collided() {
-        frame.throw_angle_deg(&(b_out - b_in))
-    } else {
-        None
-    }
 }
 
 /// The effect `table` of a lab scene: both balls from separation, with the outgoing lab

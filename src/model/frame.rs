@@ -184,14 +184,20 @@ impl Frame {
         collided: bool,
     ) -> (LabMotion, LabMotion, Option<f64>) {
         let (a, b) = self.to_lab(out);
-        // Without a collision B's velocity change is the round-off of the change of frame,
-        // not a throw.
-        let throw = if collided {
-            self.throw_angle_deg(&(b.velocity - lab.b.velocity))
+        let throw = self.throw_of(&(b.velocity - lab.b.velocity), collided);
+        (a, b, throw)
+    }
+
+    /// The throw angle (degrees) of a collision whose B velocity changed by `delta_v_b`
+    /// ([`Frame::throw_angle_deg`]); `None` when the balls did not collide, where the change
+    /// is the round-off of the change of frame, not a throw.
+    #[inline(always)]
+    pub fn throw_of(&self, delta_v_b: &Vector3<f64>, collided: bool) -> Option<f64> {
+        if collided {
+            self.throw_angle_deg(delta_v_b)
         } else {
             None
-        };
-        (a, b, throw)
+        }
     }
 
     /// The throw angle (degrees): the signed angle, counter-clockwise about `up`, from the
