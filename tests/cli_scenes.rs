@@ -1132,3 +1132,74 @@ fn failed_runs_leave_no_trace_file() {
     let err = String::from_utf8(run(&["run", huge.to_str().unwrap(), "--json"]).stderr).unwrap();
     assert!(err.contains("non-finite"), "{err}");
 }
+
+/// `--path FILE --path-samples N` (docs/formats.md#ball-path-csv): rows at t = i T / N,
+/// i = 0..N (T = `table.end_time`), plus every change of phase of either ball (impacts,
+/// the start of rolling, rest), and at each impact with the cloth two rows sharing the time.
+/// The event times come from the roll-out of tests/common/table.rs.
+#[test]
+fn path_rows_are_the_samples_and_the_events() {
+    for name in ["draw_table.toml", "jump_follow.toml"] {
+        let path = root().join("data/scenes").join(name);
+        let sc = read_scene(&path);
+        let want = sc.expected();
+        let cloth = sc.cloth.unwrap();
+        let b = &sc.balls;
+        let outs = [
+            cloth.roll_out(b, sc.positions[0], want.out.va, want.out.wa),
+            cloth.roll_out(b, sc.positions[1], want.out.vb, want.out.wb),
+        ];
+        let end = outs[0].end_time.max(outs[1].end_time);
+        // Distinct times, equal within round-off of the end time.
+        let distinct = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * end);
+            v
+        };
+        let mut impacts = Vec::new();
+        let mut events = Vec::new();
+        for o in &outs {
+            impacts.extend(&o.impacts);
+            events.extend(&o.impacts);
+            events.push(o.roll_time);
+            events.extend(o.rest.map(|r| r.0));
+        }
+        let impacts = distinct(impacts);
+        assert!(!impacts.is_empty(), "{name}: no impact");
+        for n in [10u32, 37] {
+            let file = tmp(&format!("path-{name}-{n}.csv"));
+            let n_s = n.to_string();
+            let args = [
+                "run",
+                path.to_str().unwrap(),
+                "--method",
+                "closed-form",
+                "--path",
+                file.to_str().unwrap(),
+                "--path-samples",
+                n_s.as_str(),
+            ];
+            ok_stdout(&args);
+            let text = std::fs::read_to_string(&file).unwrap();
+            let t: Vec<f64> = text
+                .lines()
+                .skip(1)
+                .map(|l| l.split(',').next().unwrap().parse().unwrap())
+                .collect();
+            let samples: Vec<f64> = (0..=n).map(|i| f64::from(i) * end / f64::from(n)).collect();
+            for s in &samples {
+                assert!(
+                    t.iter().any(|x| (x - s).abs() <= 1e-12 * end),
+                    "{name} N = {n}: no row at t = {s}"
+                );
+            }
+            let times = distinct(samples.into_iter().chain(events.clone()).collect());
+            assert_eq!(
+                t.len(),
+                times.len() + impacts.len(),
+                "{name} N = {n}: rows at {t:?}"
+            );
+            std::fs::remove_file(&file).unwrap();
+        }
+    }
+}

@@ -31,8 +31,10 @@ pub struct Impact {
 }
 
 /// A ball's roll-out, the quantities of the JSON `table.a` / `table.b` objects.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct RollOut {
+    /// Times of the impacts with a normal impulse, in order.
+    pub impacts: Vec<f64>,
     pub hop_time: f64,
     pub hop_height: f64,
     pub impact: Impact,
@@ -117,12 +119,17 @@ impl Cloth {
         }
         let first = self.impact(b, t, v, w);
         let (mut imp, mut bounces) = (first, 0);
+        let mut impacts: Vec<f64> = (first.normal_impulse > 0.0)
+            .then_some(t)
+            .into_iter()
+            .collect();
         while imp.velocity.dot(&n) >= SETTLE_SPEED {
             bounces += 1;
             let (dt, landing) = flight(imp.velocity);
             x += self.horizontal(&imp.velocity) * dt;
             t += dt;
             imp = self.impact(b, t, landing, imp.spin);
+            impacts.push(t);
         }
         let settle_time = t;
         // The cloth absorbs what is left of the vertical speed.
@@ -160,6 +167,7 @@ impl Cloth {
         // carried the weight, m (v_end - v0) + m g n t_end.
         let table_impulse = b.m * (v_end - v0) + b.m * g * end_time * n;
         RollOut {
+            impacts,
             hop_time,
             hop_height,
             impact: first,
