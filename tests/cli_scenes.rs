@@ -6,18 +6,20 @@
 //! tests/common/table.rs, the trace CSV with its force and sliding-heat columns, and
 //! failures that leave no file behind.
 
+mod cli_common;
 #[path = "common/hard.rs"]
 mod hard;
 use hard::first_principles as common;
 
 use billiard_contact::CmState;
+use cli_common::fresh_dir;
 use common::table::{Cloth, RollOut};
 use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::Value;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// What each method reaches on the scenes at `--rtol 1e-12` (rk4 at the scene's steps),
 /// against the independent resolution: `cargo test --release --test cli_scenes
@@ -174,12 +176,9 @@ fn scenes() -> Vec<PathBuf> {
     v
 }
 
+/// Runs the binary in the repository's root (scenes given relative to it).
 fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("the binary runs")
+    cli_common::bin_in(Some(&root()), args)
 }
 
 fn ok_stdout(args: &[&str]) -> String {
@@ -196,12 +195,6 @@ fn ok_stdout(args: &[&str]) -> String {
 fn json(args: &[&str]) -> Value {
     let text = ok_stdout(args);
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_scenes");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -988,6 +981,7 @@ fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f
 fn trace_csv_follows_the_contract() {
     assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
     let n = SAMPLES.to_string();
+    let dir = fresh_dir("cli_scenes_trace");
     let mut worst = Worst::new();
     for path in profile_scenes() {
         let sc = read_scene(&path);
@@ -996,7 +990,7 @@ fn trace_csv_follows_the_contract() {
         for method in METHODS {
             for sampled in [true, false] {
                 let what = format!("{} {method} samples {sampled}", path.display());
-                let file = tmp(&format!(
+                let file = dir.join(format!(
                     "{}-{method}-{sampled}.csv",
                     path.file_stem().unwrap().to_str().unwrap()
                 ));
@@ -1085,8 +1079,7 @@ fn trace_csv_follows_the_contract() {
 /// an existing file is left as it was.
 #[test]
 fn failed_runs_leave_no_trace_file() {
-    let dir = tmp("failing");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("cli_scenes_failing");
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "[balls]\nmass = -1.0\n").unwrap();
     // Speeds whose squares overflow: the outgoing kinetic energy is not finite.
@@ -1139,6 +1132,7 @@ fn failed_runs_leave_no_trace_file() {
 /// The event times come from the roll-out of tests/common/table.rs.
 #[test]
 fn path_rows_are_the_samples_and_the_events() {
+    let dir = fresh_dir("cli_scenes_path");
     for name in ["draw_table.toml", "jump_follow.toml"] {
         let path = root().join("data/scenes").join(name);
         let sc = read_scene(&path);
@@ -1167,7 +1161,7 @@ fn path_rows_are_the_samples_and_the_events() {
         let impacts = distinct(impacts);
         assert!(!impacts.is_empty(), "{name}: no impact");
         for n in [10u32, 37] {
-            let file = tmp(&format!("path-{name}-{n}.csv"));
+            let file = dir.join(format!("path-{name}-{n}.csv"));
             let n_s = n.to_string();
             let args = [
                 "run",
