@@ -218,3 +218,59 @@ rolling_resistance = {resistance}
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A full stun hit, frictionless and elastic: A stops dead (velocity and spin 0, so its
+/// `rolling.velocity` is zero) and has neither `direction_deg` nor `deflection_deg`
+/// (docs/formats.md#the-table-object); B takes A's velocity along the line of centres, so
+/// its direction is 0 degrees.
+#[test]
+fn a_ball_that_stops_dead_has_no_direction() {
+    const R: f64 = 0.028575;
+    let dir = fresh_dir("cli_table_dead");
+    let path = dir.join("full.toml");
+    std::fs::write(
+        &path,
+        format!(
+            r#"
+name = "full stun hit"
+[balls]
+mass = 0.17
+radius = {R}
+[contact]
+mu = 0.0
+restitution = 1.0
+[contact.profile]
+shape = "half-sine"
+duration = 2.5e-4
+[incoming.lab]
+a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [2.0, 0.0, 0.0] }}
+b = {{ position = [{R:?}, 0.0, {R:?}], velocity = [0.0, 0.0, 0.0] }}
+[solver]
+method = "closed-form"
+[effects]
+table = true
+"#,
+            a = -R
+        ),
+    )
+    .unwrap();
+    let out = command()
+        .arg("run")
+        .arg(&path)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (a, b) = (&json["table"]["a"], &json["table"]["b"]);
+    for k in 0..3 {
+        assert_eq!(a["rolling"]["velocity"][k].as_f64(), Some(0.0), "{a}");
+    }
+    assert!(a.get("direction_deg").is_none() && a.get("deflection_deg").is_none());
+    assert_eq!(b["direction_deg"].as_f64(), Some(0.0), "{b}");
+    assert!(b.get("deflection_deg").is_none(), "B came in at rest");
+}
