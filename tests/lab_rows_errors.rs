@@ -10,12 +10,14 @@ use billiard_contact::batch::{
 use billiard_contact::{Error, LabBall, LabScene, Method, Scene, SolverSettings};
 use nalgebra::Vector3;
 
-/// What makes a row bad: balls that do not touch (the frame fails), or a reader that
-/// cannot give the row (as one converting numbers would).
+/// What makes a row bad: balls that do not touch (the frame fails), a reader that cannot
+/// give the row (as one converting numbers would), or a speed that is not finite (the
+/// frame is built; the method refuses the state).
 #[derive(Clone, Copy, PartialEq)]
 enum Bad {
     Apart,
     Unreadable,
+    NotFinite,
 }
 
 /// Head-on rows: A at 1 + i/1000 m/s along +y onto B at rest, touching, the pair shifted by
@@ -45,10 +47,15 @@ impl LabRows for Rows {
         // Three radii apart instead of two for a bad row.
         let gap = if kind == Some(Bad::Apart) { 3.0 } else { 2.0 };
         let x = 0.01 * i as f64;
+        let v = if kind == Some(Bad::NotFinite) {
+            f64::INFINITY
+        } else {
+            Rows::speed(i)
+        };
         Ok(LabScene {
             a: LabBall {
                 position: Vector3::new(x, 0.0, 0.0),
-                velocity: Vector3::new(0.0, Rows::speed(i), 0.0),
+                velocity: Vector3::new(0.0, v, 0.0),
                 spin: Vector3::zeros(),
             },
             b: LabBall {
@@ -128,6 +135,7 @@ fn check(method: Method, n: usize, bad: &[(usize, Bad)], want: usize) {
     match (kind, &e) {
         (Bad::Apart, Error::NotTouching { .. }) => {}
         (Bad::Unreadable, Error::InvalidParameter { field, .. }) if field == "a_vx" => {}
+        (Bad::NotFinite, Error::InvalidParameter { value, .. }) if value == "inf" => {}
         _ => panic!("{case}: {e:?}"),
     }
     let tol = 1e-9;
@@ -179,6 +187,10 @@ fn closed_form_blocks_report_the_failing_rows_own_index() {
     }
     // Two bad rows: the first is reported.
     check(Method::ClosedForm, 20, &[(17, Unreadable), (11, Apart)], 11);
+    // A state the method refuses, found after the block's frames: alone, and before a row
+    // whose frame fails later in the same block.
+    check(Method::ClosedForm, 20, &[(10, NotFinite)], 10);
+    check(Method::ClosedForm, 20, &[(13, Apart), (10, NotFinite)], 10);
     // Fewer rows than a block: row by row.
     check(Method::ClosedForm, 5, &[(3, Apart)], 3);
 }
@@ -186,6 +198,7 @@ fn closed_form_blocks_report_the_failing_rows_own_index() {
 #[test]
 fn integrator_rows_report_the_failing_rows_own_index() {
     check(Method::Dopri5, 12, &[(9, Bad::Apart)], 9);
+    check(Method::Dopri5, 12, &[(4, Bad::NotFinite)], 4);
 }
 
 #[test]
@@ -194,6 +207,7 @@ fn parallel_rows_report_the_failing_rows_own_index() {
     let n = PARALLEL_LAB_ROWS + 100;
     // Deep in a later part of the split, behind rows framed in its block.
     check(Method::ClosedForm, n, &[(1500, Apart)], 1500);
+    check(Method::ClosedForm, n, &[(1501, NotFinite)], 1501);
     check(Method::ClosedForm, n, &[(n - 3, Unreadable)], n - 3);
     // Bad rows in two parts: the first is reported, whichever part finishes first.
     check(
