@@ -17,7 +17,10 @@ fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
     let (t, p, s) = (at("t (s)"), at("p (N s)"), at("S (m/s)"));
     let rows = lines
         .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect();
+            let v: Vec<f64> = l
+                .split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect();
             [v[t], v[p], v[s]]
         })
         .collect();
@@ -26,7 +29,11 @@ fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = bin(args);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -46,14 +53,25 @@ fn every_method_marks_the_stop_of_sliding() {
         for samples in [None, Some("10")] {
             let file = d.join(format!("{method}.{}.csv", samples.unwrap_or("steps")));
             let f = file.to_str().unwrap();
-            let mut args = vec!["run", s.as_str(), "--method", method, "--json", "--trace", f];
+            let mut args = vec![
+                "run",
+                s.as_str(),
+                "--method",
+                method,
+                "--json",
+                "--trace",
+                f,
+            ];
             if let Some(n) = samples {
                 args.extend(["--samples", n]);
             }
             let j = json(&args);
             let t_stick = j["stick_time"].as_f64().unwrap();
             let p = j["stick_impulse"].as_f64().unwrap();
-            assert!((p - p_stick).abs() < 1e-9 * p_stick, "{method}: {p} vs {p_stick}");
+            assert!(
+                (p - p_stick).abs() < 1e-9 * p_stick,
+                "{method}: {p} vs {p_stick}"
+            );
             let (header, rows) = trace(&file);
             assert!(header.ends_with("delta (m)"), "{header}");
             let k = rows
@@ -61,16 +79,26 @@ fn every_method_marks_the_stop_of_sliding() {
                 .position(|r| r[0] == t_stick)
                 .unwrap_or_else(|| panic!("{method} {samples:?}: no row at {t_stick}"));
             assert_eq!(rows[k][2], 0.0, "{method} {samples:?}: {:?}", rows[k]);
-            assert!((rows[k][1] - p_stick).abs() < 1e-9 * p_stick, "{:?}", rows[k]);
+            assert!(
+                (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
+                "{:?}",
+                rows[k]
+            );
             assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{method} {samples:?}");
-            assert!(rows[k..].iter().all(|r| r[2] == 0.0), "{method} {samples:?}");
+            assert!(
+                rows[k..].iter().all(|r| r[2] == 0.0),
+                "{method} {samples:?}"
+            );
             stops.push((method, t_stick));
         }
     }
     let dop853 = stops.iter().find(|s| s.0 == "dop853").unwrap().1;
     for (method, t) in &stops {
         // The default tolerances (rtol 1e-10; rk4 1000 steps): within 1e-8 of the contact.
-        assert!((t - dop853).abs() < 1e-8 * 4e-4, "{method}: {t} vs {dop853}");
+        assert!(
+            (t - dop853).abs() < 1e-8 * 4e-4,
+            "{method}: {t} vs {dop853}"
+        );
     }
 }
 
@@ -80,9 +108,16 @@ fn every_method_marks_the_stop_of_sliding() {
 fn the_time_transform_is_said_to_have_no_effect_under_a_law() {
     let s = scene("hertz_law_kuwabara_kono.toml");
     let with = bin(&["run", &s, "--time-transform", "false", "--json"]);
-    warned(&with, &["--time-transform has no effect with a contact law"]);
+    warned(
+        &with,
+        &["--time-transform has no effect with a contact law"],
+    );
     let without = bin(&["run", &s, "--json"]);
-    assert!(without.stderr.is_empty(), "{}", String::from_utf8_lossy(&without.stderr));
+    assert!(
+        without.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&without.stderr)
+    );
     assert_eq!(with.stdout, without.stdout);
     let profile = bin(&["run", "--time-transform", "false", "--method", "dop853"]);
     assert!(profile.status.success() && profile.stderr.is_empty());
@@ -114,8 +149,20 @@ fn the_time_transform_is_said_to_have_no_effect_under_a_law() {
 fn the_tolerances_act_on_the_closed_form_under_a_law() {
     let s = scene("hertz_law_kuwabara_kono.toml");
     let run = |rtol: &str| {
-        let out = bin(&["run", &s, "--method", "closed-form", "--rtol", rtol, "--json"]);
-        assert!(out.status.success() && out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+        let out = bin(&[
+            "run",
+            &s,
+            "--method",
+            "closed-form",
+            "--rtol",
+            rtol,
+            "--json",
+        ]);
+        assert!(
+            out.status.success() && out.stderr.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         j["impulse"].as_f64().unwrap()
     };
