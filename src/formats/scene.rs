@@ -218,7 +218,7 @@ impl SolverOverrides {
     /// assert_eq!(unused[0].0, "time_transform");
     /// assert!(unused[0].1.starts_with("a contact law"));
     /// let cf = dop853.with_method(Method::ClosedForm);
-    /// let names = |u: Vec<(&str, String)>| u.iter().map(|u| u.0).collect::<Vec<_>>();
+    /// let names = |u: Vec<(&'static str, String)>| u.iter().map(|u| u.0).collect::<Vec<_>>();
     /// assert_eq!(names(o.unused(&cf, false)), ["rtol", "time_transform"]);
     /// assert_eq!(names(o.unused(&cf, true)), ["time_transform"]);
     /// ```
