@@ -12,9 +12,9 @@
 //! - `kuwabara-kono` calibrated the same way: 1 - e grows as v^(1/5) to first order in the
 //!   damping, so 1 - e(v) = 0.05 v^(1/5) up to terms of order (1 - e)^2.
 
+mod cli_common;
+use cli_common::{bin, fresh_dir, scene};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::process::Command;
 
 type Row = HashMap<String, String>;
 
@@ -26,15 +26,12 @@ fn num(r: &Row, col: &str) -> f64 {
 
 /// The study's rows, run with `args` into a fresh directory named `name`.
 fn study(name: &str, args: &[&str]) -> Vec<Row> {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .arg("work-precision")
-        .args(args)
-        .args(["--repeats", "1", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let dir = fresh_dir(name);
+    let dir_arg = dir.to_string_lossy().into_owned();
+    let mut all = vec!["work-precision"];
+    all.extend_from_slice(args);
+    all.extend(["--repeats", "1", "--out", dir_arg.as_str()]);
+    let out = bin(&all);
     assert!(
         out.status.success(),
         "{}",
@@ -183,9 +180,8 @@ fn law_rows_of_the_default_study() {
 /// profile is exact against itself.
 #[test]
 fn a_law_scene_runs_its_own_law() {
-    let scene =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes/hertz_law_kuwabara_kono.toml");
-    let scene = scene.to_str().unwrap();
+    let path = scene("hertz_law_kuwabara_kono.toml");
+    let scene = path.as_str();
     let rows = study("cli_work_precision_law_scene", &[scene, "--no-sticking"]);
     assert_eq!(rows.len(), 1 + 12 + 2 * 11);
     for r in &rows {
