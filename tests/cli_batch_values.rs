@@ -6,7 +6,10 @@
 //! `batch::closed_form_into`, and the speed-dependent closed form at S(0) = 0 through the
 //! batch kernel.
 
+mod cli_common;
 mod common;
+
+use cli_common::{command, fresh_dir};
 
 use billiard_contact::batch::{closed_form_into, BatchSetup};
 use billiard_contact::{CmState, ContactResult, Method, Scene, SolverSettings};
@@ -15,7 +18,6 @@ use nalgebra::Vector3;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// Closed-form rows against first principles (scaled by v_ref, m v_ref, m v_ref^2): measured
 /// worst 2.1e-16 over the rows below (`--nocapture` prints it).
@@ -25,22 +27,11 @@ const DOP853_TOL: f64 = 2e-12;
 /// Stick times over the duration: measured worst 1.1e-16 (closed form), 3.3e-16 (dop853).
 const STICK_TIME_TOL: f64 = 3e-15;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("cli_batch_values-{name}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Runs `batch INPUT --out OUTPUT ARGS`, returns the output rows as column -> cell maps.
 fn batch(dir: &Path, input: &str, args: &[&str]) -> Vec<HashMap<String, String>> {
     let (inp, out) = (dir.join("in.csv"), dir.join("out.csv"));
     std::fs::write(&inp, input).unwrap();
-    let o = bin()
+    let o = command()
         .arg("batch")
         .arg(&inp)
         .arg("--out")
@@ -228,7 +219,7 @@ fn check_cm_row(row: &HashMap<String, String>, want: &Expected, r: &Row, tol: f6
 /// dop853 at `--rtol 1e-12`, in one chunk and in chunks of one row.
 #[test]
 fn cm_rows_with_every_override_match_first_principles() {
-    let dir = temp_dir("cm");
+    let dir = fresh_dir("cli_batch_values-cm");
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, SCENE).unwrap();
     let rows = cm_rows();
@@ -284,7 +275,7 @@ fn cm_rows_with_every_override_match_first_principles() {
 /// costs fewer evaluations than at 1e-12 (atol = rtol, docs/formats.md#batch-csv).
 #[test]
 fn batch_rtol_reaches_the_integrator() {
-    let dir = temp_dir("rtol");
+    let dir = fresh_dir("cli_batch_values-rtol");
     let r = &cm_rows()[0];
     let input = format!("{CM_HEADER}\n{}\n", r.cells);
     let scene = dir.join("scene.toml");
@@ -312,7 +303,7 @@ fn batch_rtol_reaches_the_integrator() {
 /// frame with a line of centres that is not an axis.
 #[test]
 fn lab_rows_match_first_principles() {
-    let dir = temp_dir("lab");
+    let dir = fresh_dir("cli_batch_values-lab");
     let r = 0.028575;
     let n = Vector3::new(0.6, 0.8, 0.0);
     let (pa, pb) = (
@@ -464,7 +455,7 @@ fn check_result(r: &ContactResult, want: &Expected, b: &Balls, pair: &Pair, what
 /// tests/common/hard.rs.
 #[test]
 fn speed_dependent_closed_form_at_zero_slip_through_the_batch_kernel() {
-    let dir = temp_dir("zero-slip");
+    let dir = fresh_dir("cli_batch_values-zero-slip");
     let scene_path =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/scenes/cut_speed_dependent.toml");
     let s = scene_path.to_str().unwrap();

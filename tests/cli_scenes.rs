@@ -1,16 +1,25 @@
 //! The command as a user runs it: every scene in `data/scenes/` with every method, the JSON
 //! contract (docs/formats.md), agreement with the independent first-principles
 //! resolution (`common::resolve`, computed from the scene file read here with `toml`, not
-//! through the crate's scene code), the trace CSV, and failures that leave no file behind.
+//! through the crate's scene code; speed-dependent mu: the closed form of
+//! tests/common/hard.rs), the table phase against its physics written out in
+//! tests/common/table.rs, the trace CSV with its force and sliding-heat columns, and
+//! failures that leave no file behind.
 
-mod common;
+mod cli_common;
+#[path = "common/hard.rs"]
+mod hard;
+use hard::first_principles as common;
 
+use billiard_contact::CmState;
+use cli_common::fresh_dir;
+use common::table::{Cloth, RollOut};
 use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
 use nalgebra::{Matrix3, Vector3};
 use serde_json::Value;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// What each method reaches on the scenes at `--rtol 1e-12` (rk4 at the scene's steps),
 /// against the independent resolution: `cargo test --release --test cli_scenes
@@ -25,43 +34,79 @@ struct Tol {
     stick_time: f64,
     /// |stick_impulse - p_stick| / P (the promise is 1e-10).
     stick_impulse: f64,
-    /// Throw angle (degrees).
+    /// Throw angle (degrees). With speed-dependent mu (cut_speed_dependent.toml, a throw of
+    /// 1 degree) the adaptive methods' state error of the nonlinear slide reaches the angle
+    /// more: measured worst 5.65e-13 (dopri5) and 1.22e-12 (dop853) degrees there.
     throw_deg: f64,
+    /// The table object (draw_table, jump_follow, cut_speed_dependent), scaled as in
+    /// [`check_table`].
+    table: f64,
+    /// The table's directions and deflections (degrees).
+    table_deg: f64,
+    /// The trace's force at the default settings over P / duration: the row's time and force
+    /// both come from the integration variable (the time transform's p/P for the half-sine
+    /// and hertz), so near the ends the printed t carries the round-off of inverting it.
+    trace_force: f64,
+    /// The trace's sliding heat at the default settings over m v_ref^2.
+    trace_heat: f64,
 }
 
-fn tol(method: &str) -> Tol {
+/// Each tolerance ten times the measured worst over the scenes (the comment; the table
+/// values over draw_table, jump_follow and cut_speed_dependent; the trace at the default
+/// settings, the rest at --rtol 1e-12).
+fn tol(method: &str, speed_dependent: bool) -> Tol {
     match method {
         // Measured worst: state 2.07e-16, stick time 1.81e-16, stick impulse 1.44e-16 P,
-        // throw 1.78e-15 degrees.
+        // throw 1.78e-15 degrees; table 1.69e-16, table angles 3.55e-15 degrees; trace
+        // force 1.27e-14, heat 5.90e-17.
         "closed-form" => Tol {
             state: 2e-15,
             stick_time: 2e-15,
             stick_impulse: 2e-15,
             throw_deg: 2e-14,
+            table: 2e-15,
+            table_deg: 4e-14,
+            trace_force: 1.5e-13,
+            trace_heat: 6e-16,
         },
         // Measured worst: state 1.33e-13, stick time 2.71e-16, stick impulse 2.89e-16 P,
-        // throw 4.84e-14 degrees.
+        // throw 4.84e-14 degrees; table 4.63e-14, table angles 1.88e-12 degrees; trace
+        // force 4.92e-14 over every row (8.9e-15 over the rows checked), heat 1.30e-15.
         "rk4" => Tol {
             state: 1.5e-12,
             stick_time: 3e-15,
             stick_impulse: 3e-15,
             throw_deg: 5e-13,
+            table: 5e-13,
+            table_deg: 2e-11,
+            trace_force: 5e-13,
+            trace_heat: 1.5e-14,
         },
         // Measured worst: state 6.68e-13, stick time 1.81e-16, stick impulse 1.44e-16 P,
-        // throw 7.17e-14 degrees.
+        // throw 7.17e-14 degrees; table 7.59e-14, table angles 2.89e-12 degrees; trace
+        // force 1.27e-11 (hertz_material), heat 4.32e-12.
         "dopri5" => Tol {
             state: 7e-12,
             stick_time: 2e-15,
             stick_impulse: 2e-15,
-            throw_deg: 7e-13,
+            throw_deg: if speed_dependent { 6e-12 } else { 7e-13 },
+            table: 8e-13,
+            table_deg: 3e-11,
+            trace_force: 1.5e-10,
+            trace_heat: 5e-11,
         },
         // dop853. Measured worst: state 2.75e-13, stick time 2.17e-16, stick impulse
-        // 3.32e-16 P, throw 6.15e-14 degrees.
+        // 3.32e-16 P, throw 6.15e-14 degrees; table 1.63e-13, table angles 6.76e-12
+        // degrees; trace force 3.97e-13, heat 7.00e-12.
         _ => Tol {
             state: 3e-12,
             stick_time: 3e-15,
             stick_impulse: 3e-15,
-            throw_deg: 6e-13,
+            throw_deg: if speed_dependent { 1.2e-11 } else { 6e-13 },
+            table: 2e-12,
+            table_deg: 7e-11,
+            trace_force: 4e-12,
+            trace_heat: 7e-11,
         },
     }
 }
@@ -131,12 +176,9 @@ fn scenes() -> Vec<PathBuf> {
     v
 }
 
+/// Runs the binary in the repository's root (scenes given relative to it).
 fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("the binary runs")
+    cli_common::bin_in(Some(&root()), args)
 }
 
 fn ok_stdout(args: &[&str]) -> String {
@@ -155,12 +197,6 @@ fn json(args: &[&str]) -> Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"))
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_scenes");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
 // ---------------------------------------------------------------------------------------
 // The scene file, read independently
 // ---------------------------------------------------------------------------------------
@@ -175,6 +211,39 @@ enum ProfileRef {
 }
 
 impl ProfileRef {
+    /// p(t)/P at s = t / duration.
+    fn fraction(&self, s: f64) -> f64 {
+        match self {
+            ProfileRef::HalfSine => common::half_sine_fraction(s),
+            ProfileRef::Hertz => hard::hertz_phi(s),
+            ProfileRef::SinePower(n) => common::sine_power_fraction(*n, s),
+            ProfileRef::Rectangle => s.clamp(0.0, 1.0),
+            ProfileRef::Table(t) => t.fraction(s),
+        }
+    }
+
+    /// p(t)/P and the force in units of P / duration at s = t / duration, the force by each
+    /// profile's formula:
+    /// half-sine (pi/2) sin(pi s); sin^n(pi s) pi / B((n+1)/2, 1/2); rectangle 1; the table's
+    /// interpolant over its area; Hertz from the energy integral of delta'' = -delta^(3/2)
+    /// (tests/common/mod.rs, `hertz_f`): with q = p/P, delta' = 1 - 2q and
+    /// delta^(5/2) = (5/4) (1 - delta'^2) = (5/4) 4 q (1 - q), the force delta^(3/2) over the
+    /// impulse 2 in the scaled time T = 2 delta_max F(1) of the whole contact gives
+    /// dq/ds = (T/2) delta^(3/2) = F(1) (5/4) (4 q (1 - q))^(3/5).
+    fn fraction_and_shape(&self, s: f64) -> (f64, f64) {
+        let q = self.fraction(s);
+        let shape = match self {
+            ProfileRef::HalfSine => PI / 2.0 * (PI * s).sin(),
+            ProfileRef::Hertz => common::hertz_half() * 1.25 * (4.0 * q * (1.0 - q)).powf(0.6),
+            ProfileRef::SinePower(n) => {
+                PI * (PI * s).sin().max(0.0).powf(*n) / common::beta_fn(0.5 * (n + 1.0), 0.5)
+            }
+            ProfileRef::Rectangle => 1.0,
+            ProfileRef::Table(t) => t.shape(s),
+        };
+        (q, shape)
+    }
+
     fn time(&self, q: f64) -> f64 {
         match self {
             ProfileRef::HalfSine => 2.0 / PI * q.sqrt().asin(),
@@ -191,10 +260,13 @@ struct SceneRef {
     name: String,
     balls: Balls,
     law: Law,
-    /// Constant mu (the reference does not cover speed-dependent friction).
-    constant_mu: bool,
-    table_effect: bool,
+    /// (a, b, c) of mu(S) = a + b exp(-c S) (`law.mu` is then 0).
+    speed_law: Option<(f64, f64, f64)>,
+    /// The cloth, with the table effect.
+    cloth: Option<Cloth>,
     pair: Pair,
+    /// Lab positions of A and B (zero for centre-of-mass scenes).
+    positions: [Vector3<f64>; 2],
     lab: bool,
     up: Vector3<f64>,
     duration: f64,
@@ -238,6 +310,12 @@ fn read_scene(path: &Path) -> SceneRef {
     };
     let contact = &t["contact"];
     let mu = num(contact.get("mu"));
+    let speed_law = contact.get("mu").and_then(|m| m.as_table()).map(|m| {
+        assert_eq!(m["model"].as_str(), Some("speed-dependent"));
+        assert!(m.get("evaluate").is_none(), "mu held at the initial slip");
+        let k = |key: &str| num(m.get(key)).unwrap();
+        (k("a"), k("b"), k("c"))
+    });
     let rule = match (num(contact.get("restitution")), num(contact.get("impulse"))) {
         (Some(e), None) => Rule::Restitution(e),
         (None, Some(p)) => Rule::Explicit(p),
@@ -270,7 +348,7 @@ fn read_scene(path: &Path) -> SceneRef {
         other => panic!("unknown shape {other}"),
     };
     let inc = &t["incoming"];
-    let (pair, lab, up) = if let Some(cm) = inc.get("cm") {
+    let (pair, lab, up, positions) = if let Some(cm) = inc.get("cm") {
         let z = toml::Value::Array(vec![0.0.into(), 0.0.into(), 0.0.into()]);
         (
             Pair::cm(
@@ -280,6 +358,7 @@ fn read_scene(path: &Path) -> SceneRef {
             ),
             false,
             Vector3::z(),
+            [Vector3::zeros(); 2],
         )
     } else {
         let lab = &inc["lab"];
@@ -301,6 +380,7 @@ fn read_scene(path: &Path) -> SceneRef {
             },
             true,
             up.normalize(),
+            [pa, pb],
         )
     };
     // The balls' material instead of a duration: Hertz's contact time at v = 2 U(0).
@@ -318,13 +398,31 @@ fn read_scene(path: &Path) -> SceneRef {
         )),
         _ => None,
     };
+    // The cloth's parameters with the defaults of docs/formats.md#cloth-parameters.
+    let cloth = flag("table").unwrap_or(false).then(|| {
+        let c = t.get("table");
+        let get = |k: &str, default: f64| num(c.and_then(|c| c.get(k))).unwrap_or(default);
+        assert!(
+            c.and_then(|c| c.get("height")).is_none(),
+            "the cloth r below"
+        );
+        Cloth {
+            mu: get("mu", 0.2),
+            restitution: get("restitution", 0.0),
+            g: get("g", 9.81),
+            rolling_resistance: get("rolling_resistance", 0.0),
+            spin_decay: get("spin_decay", 0.0),
+            up,
+        }
+    });
     SceneRef {
         name: path.file_name().unwrap().to_string_lossy().into_owned(),
         balls,
         law,
-        constant_mu: mu.is_some(),
-        table_effect: flag("table").unwrap_or(false),
+        speed_law,
+        cloth,
         pair,
+        positions,
         lab,
         up,
         duration: duration.or(hertz.map(|h| h.duration)).unwrap(),
@@ -346,6 +444,74 @@ impl SceneRef {
     fn to_cm(&self, p: &Pair) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         let rt = self.basis().transpose();
         (rt * (0.5 * (p.va - p.vb)), rt * p.wa, rt * p.wb)
+    }
+
+    /// The closed form of speed-dependent friction (tests/common/hard.rs: eqs 24-35 with
+    /// dS/dp = -k mu(S)) for this scene's incoming state, when it has such friction.
+    fn speed_dependent(&self) -> Option<hard::Exact> {
+        let abc = self.speed_law?;
+        let b = &self.balls;
+        let (u, wa, wb) = self.to_cm(&self.pair);
+        let (e, impulse) = match self.law.rule {
+            Rule::Restitution(e) => (e, None),
+            Rule::Explicit(p) => (0.0, Some(p)),
+        };
+        assert!(self.law.friction && self.law.stick);
+        let incoming = CmState::new(u, wa, wb);
+        Some(hard::Exact::speed_dependent(
+            b.m, b.r, b.alpha, abc, e, impulse, incoming,
+        ))
+    }
+
+    /// The expected outcome: the first-principles resolution, or for speed-dependent mu the
+    /// closed form taken back to the scene's frame (A moves with V + u, B with V - u, V the
+    /// centre of mass's velocity; spins rotate as vectors).
+    fn expected(&self) -> Expected {
+        let Some(x) = self.speed_dependent() else {
+            return resolve(&self.balls, &self.law, &self.pair);
+        };
+        let out = x.out();
+        let basis = self.basis();
+        let centre = 0.5 * (self.pair.va + self.pair.vb);
+        let s = out.state;
+        Expected {
+            collision: x.p > 0.0,
+            impulse: x.p,
+            s0: x.s0,
+            tangential: out.j,
+            s_out: out.slip,
+            sticks: x.sticks(),
+            p_stick: (x.p > 0.0 && x.s0 > 0.0).then_some(x.p_stick),
+            heat: out.heat,
+            heat_sliding: out.heat_sliding,
+            out: Pair {
+                n: self.pair.n,
+                va: centre + basis * s.u_cm,
+                vb: centre - basis * s.u_cm,
+                wa: basis * s.omega_a,
+                wb: basis * s.omega_b,
+            },
+        }
+    }
+
+    /// The slip S(p) after a normal impulse p: S(0) - k mu p for constant mu (k =
+    /// 2 (1 + 1/alpha) / m, eqs 25-33 along the slip), stopped at 0 by the stick rule; the
+    /// closed form's S(p) for mu(S).
+    fn slip_at(&self, want: &Expected, p: f64) -> f64 {
+        if let Some(x) = self.speed_dependent() {
+            return x.at(p).slip;
+        }
+        if !self.law.friction {
+            return want.s0;
+        }
+        let b = &self.balls;
+        let k = 2.0 * (1.0 + 1.0 / b.alpha) / b.m;
+        let s = want.s0 - k * self.law.mu * p;
+        if self.law.stick {
+            s.max(0.0)
+        } else {
+            s
+        }
     }
 }
 
@@ -488,7 +654,7 @@ fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
 /// The scaled distance of a report from the reference; checks the scalar fields on the way.
 fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut Worst) {
     let what = &format!("{} --method {method}", sc.name);
-    let tol = tol(method);
+    let tol = tol(method, sc.speed_law.is_some());
     let b = &sc.balls;
     let v = sc.pair.v_ref(b.r);
     let (spin, imp, energy) = (v / b.r, b.m * v, b.m * v * v);
@@ -572,7 +738,7 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
 /// Stick time and impulse against the profile's reference.
 fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut Worst) {
     let what = &format!("{} --method {method}", sc.name);
-    let tol = tol(method);
+    let tol = tol(method, sc.speed_law.is_some());
     if !want.collision {
         let none = j["stick_time"].is_null() && j["stick_impulse"].is_null();
         assert!(none, "{what}");
@@ -610,12 +776,113 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
     );
 }
 
+/// The JSON `table` object against the roll-out of tests/common/table.rs, started from the
+/// reference's outgoing lab state at the contact positions: times over the later end, speeds
+/// over v_ref, spins over v_ref / r, lengths over v_ref t_end, impulses over m v_ref + m g
+/// t_end, angles in degrees; counts and flags exactly.
+fn check_table(
+    sc: &SceneRef,
+    cloth: &Cloth,
+    want: &Expected,
+    j: &Value,
+    method: &str,
+    worst: &mut Worst,
+) {
+    let what = &format!("{} --method {method}", sc.name);
+    let b = &sc.balls;
+    let table = &j["table"];
+    let outs: [RollOut; 2] = [
+        cloth.roll_out(b, sc.positions[0], want.out.va, want.out.wa),
+        cloth.roll_out(b, sc.positions[1], want.out.vb, want.out.wb),
+    ];
+    let end = outs[0].end_time.max(outs[1].end_time);
+    let v = sc.pair.v_ref(b.r);
+    let (time, speed, spin, length) = (end, v, v / b.r, v * end);
+    let impulse = b.m * v + b.m * cloth.g * end;
+    let mut errs = vec![(f(table, "end_time") - end).abs() / time];
+    let (mut angles, mut heights) = (Vec::new(), Vec::new());
+    let line = sc.pair.n;
+    for (k, (key, x)) in ["a", "b"].iter().zip(&outs).enumerate() {
+        let got = &table[key];
+        let imp = &got["impact"];
+        let d = |v: &Value, w: Vector3<f64>, scale: f64| amax(&(arr(v) - w)) / scale;
+        let t = |key: &str, w: f64| (f(got, key) - w).abs() / time;
+        errs.extend([
+            t("hop_time", x.hop_time),
+            t("settle_time", x.settle_time),
+            t("slide_time", x.slide_time),
+            t("roll_time", x.roll_time),
+            (f(imp, "time") - x.impact.time).abs() / time,
+            d(&imp["velocity"], x.impact.velocity, speed),
+            d(&imp["spin"], x.impact.spin, spin),
+            (f(imp, "normal_impulse") - x.impact.normal_impulse).abs() / impulse,
+            (f(imp, "tangential_impulse") - x.impact.tangential_impulse).abs() / impulse,
+            d(&got["slide_displacement"], x.slide_displacement, length),
+            d(&got["rolling"]["velocity"], x.rolling_velocity, speed),
+            d(&got["rolling"]["spin"], x.rolling_spin, spin),
+            d(&got["rolling"]["position"], x.rolling_position, length),
+            d(&got["table_impulse"], x.table_impulse, impulse),
+        ]);
+        heights.push((f(got, "hop_height") - x.hop_height).abs() / (v * v / cloth.g));
+        assert_eq!(
+            got["bounces"].as_u64(),
+            Some(x.bounces),
+            "{what}: {key} bounces"
+        );
+        assert_eq!(
+            imp["sticks"], x.impact.sticks,
+            "{what}: {key} impact sticks"
+        );
+        match x.rest {
+            Some((t_rest, at)) => {
+                errs.push((f(&got["rest"], "time") - t_rest).abs() / time);
+                errs.push(d(&got["rest"]["position"], at, length));
+            }
+            None => assert!(got.get("rest").is_none(), "{what}: {key} rest"),
+        }
+        // Directions: from the line of centres; the deflection from the incoming direction
+        // of a ball that moved (B comes in at rest in every scene).
+        angles.push((f(got, "direction_deg") - cloth.angle_deg(&line, &x.rolling_velocity)).abs());
+        let incoming = [sc.pair.va, sc.pair.vb][k];
+        if incoming.cross(&cloth.up).norm() > 0.0 {
+            let deflection = cloth.angle_deg(&incoming, &x.rolling_velocity);
+            angles.push((f(got, "deflection_deg") - deflection).abs());
+        } else {
+            assert!(got.get("deflection_deg").is_none(), "{what}: {key}");
+        }
+    }
+    for (key, x) in [
+        ("mu", cloth.mu),
+        ("restitution", cloth.restitution),
+        ("g", cloth.g),
+        ("rolling_resistance", cloth.rolling_resistance),
+        ("spin_decay", cloth.spin_decay),
+    ] {
+        assert_eq!(f(table, key), x, "{what}: table.{key}");
+    }
+    let tol = tol(method, sc.speed_law.is_some());
+    let largest = errs.iter().chain(&heights).cloned().fold(0.0, f64::max);
+    note(worst, format!("{method} table"), largest);
+    assert!(
+        largest <= tol.table,
+        "{what}: table errors {errs:?} {heights:?} > {:e}",
+        tol.table
+    );
+    let largest = angles.iter().cloned().fold(0.0, f64::max);
+    note(worst, format!("{method} table_deg"), largest);
+    assert!(
+        largest <= tol.table_deg,
+        "{what}: table angles {angles:?} > {:e}",
+        tol.table_deg
+    );
+}
+
 #[test]
 fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
     let mut worst = Worst::new();
     for path in profile_scenes() {
         let sc = read_scene(&path);
-        let want = resolve(&sc.balls, &sc.law, &sc.pair);
+        let want = sc.expected();
         let p = path.to_str().unwrap();
         for method in METHODS {
             // The scene's own settings: runs, keeps the contract.
@@ -626,12 +893,12 @@ fn every_scene_runs_with_every_method_and_agrees_with_the_reference() {
             // At rtol 1e-12: agrees with the reference.
             let j = json(&["run", p, "--json", "--method", method, "--rtol", "1e-12"]);
             check_contract(&j, sc.lab, method, &what);
-            if !sc.constant_mu || sc.table_effect {
-                eprintln!("{what}: no independent reference (speed-dependent mu or table)");
-                continue;
-            }
             compare(&sc, &want, &j, method, &mut worst);
             check_stick(&sc, &want, &j, method, &mut worst);
+            match &sc.cloth {
+                Some(cloth) => check_table(&sc, cloth, &want, &j, method, &mut worst),
+                None => assert!(j.get("table").is_none(), "{what}"),
+            }
             if !want.collision {
                 // No collision: the state is unchanged, exactly.
                 assert_eq!(j["cm_out"], j["cm_in"], "{what}");
@@ -676,20 +943,54 @@ fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
     (header, rows)
 }
 
+/// The trace's `f (N)` and `H_sfr (J)` columns at the row's time t (every row of a sampled
+/// trace, every fifth of a trace by steps, and the last): the profile's force
+/// P phi'(t / duration) / duration by its formula ([`ProfileRef::fraction_and_shape`]), and the heat of
+/// sliding friction at the exact impulse p = P phi(t / duration), H_sfr(p) = integral_0^p
+/// mu(S) S dp'. Along the slip dS/dp = -k mu(S) (k = 2 (1 + 1/alpha) / m), so
+/// mu S dp = -S dS / k and H_sfr(p) = (S(0)^2 - S(p)^2) / (2 k) for any mu(S), with S(p)
+/// from [`SceneRef::slip_at`]. Returns the largest scaled differences (force, heat).
+fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f64, f64) {
+    let b = &sc.balls;
+    let k = 2.0 * (1.0 + 1.0 / b.alpha) / b.m;
+    let v = sc.pair.v_ref(b.r);
+    let (mut force, mut heat) = (0.0f64, 0.0f64);
+    let stride = if rows.len() > 2 * SAMPLES as usize {
+        5
+    } else {
+        1
+    };
+    let last = rows.len() - 1;
+    for r in rows.iter().step_by(stride).chain(&rows[last..]) {
+        let s = r[0].unwrap() / sc.duration;
+        let (q, shape) = sc.profile.fraction_and_shape(s);
+        let f_want = want.impulse / sc.duration * shape;
+        force = force.max((r[1].unwrap() - f_want).abs() / (want.impulse / sc.duration));
+        let p = want.impulse * q;
+        let slip = sc.slip_at(want, p);
+        let h_want = (want.s0 * want.s0 - slip * slip) / (2.0 * k);
+        heat = heat.max((r[14].unwrap() - h_want).abs() / (b.m * v * v));
+    }
+    (force, heat)
+}
+
 /// Trace CSV: the contract header; with --samples N rows at exactly t = i duration / N plus
 /// the stop once; time strictly increasing; S = 0 from the stop on; numbers finite; theta
-/// empty only when S(0) = 0.
+/// empty only when S(0) = 0; the force and sliding heat of each row ([`trace_values`]).
 #[test]
 fn trace_csv_follows_the_contract() {
     assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
     let n = SAMPLES.to_string();
+    let dir = fresh_dir("cli_scenes_trace");
+    let mut worst = Worst::new();
     for path in profile_scenes() {
         let sc = read_scene(&path);
+        let want = sc.expected();
         let p = path.to_str().unwrap();
         for method in METHODS {
             for sampled in [true, false] {
                 let what = format!("{} {method} samples {sampled}", path.display());
-                let file = tmp(&format!(
+                let file = dir.join(format!(
                     "{}-{method}-{sampled}.csv",
                     path.file_stem().unwrap().to_str().unwrap()
                 ));
@@ -702,6 +1003,14 @@ fn trace_csv_follows_the_contract() {
                 let (header, rows) = read_trace(&file);
                 assert_eq!(header, TRACE_HEADER, "{what}");
                 assert!(rows.iter().all(|r| r.len() == 15), "{what}: row width");
+                let (force, heat) = trace_values(&sc, &want, &rows);
+                note(&mut worst, format!("{method} trace f"), force);
+                note(&mut worst, format!("{method} trace H_sfr"), heat);
+                let tol = tol(method, sc.speed_law.is_some());
+                assert!(
+                    force <= tol.trace_force && heat <= tol.trace_heat,
+                    "{what}: force {force:e}, H_sfr {heat:e}"
+                );
                 let t: Vec<f64> = rows.iter().map(|r| r[0].unwrap()).collect();
                 assert!(
                     t.windows(2).all(|w| w[0] < w[1]),
@@ -760,6 +1069,9 @@ fn trace_csv_follows_the_contract() {
             }
         }
     }
+    for (k, w) in &worst {
+        eprintln!("traces at the default settings, {k}: largest error {w:.2e}");
+    }
 }
 
 /// A failing run writes no trace: bad input (exit 2) and a run that fails after the trace
@@ -767,8 +1079,7 @@ fn trace_csv_follows_the_contract() {
 /// an existing file is left as it was.
 #[test]
 fn failed_runs_leave_no_trace_file() {
-    let dir = tmp("failing");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("cli_scenes_failing");
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "[balls]\nmass = -1.0\n").unwrap();
     // Speeds whose squares overflow: the outgoing kinetic energy is not finite.
@@ -813,4 +1124,76 @@ fn failed_runs_leave_no_trace_file() {
     }
     let err = String::from_utf8(run(&["run", huge.to_str().unwrap(), "--json"]).stderr).unwrap();
     assert!(err.contains("non-finite"), "{err}");
+}
+
+/// `--path FILE --path-samples N` (docs/formats.md#ball-path-csv): rows at t = i T / N,
+/// i = 0..N (T = `table.end_time`), plus every change of phase of either ball (impacts,
+/// the start of rolling, rest), and at each impact with the cloth two rows sharing the time.
+/// The event times come from the roll-out of tests/common/table.rs.
+#[test]
+fn path_rows_are_the_samples_and_the_events() {
+    let dir = fresh_dir("cli_scenes_path");
+    for name in ["draw_table.toml", "jump_follow.toml"] {
+        let path = root().join("data/scenes").join(name);
+        let sc = read_scene(&path);
+        let want = sc.expected();
+        let cloth = sc.cloth.unwrap();
+        let b = &sc.balls;
+        let outs = [
+            cloth.roll_out(b, sc.positions[0], want.out.va, want.out.wa),
+            cloth.roll_out(b, sc.positions[1], want.out.vb, want.out.wb),
+        ];
+        let end = outs[0].end_time.max(outs[1].end_time);
+        // Distinct times, equal within round-off of the end time.
+        let distinct = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v.dedup_by(|x, y| (*x - *y).abs() <= 1e-12 * end);
+            v
+        };
+        let mut impacts = Vec::new();
+        let mut events = Vec::new();
+        for o in &outs {
+            impacts.extend(&o.impacts);
+            events.extend(&o.impacts);
+            events.push(o.roll_time);
+            events.extend(o.rest.map(|r| r.0));
+        }
+        let impacts = distinct(impacts);
+        assert!(!impacts.is_empty(), "{name}: no impact");
+        for n in [10u32, 37] {
+            let file = dir.join(format!("path-{name}-{n}.csv"));
+            let n_s = n.to_string();
+            let args = [
+                "run",
+                path.to_str().unwrap(),
+                "--method",
+                "closed-form",
+                "--path",
+                file.to_str().unwrap(),
+                "--path-samples",
+                n_s.as_str(),
+            ];
+            ok_stdout(&args);
+            let text = std::fs::read_to_string(&file).unwrap();
+            let t: Vec<f64> = text
+                .lines()
+                .skip(1)
+                .map(|l| l.split(',').next().unwrap().parse().unwrap())
+                .collect();
+            let samples: Vec<f64> = (0..=n).map(|i| f64::from(i) * end / f64::from(n)).collect();
+            for s in &samples {
+                assert!(
+                    t.iter().any(|x| (x - s).abs() <= 1e-12 * end),
+                    "{name} N = {n}: no row at t = {s}"
+                );
+            }
+            let times = distinct(samples.into_iter().chain(events.clone()).collect());
+            assert_eq!(
+                t.len(),
+                times.len() + impacts.len(),
+                "{name} N = {n}: rows at {t:?}"
+            );
+            std::fs::remove_file(&file).unwrap();
+        }
+    }
 }

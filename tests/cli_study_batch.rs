@@ -1,24 +1,13 @@
 //! The `work-precision` and `batch` commands end to end: files written, header contract,
 //! figure, atomic output, exit codes.
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bc-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod cli_common;
+use cli_common::{command, fresh_dir};
 
 #[test]
 fn work_precision_writes_csv_svg_png_md() {
-    let dir = temp_dir("wp");
-    let out = bin()
+    let dir = fresh_dir("cli_study_batch_wp");
+    let out = command()
         .args([
             "work-precision",
             "--profiles",
@@ -54,7 +43,7 @@ fn work_precision_writes_csv_svg_png_md() {
     assert!(md.contains("Against the half-sine"), "{md}");
     // Redraw from the CSV alone.
     std::fs::remove_file(dir.join("work_precision.png")).unwrap();
-    let re = bin()
+    let re = command()
         .args(["work-precision", "--replot", "--out"])
         .arg(&dir)
         .output()
@@ -79,7 +68,7 @@ fn work_precision_writes_csv_svg_png_md() {
         format!("{csv}{peer}\n{gone}\n"),
     )
     .unwrap();
-    let again = bin()
+    let again = command()
         .args([
             "work-precision",
             "--profiles",
@@ -106,11 +95,11 @@ fn work_precision_writes_csv_svg_png_md() {
 
 #[test]
 fn batch_writes_atomically_and_names_bad_lines() {
-    let dir = temp_dir("batch");
+    let dir = fresh_dir("cli_study_batch_batch");
     let input = dir.join("in.csv");
     std::fs::write(&input, "id,u_x,u_y,u_z\na,1.0,0.2,0\nb,-0.5,0.1,0\n").unwrap();
     let output = dir.join("out.csv");
-    let ok = bin()
+    let ok = command()
         .arg("batch")
         .arg(&input)
         .arg("--out")
@@ -132,7 +121,7 @@ fn batch_writes_atomically_and_names_bad_lines() {
 
     // A bad line: exit 2, the line named, the previous output untouched.
     std::fs::write(&input, "u_x,u_y,u_z\n1,0,0\n1,x,0\n").unwrap();
-    let bad = bin()
+    let bad = command()
         .arg("batch")
         .arg(&input)
         .arg("--out")

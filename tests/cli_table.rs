@@ -1,32 +1,16 @@
 //! The command line with the table effect: `--path`, `--plot`, the JSON `table` object,
 //! and clear errors when the table effect is missing.
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-}
-
-fn scene(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(name)
-}
-
-fn temp_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bc-cli-table-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod cli_common;
+use cli_common::{command, fresh_dir, scene_path as scene};
 
 /// The jump scene: A hops and bounces, B is pushed into the cloth; the path runs until both
 /// roll, with two rows (before, after) at every impact; the plot is an SVG top view.
 #[test]
 fn jump_scene_writes_path_and_plot() {
-    let dir = temp_dir("jump");
+    let dir = fresh_dir("cli_table_jump");
     let (csv, svg) = (dir.join("path.csv"), dir.join("paths.svg"));
-    let out = bin()
+    let out = command()
         .arg("run")
         .arg(scene("jump_follow.toml"))
         .args(["--json", "--path"])
@@ -85,9 +69,9 @@ fn jump_scene_writes_path_and_plot() {
 /// and no file is written.
 #[test]
 fn path_without_the_table_effect_is_a_clear_error() {
-    let dir = temp_dir("off");
+    let dir = fresh_dir("cli_table_off");
     let csv = dir.join("path.csv");
-    let out = bin()
+    let out = command()
         .arg("run")
         .arg(scene("default.toml"))
         .arg("--path")
@@ -104,7 +88,7 @@ fn path_without_the_table_effect_is_a_clear_error() {
 /// The summary of a table scene prints the roll-out of both balls.
 #[test]
 fn summary_prints_the_roll_out_of_both_balls() {
-    let out = bin()
+    let out = command()
         .arg("run")
         .arg(scene("draw_table.toml"))
         .output()
@@ -132,7 +116,7 @@ fn table_json_values_of_a_stun_cut() {
     const M: f64 = 0.17;
     const R: f64 = 0.028575;
     let (g, mu_c, mu_r, s) = (9.81, 0.2, 0.01, 2.0);
-    let dir = temp_dir("stun");
+    let dir = fresh_dir("cli_table_stun");
     for (cut_deg, resistance) in [(30.0f64, 0.0), (-30.0, 0.0), (-30.0, mu_r)] {
         let cut = cut_deg.to_radians();
         let (u, v) = (s * cut.cos(), s * cut.sin());
@@ -168,7 +152,12 @@ rolling_resistance = {resistance}
             ),
         )
         .unwrap();
-        let out = bin().arg("run").arg(&path).arg("--json").output().unwrap();
+        let out = command()
+            .arg("run")
+            .arg(&path)
+            .arg("--json")
+            .output()
+            .unwrap();
         assert!(
             out.status.success(),
             "{}",
@@ -228,4 +217,60 @@ rolling_resistance = {resistance}
         close(num(&table["end_time"]), ends[0].max(ends[1]), "end_time");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A full stun hit, frictionless and elastic: A stops dead (velocity and spin 0, so its
+/// `rolling.velocity` is zero) and has neither `direction_deg` nor `deflection_deg`
+/// (docs/formats.md#the-table-object); B takes A's velocity along the line of centres, so
+/// its direction is 0 degrees.
+#[test]
+fn a_ball_that_stops_dead_has_no_direction() {
+    const R: f64 = 0.028575;
+    let dir = fresh_dir("cli_table_dead");
+    let path = dir.join("full.toml");
+    std::fs::write(
+        &path,
+        format!(
+            r#"
+name = "full stun hit"
+[balls]
+mass = 0.17
+radius = {R}
+[contact]
+mu = 0.0
+restitution = 1.0
+[contact.profile]
+shape = "half-sine"
+duration = 2.5e-4
+[incoming.lab]
+a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [2.0, 0.0, 0.0] }}
+b = {{ position = [{R:?}, 0.0, {R:?}], velocity = [0.0, 0.0, 0.0] }}
+[solver]
+method = "closed-form"
+[effects]
+table = true
+"#,
+            a = -R
+        ),
+    )
+    .unwrap();
+    let out = command()
+        .arg("run")
+        .arg(&path)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (a, b) = (&json["table"]["a"], &json["table"]["b"]);
+    for k in 0..3 {
+        assert_eq!(a["rolling"]["velocity"][k].as_f64(), Some(0.0), "{a}");
+    }
+    assert!(a.get("direction_deg").is_none() && a.get("deflection_deg").is_none());
+    assert_eq!(b["direction_deg"].as_f64(), Some(0.0), "{b}");
+    assert!(b.get("deflection_deg").is_none(), "B came in at rest");
 }

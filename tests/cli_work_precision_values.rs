@@ -6,9 +6,9 @@
 //! integrated exactly; the evaluation counts follow from the steps (4 per rk4 step; 6 and
 //! 12 per dopri5 and dop853 step, plus 3 to start).
 
+mod cli_common;
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::process::Command;
 
 type Row = HashMap<String, String>;
 
@@ -23,7 +23,7 @@ fn study_values_on_a_scene_with_hertz_sine_power_and_tabulated() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_work_precision_values");
     let _ = std::fs::remove_dir_all(&dir);
     let scene = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/scenes/stun_cut_slides.toml");
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+    let out = cli_common::command()
         .arg("work-precision")
         .arg(&scene)
         .args([

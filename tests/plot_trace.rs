@@ -3,26 +3,15 @@
 //! and profile, sliding, sticking and without sliding; the command writes a valid SVG or
 //! PNG, and refuses any other extension for every figure option.
 
+mod cli_common;
+
 use billiard_contact::formats::scene::SolverOverrides;
 use billiard_contact::formats::trace::{Tee, HEADER};
 use billiard_contact::plot::trace::TraceFigure;
 use billiard_contact::profile::ProfileKind;
 use billiard_contact::work_precision::study_profile;
 use billiard_contact::{run_scene, CsvTrace, Method, Sampling, Scene};
-use std::path::PathBuf;
-use std::process::Command;
-
-fn scene_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("data/scenes")
-        .join(name)
-}
-
-fn temp_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("bc-plot-trace-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use cli_common::{command, fresh_dir, scene_path};
 
 /// The CSV's header and its columns, an empty cell as `None` (read with the csv crate,
 /// independently of the figure).
@@ -135,21 +124,17 @@ fn check_stop(
     }
 }
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
-}
-
 /// The command writes a valid SVG (one document with the scene's name in its title) and a
 /// PNG that decodes to the figure's size, for every method, sliding and sticking.
 #[test]
 fn the_command_writes_a_valid_svg_and_png() {
-    let dir = temp_dir("files");
+    let dir = fresh_dir("plot_trace_files");
     for name in ["stun_cut_slides.toml", "stun_cut_sticks.toml"] {
         let scene = Scene::load(&scene_path(name)).unwrap();
         for method in Method::ALL {
             let (svg, png) = (dir.join("t.svg"), dir.join("t.png"));
             for file in [&svg, &png] {
-                let out = bin()
+                let out = command()
                     .arg("run")
                     .arg(scene_path(name))
                     .args(["--method", method.name(), "--plot-trace"])
@@ -189,11 +174,11 @@ fn the_command_writes_a_valid_svg_and_png() {
 /// With --trace, the CSV is written as without the figure.
 #[test]
 fn the_trace_csv_is_the_same_with_the_figure() {
-    let dir = temp_dir("same");
+    let dir = fresh_dir("plot_trace_same");
     let mut csvs = Vec::new();
     for plot in [false, true] {
         let csv = dir.join(format!("t{plot}.csv"));
-        let mut cmd = bin();
+        let mut cmd = command();
         cmd.arg("run")
             .arg(scene_path("stun_cut_sticks.toml"))
             .arg("--trace")
@@ -213,7 +198,7 @@ fn the_trace_csv_is_the_same_with_the_figure() {
 /// line naming the option, the file and the accepted extensions), and nothing is written.
 #[test]
 fn other_extensions_are_refused_for_every_figure_option() {
-    let dir = temp_dir("ext");
+    let dir = fresh_dir("plot_trace_ext");
     for (option, scene) in [
         ("--plot-trace", "default.toml"),
         ("--plot", "draw_table.toml"),
@@ -221,7 +206,7 @@ fn other_extensions_are_refused_for_every_figure_option() {
     ] {
         for file in ["p.pdf", "p", "p.svg.txt"] {
             let path = dir.join(file);
-            let out = bin()
+            let out = command()
                 .arg("run")
                 .arg(scene_path(scene))
                 .arg(option)

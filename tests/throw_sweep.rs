@@ -5,8 +5,8 @@
 //! Expected values come from the paper's closed form worked by hand for these shots (the
 //! derivations are next to each test), never from the code under test.
 
+mod cli_common;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const A: f64 = 9.951e-3;
 const B: f64 = 0.108;
@@ -56,7 +56,7 @@ fn sweep(evaluate: &str, spin: &str, method: &str) -> (Vec<String>, Vec<Row>) {
         std::process::id()
     ));
     std::fs::create_dir_all(&dir).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+    let out = cli_common::command()
         .arg("sweep")
         .arg(scene(&dir, evaluate))
         .args([
@@ -246,7 +246,7 @@ fn bad_options_are_one_line_errors() {
         (["--spin", "masse"], "--spin"),
         (["--cut", "95"], "(-90, 90)"),
     ] {
-        let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+        let out = cli_common::command()
             .arg("sweep")
             .args(args)
             .args(["--out", "/nonexistent-never-written"])

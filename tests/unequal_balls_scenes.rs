@@ -4,6 +4,7 @@
 //! the scene's balls, and the identical-ball limit given as a pair reproducing `[balls]`
 //! byte for byte.
 
+mod cli_common;
 mod common;
 
 use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
@@ -12,7 +13,6 @@ use common::unequal::{momentum, Sphere};
 use common::{amax, Pair};
 use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn bar_table() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/scenes/bar_table_cut.toml")
@@ -248,7 +248,7 @@ fn run_bar_table_writing(option: &str, name: &str) -> (serde_json::Value, String
     let dir = std::env::temp_dir().join(format!("bc-unequal-{option}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join(name);
-    let out = Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+    let out = cli_common::command()
         .arg("run")
         .arg(bar_table())
         .arg("--json")

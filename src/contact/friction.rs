@@ -375,20 +375,4 @@ mod tests {
             );
         }
     }
-
-    #[test]
-    fn b_zero_reduces_to_constant_mu() {
-        let sd = SlidingLaw::new(
-            Friction::speed_dependent(0.07, 0.0, 3.0).unwrap(),
-            1.0,
-            30.0,
-            true,
-        );
-        let cm = SlidingLaw::new(Friction::constant(0.07).unwrap(), 1.0, 30.0, true);
-        for p in [0.0, 0.1, 0.3, 0.47, 0.6] {
-            let (x, y) = (sd.at(p), cm.at(p));
-            assert!((x.slip - y.slip).abs() < 1e-15);
-            assert!((x.tangential_impulse - y.tangential_impulse).abs() < 1e-15);
-        }
-    }
 }

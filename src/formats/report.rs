@@ -346,12 +346,15 @@ pub struct RollOutJson {
     pub roll_time: Num,
     /// Once rolling.
     pub rolling: RollingJson,
-    /// Rolling direction, degrees counter-clockwise about up from the line of centres;
-    /// absent when it ends at rest.
+    /// Rolling direction (of `rolling.velocity`), degrees counter-clockwise about up from
+    /// the line of centres; absent when that velocity is zero (the ball does not move once
+    /// it stops sliding). A ball that rolls and then comes to rest with rolling resistance
+    /// keeps it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub direction_deg: Option<Num>,
     /// From the incoming direction of travel to the rolling direction, degrees
-    /// counter-clockwise about up; absent for a ball that came in at rest or ends at rest.
+    /// counter-clockwise about up; absent for a ball that came in at rest or whose
+    /// `rolling.velocity` is zero (present when it rolls, then rests).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub deflection_deg: Option<Num>,
     /// Where it rests (rolling resistance on); absent otherwise.

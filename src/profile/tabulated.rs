@@ -349,36 +349,6 @@ mod tests {
         assert_eq!(p.duration(), 2.0);
     }
 
-    #[test]
-    fn errors_name_the_line() {
-        let path = Path::new("p.csv");
-        let cases = [
-            ("time,force\n0,1\n0,2\n", 3, "strictly increasing"),
-            ("time,force\n0,1\n1,-2\n", 3, "negative"),
-            ("time,force\n0,1\n1,nan\n", 3, "not finite"),
-            ("time,force\n0,1\n1,abc\n", 3, "not a number"),
-            ("time,force\n0.5,1\n1,1\n", 2, "start at time 0"),
-            ("t,f\n0,1\n", 1, "header"),
-            ("time,force\n0,1\n1,2,3\n", 3, "two cells"),
-        ];
-        for (text, line, what) in cases {
-            match parse_table(text, path) {
-                Err(Error::ProfileTable {
-                    line: l, message, ..
-                }) => {
-                    assert_eq!(l, line, "{text:?}: {message}");
-                    assert!(message.contains(what), "{text:?}: {message}");
-                }
-                other => panic!("{text:?}: {other:?}"),
-            }
-        }
-        let one = parse_table("time,force\n0,1\n", path).unwrap();
-        let e = Tabulated::new(&one, None, path).unwrap_err().to_string();
-        assert!(e.contains("at least two"), "{e}");
-        let zero = parse_table("time,force\n0,0\n1,0\n", path).unwrap();
-        assert!(Tabulated::new(&zero, None, path).is_err());
-    }
-
     /// Points given directly get the checks `parse_table` makes, naming the point.
     #[test]
     fn new_checks_the_points() {

@@ -101,7 +101,8 @@ impl TableOutcome {
 
     /// Deflection (degrees, counter-clockwise about up) from a ball's incoming direction of
     /// travel to its rolling direction: the cue ball's deflection. `which` is 0 for A, 1
-    /// for B. `None` for a ball that came in at rest or ends at rest.
+    /// for B. `None` for a ball that came in at rest or whose rolling velocity is zero (a
+    /// ball that rolls and then rests with rolling resistance has one).
     pub fn deflection_deg(&self, which: usize, r: &RollOut) -> Option<f64> {
         self.angle_deg(&self.incoming[which], &r.rolling.velocity)
     }

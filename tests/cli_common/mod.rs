@@ -6,9 +6,14 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The binary as a command, for arguments built from paths.
+pub fn command() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_billiard-contact"))
+}
+
 /// Runs the binary with `args`, in `dir` when given.
 pub fn bin_in(dir: Option<&Path>, args: &[&str]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_billiard-contact"));
+    let mut c = command();
     if let Some(d) = dir {
         c.current_dir(d);
     }
@@ -21,12 +26,15 @@ pub fn bin(args: &[&str]) -> Output {
 }
 
 /// The path of a shipped scene, `data/scenes/NAME`.
-pub fn scene(name: &str) -> String {
+pub fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("data/scenes")
         .join(name)
-        .to_string_lossy()
-        .into_owned()
+}
+
+/// [`scene_path`] as a string, for argument lists.
+pub fn scene(name: &str) -> String {
+    scene_path(name).to_string_lossy().into_owned()
 }
 
 /// A fresh, empty directory for the test `tag`.

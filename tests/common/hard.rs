@@ -217,7 +217,7 @@ impl Exact {
 }
 
 #[path = "mod.rs"]
-mod first_principles;
+pub mod first_principles;
 
 /// Phi(s) of the Hertz pulse: the inverse of tests/common's `hertz_time`, the quadrature of
 /// the energy integral of delta'' = -delta^(3/2) (not the library's `Hertz`), by the

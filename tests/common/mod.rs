@@ -2,13 +2,14 @@
 //!
 //! Nothing here calls the code under test: the collision is resolved from first principles
 //! (contact-point velocities, Coulomb friction opposing the slip, r x F torques), in any
-//! frame, and the force profiles' cumulative impulses are computed by their own formulas or
-//! quadratures. Each test file uses a part of it (hence `dead_code`).
+//! frame, the force profiles' cumulative impulses are computed by their own formulas or
+//! quadratures, and a ball's roll-out on the cloth follows its physics (`table`). Each test file uses a part of it (hence `dead_code`).
 #![allow(dead_code)]
 
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
+pub mod table;
 pub mod unequal;
 
 // ---------------------------------------------------------------------------------------
