@@ -2,7 +2,7 @@
 //! and clear errors when the table effect is missing.
 
 mod cli_common;
-use cli_common::{command, fresh_dir, scene_path as scene};
+use cli_common::{command, fresh_dir, scene_path as scene, succeeded};
 
 /// The jump scene: A hops and bounces, B is pushed into the cloth; the path runs until both
 /// roll, with two rows (before, after) at every impact; the plot is an SVG top view.
@@ -19,11 +19,7 @@ fn jump_scene_writes_path_and_plot() {
         .arg(&svg)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let a = &json["table"]["a"];
     let hop = a["hop_time"].as_f64().unwrap();
@@ -158,11 +154,7 @@ rolling_resistance = {resistance}
             .arg("--json")
             .output()
             .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        succeeded(&out);
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let table = &json["table"];
         let num = |x: &serde_json::Value| x.as_f64().unwrap_or_else(|| panic!("{x}"));
@@ -260,11 +252,7 @@ table = true
         .arg("--json")
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let (a, b) = (&json["table"]["a"], &json["table"]["b"]);
     for k in 0..3 {
