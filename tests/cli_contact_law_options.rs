@@ -5,7 +5,7 @@
 //! integrates the normal law with dop853 at them).
 
 mod cli_common;
-use cli_common::{bin, fresh_dir, scene, warned};
+use cli_common::{bin, fresh_dir, scene, succeeded, warned};
 
 /// The rows of a trace CSV: (t, p, S) and the header.
 fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
@@ -29,11 +29,7 @@ fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = bin(args);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     serde_json::from_slice(&out.stdout).unwrap()
 }
 

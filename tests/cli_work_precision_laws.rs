@@ -13,7 +13,7 @@
 //!   damping, so 1 - e(v) = 0.05 v^(1/5) up to terms of order (1 - e)^2.
 
 mod cli_common;
-use cli_common::{bin, fresh_dir, scene};
+use cli_common::{bin, csv_rows, fresh_dir, scene, succeeded};
 use std::collections::HashMap;
 
 type Row = HashMap<String, String>;
@@ -32,24 +32,8 @@ fn study(name: &str, args: &[&str]) -> Vec<Row> {
     all.extend_from_slice(args);
     all.extend(["--repeats", "1", "--out", dir_arg.as_str()]);
     let out = bin(&all);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
-    let mut r = csv::Reader::from_reader(text.as_bytes());
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    let rows = r
-        .records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect();
+    succeeded(&out);
+    let rows = csv_rows(&dir.join("work_precision.csv"));
     std::fs::remove_dir_all(&dir).ok();
     rows
 }
