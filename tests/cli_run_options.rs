@@ -9,7 +9,7 @@
 mod cli_common;
 mod common;
 
-use cli_common::{bin, fresh_dir, refused, scene};
+use cli_common::{bin, fresh_dir, refused, scene, succeeded};
 use common::{amax, resolve, Balls, Law, Pair, Rule};
 use nalgebra::Vector3;
 use serde_json::Value;
@@ -151,11 +151,7 @@ fn plot_writes_a_png_of_the_figures_size() {
             "--plot",
             file.to_str().unwrap(),
         ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        succeeded(&out);
     }
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");

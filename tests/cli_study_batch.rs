@@ -2,7 +2,7 @@
 //! figure, atomic output, exit codes.
 
 mod cli_common;
-use cli_common::{command, fresh_dir};
+use cli_common::{command, fresh_dir, succeeded};
 
 #[test]
 fn work_precision_writes_csv_svg_png_md() {
@@ -19,11 +19,7 @@ fn work_precision_writes_csv_svg_png_md() {
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let csv = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
     let mut lines = csv.lines();
     assert!(lines.next().unwrap().starts_with(
@@ -107,11 +103,7 @@ fn batch_writes_atomically_and_names_bad_lines() {
         .args(["--threads", "2"])
         .output()
         .unwrap();
-    assert!(
-        ok.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ok.stderr)
-    );
+    succeeded(&ok);
     let text = std::fs::read_to_string(&output).unwrap();
     let rows: Vec<&str> = text.lines().collect();
     assert_eq!(rows.len(), 3);

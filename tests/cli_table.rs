@@ -2,7 +2,7 @@
 //! and clear errors when the table effect is missing.
 
 mod cli_common;
-use cli_common::{command, fresh_dir, scene_path as scene};
+use cli_common::{command, fresh_dir, scene_path as scene, succeeded};
 
 /// The jump scene: A hops and bounces, B is pushed into the cloth; the path runs until both
 /// roll, with two rows (before, after) at every impact; the plot is an SVG top view.
@@ -19,11 +19,7 @@ fn jump_scene_writes_path_and_plot() {
         .arg(&svg)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let a = &json["table"]["a"];
     let hop = a["hop_time"].as_f64().unwrap();
@@ -120,50 +116,8 @@ fn table_json_values_of_a_stun_cut() {
     for (cut_deg, resistance) in [(30.0f64, 0.0), (-30.0, 0.0), (-30.0, mu_r)] {
         let cut = cut_deg.to_radians();
         let (u, v) = (s * cut.cos(), s * cut.sin());
-        let path = dir.join("stun.toml");
-        std::fs::write(
-            &path,
-            format!(
-                r#"
-name = "stun cut"
-[balls]
-mass = {M}
-radius = {R}
-alpha = 0.4
-[contact]
-mu = 0.0
-restitution = 1.0
-[contact.profile]
-shape = "half-sine"
-duration = 2.5e-4
-[incoming.lab]
-a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [{u:?}, {v:?}, 0.0] }}
-b = {{ position = [{R:?}, 0.0, {R:?}], velocity = [0.0, 0.0, 0.0] }}
-up = [0.0, 0.0, 1.0]
-[solver]
-method = "closed-form"
-[effects]
-table = true
-[table]
-mu = {mu_c}
-rolling_resistance = {resistance}
-"#,
-                a = -R
-            ),
-        )
-        .unwrap();
-        let out = command()
-            .arg("run")
-            .arg(&path)
-            .arg("--json")
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let table = format!("[table]\nmu = {mu_c}\nrolling_resistance = {resistance}\n");
+        let json = stun_cut_report(&dir, [u, v], &table);
         let table = &json["table"];
         let num = |x: &serde_json::Value| x.as_f64().unwrap_or_else(|| panic!("{x}"));
         let close = |x: f64, want: f64, what: &str| {
@@ -219,23 +173,21 @@ rolling_resistance = {resistance}
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// A full stun hit, frictionless and elastic: A stops dead (velocity and spin 0, so its
-/// `rolling.velocity` is zero) and has neither `direction_deg` nor `deflection_deg`
-/// (docs/formats.md#the-table-object); B takes A's velocity along the line of centres, so
-/// its direction is 0 degrees.
-#[test]
-fn a_ball_that_stops_dead_has_no_direction() {
+/// `run --json` of a frictionless, elastic stun shot with the table phase: A (0.17 kg,
+/// 28.575 mm, alpha 0.4) at (-R, 0, R) with velocity (u, v, 0), B at rest at (R, 0, R),
+/// up +z, the closed form; `table` is the scene's `[table]` section (empty: the defaults).
+fn stun_cut_report(dir: &std::path::Path, [u, v]: [f64; 2], table: &str) -> serde_json::Value {
     const R: f64 = 0.028575;
-    let dir = fresh_dir("cli_table_dead");
-    let path = dir.join("full.toml");
+    let path = dir.join("stun.toml");
     std::fs::write(
         &path,
         format!(
             r#"
-name = "full stun hit"
+name = "stun cut"
 [balls]
 mass = 0.17
 radius = {R}
+alpha = 0.4
 [contact]
 mu = 0.0
 restitution = 1.0
@@ -243,13 +195,14 @@ restitution = 1.0
 shape = "half-sine"
 duration = 2.5e-4
 [incoming.lab]
-a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [2.0, 0.0, 0.0] }}
+a = {{ position = [{a:?}, 0.0, {R:?}], velocity = [{u:?}, {v:?}, 0.0] }}
 b = {{ position = [{R:?}, 0.0, {R:?}], velocity = [0.0, 0.0, 0.0] }}
+up = [0.0, 0.0, 1.0]
 [solver]
 method = "closed-form"
 [effects]
 table = true
-"#,
+{table}"#,
             a = -R
         ),
     )
@@ -260,12 +213,18 @@ table = true
         .arg("--json")
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    succeeded(&out);
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// A full stun hit, frictionless and elastic: A stops dead (velocity and spin 0, so its
+/// `rolling.velocity` is zero) and has neither `direction_deg` nor `deflection_deg`
+/// (docs/formats.md#the-table-object); B takes A's velocity along the line of centres, so
+/// its direction is 0 degrees.
+#[test]
+fn a_ball_that_stops_dead_has_no_direction() {
+    let dir = fresh_dir("cli_table_dead");
+    let json = stun_cut_report(&dir, [2.0, 0.0], "");
     let (a, b) = (&json["table"]["a"], &json["table"]["b"]);
     for k in 0..3 {
         assert_eq!(a["rolling"]["velocity"][k].as_f64(), Some(0.0), "{a}");

@@ -36,24 +36,8 @@ fn study_values_on_a_scene_with_hertz_sine_power_and_tabulated() {
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
-    let mut r = csv::Reader::from_reader(text.as_bytes());
-    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
-    let rows: Vec<Row> = r
-        .records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect();
+    cli_common::succeeded(&out);
+    let rows: Vec<Row> = cli_common::csv_rows(&dir.join("work_precision.csv"));
     // The scene given, and the companion in which sliding stops, for each profile.
     let slides = "stun cut, 40 degrees: slides throughout";
     let scenes: std::collections::BTreeSet<&str> =

@@ -11,7 +11,7 @@ use billiard_contact::plot::trace::TraceFigure;
 use billiard_contact::profile::ProfileKind;
 use billiard_contact::work_precision::study_profile;
 use billiard_contact::{run_scene, CsvTrace, Method, Sampling, Scene};
-use cli_common::{command, fresh_dir, scene_path};
+use cli_common::{command, fresh_dir, scene_path, succeeded};
 
 /// The CSV's header and its columns, an empty cell as `None` (read with the csv crate,
 /// independently of the figure).
@@ -141,11 +141,7 @@ fn the_command_writes_a_valid_svg_and_png() {
                     .arg(file)
                     .output()
                     .unwrap();
-                assert!(
-                    out.status.success(),
-                    "{}",
-                    String::from_utf8_lossy(&out.stderr)
-                );
+                succeeded(&out);
             }
             let text = std::fs::read_to_string(&svg).unwrap();
             assert!(

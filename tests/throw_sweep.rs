@@ -71,11 +71,7 @@ fn sweep(evaluate: &str, spin: &str, method: &str) -> (Vec<String>, Vec<Row>) {
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    cli_common::succeeded(&out);
     let mut reader = csv::Reader::from_path(dir.join("sweep.csv")).unwrap();
     let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
     let rows: Vec<Row> = reader

@@ -256,11 +256,7 @@ fn run_bar_table_writing(option: &str, name: &str) -> (serde_json::Value, String
         .arg(&file)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    cli_common::succeeded(&out);
     let text = std::fs::read_to_string(&file).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     (serde_json::from_slice(&out.stdout).unwrap(), text)

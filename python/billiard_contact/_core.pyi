@@ -42,9 +42,12 @@ def run(
     integrate hertz and sine-power pulses in the smoothing change of time variable (None:
     the scene's ``[solver] time_transform``, by default the library's True).
     samples=N adds ``report["trace"]``: a dict of numpy arrays keyed by ``TRACE_COLUMNS``,
-    at t = i duration / N (i = 0..N) plus the stop of sliding, in the paper's centre-of-mass
-    frame; ``theta`` is NaN where the CSV cell is empty (S(0) = 0). trace=True (without
-    samples): one row per accepted step.
+    and ``"delta"`` (the compression, m; the CSV's ``delta (m)``) when the scene has a
+    contact law, at t = i duration / N (i = 0..N) plus the stop of sliding, in the paper's
+    centre-of-mass frame; ``theta`` is NaN where the CSV cell is empty (S(0) = 0).
+    trace=True (without samples): one row per accepted step. An option the run does not
+    use (rtol or atol with rk4 or a profile's closed form, time_transform with the closed
+    form or a contact law) gives a ``UserWarning``, as the command warns on stderr.
 
     Raises ValueError (bad input, the command's one-line message) or RuntimeError (the run
     failed: the integrator gave up, a non-finite result).

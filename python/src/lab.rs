@@ -510,6 +510,137 @@ impl<'py> Outputs<'py> {
     }
 }
 
+/// One collision in the closed form, on (3,) inputs: computed into the stack, returned as
+/// four fresh (3,) arrays and four numpy scalars. The general path's single buffer with
+/// views of it costs more for one row than the eight small objects (measured with
+/// callgrind: the buffer, the views' base objects and the dict's template were a third of
+/// the call's instructions).
+fn single_collision<'py>(
+    py: Python<'py>,
+    setup: &BatchSetup,
+    inputs: &Inputs,
+    arrays: [Option<Bound<'py, PyArrayDyn<f64>>>; 7],
+) -> PyResult<Bound<'py, PyDict>> {
+    let (mut va, mut wa, mut vb, mut wb) = ([[0.0; 3]], [[0.0; 3]], [[0.0; 3]], [[0.0; 3]]);
+    let (mut p, mut j, mut throw, mut sticks) = ([0.0], [0.0], [0.0], [false]);
+    let columns = LabOutColumns {
+        va: &mut va,
+        wa: &mut wa,
+        vb: &mut vb,
+        wb: &mut wb,
+        impulse: &mut p,
+        tangential_impulse: &mut j,
+        sticks: &mut sticks,
+        throw_angle_deg: &mut throw,
+    };
+    let result = resolve_lab_into(setup, inputs, columns);
+    drop(arrays);
+    if let Err((_, e)) = result {
+        let e = with_argument_names(e);
+        return Err(if e.is_bad_input() {
+            PyValueError::new_err(e.to_string())
+        } else {
+            pyo3::exceptions::PyRuntimeError::new_err(e.to_string())
+        });
+    }
+    let values = [
+        vector(py, va[0])?,
+        vector(py, wa[0])?,
+        vector(py, vb[0])?,
+        vector(py, wb[0])?,
+        float64(py, p[0])?,
+        float64(py, j[0])?,
+        bool_(py, sticks[0])?,
+        float64(py, throw[0])?,
+    ];
+    let keys = result_keys(py);
+    // SAFETY: a fresh dict with the eight keys (values replaced); PyDict_SetItem
+    // takes its own references to the key and the value.
+    unsafe {
+        let d = result_dict(py)?;
+        for (k, v) in keys.iter().zip(&values) {
+            if pyo3::ffi::PyDict_SetItem(d.as_ptr(), k.as_ptr(), v.as_ptr()) < 0 {
+                return Err(PyErr::fetch(py));
+            }
+        }
+        Ok(d)
+    }
+}
+
+/// A fresh float64 array of shape (3,) holding `v`.
+fn vector(py: Python<'_>, v: [f64; 3]) -> PyResult<Bound<'_, PyAny>> {
+    let mut dims = [3 as npy_intp];
+    // SAFETY: PyArray_NewFromDescr steals the new descriptor reference and allocates a
+    // C-contiguous (3,) float64 buffer, written before the array is returned.
+    unsafe {
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, NPY_TYPES::NPY_DOUBLE as c_int);
+        let ptr = PY_ARRAY_API.PyArray_NewFromDescr(
+            py,
+            numpy::npyffi::get_type_object(py, numpy::npyffi::NpyTypes::PyArray_Type),
+            descr,
+            1,
+            dims.as_mut_ptr(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            0,
+            std::ptr::null_mut(),
+        );
+        let array = Bound::from_owned_ptr_or_err(py, ptr)?;
+        let array = array.cast_into_unchecked::<PyArray1<f64>>();
+        array.data().cast::<[f64; 3]>().write(v);
+        Ok(array.into_any())
+    }
+}
+
+/// The numpy scalar (np.float64 or np.bool_, shape ()) of the value at `data` (a bool is
+/// its first byte).
+///
+/// # Safety
+/// `data` points to a readable value of `dtype`.
+unsafe fn numpy_scalar(
+    py: Python<'_>,
+    data: *const u8,
+    dtype: NPY_TYPES,
+) -> PyResult<Bound<'_, PyAny>> {
+    // SAFETY: PyArray_Scalar copies the value and does not take the descriptor's
+    // reference, which is released here.
+    unsafe {
+        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, dtype as c_int);
+        let ptr =
+            PY_ARRAY_API.PyArray_Scalar(py, data.cast_mut().cast(), descr, std::ptr::null_mut());
+        pyo3::ffi::Py_DECREF(descr.cast());
+        Bound::from_owned_ptr_or_err(py, ptr)
+    }
+}
+
+fn float64(py: Python<'_>, x: f64) -> PyResult<Bound<'_, PyAny>> {
+    // SAFETY: a float64 on the stack.
+    unsafe { numpy_scalar(py, (&x as *const f64).cast(), NPY_TYPES::NPY_DOUBLE) }
+}
+
+fn bool_(py: Python<'_>, x: bool) -> PyResult<Bound<'_, PyAny>> {
+    // SAFETY: a bool (one byte, 0 or 1, numpy's) on the stack.
+    unsafe { numpy_scalar(py, (&x as *const bool).cast(), NPY_TYPES::NPY_BOOL) }
+}
+
+/// The result dict's keys, in its order, interned once.
+fn result_keys(py: Python<'_>) -> &[Py<PyString>; 8] {
+    static KEYS: PyOnceLock<[Py<PyString>; 8]> = PyOnceLock::new();
+    KEYS.get_or_init(py, || RESULT_KEYS.map(|k| PyString::intern(py, k).unbind()))
+}
+
+/// The keys of `resolve_lab`'s dict, in order.
+const RESULT_KEYS: [&str; 8] = [
+    "va",
+    "wa",
+    "vb",
+    "wb",
+    "impulse",
+    "tangential_impulse",
+    "sticks",
+    "throw_angle_deg",
+];
+
 /// A C-contiguous view of shape `dims` and type `dtype` (float64 or bool) of `block`,
 /// starting at float64 element `at`.
 fn view<'py>(
@@ -555,20 +686,8 @@ fn scalar<'py>(
     at: usize,
     dtype: NPY_TYPES,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let py = block.py();
-    // SAFETY: `at` lies inside the block; PyArray_Scalar copies the value and does not
-    // take the descriptor's reference, which is released here.
-    unsafe {
-        let descr = PY_ARRAY_API.PyArray_DescrFromType(py, dtype as c_int);
-        let ptr = PY_ARRAY_API.PyArray_Scalar(
-            py,
-            block.data().add(at).cast(),
-            descr,
-            std::ptr::null_mut(),
-        );
-        pyo3::ffi::Py_DECREF(descr.cast());
-        Bound::from_owned_ptr_or_err(py, ptr)
-    }
+    // SAFETY: `at` lies inside the block.
+    unsafe { numpy_scalar(block.py(), block.data().add(at).cast(), dtype) }
 }
 
 /// A fresh result dict: a copy of a template with the eight keys (copying a dict of the
@@ -577,16 +696,7 @@ fn result_dict(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     static TEMPLATE: PyOnceLock<Py<PyDict>> = PyOnceLock::new();
     let t = TEMPLATE.get_or_try_init(py, || -> PyResult<Py<PyDict>> {
         let d = PyDict::new(py);
-        for k in [
-            "va",
-            "wa",
-            "vb",
-            "wb",
-            "impulse",
-            "tangential_impulse",
-            "sticks",
-            "throw_angle_deg",
-        ] {
+        for k in RESULT_KEYS {
             d.set_item(PyString::intern(py, k), py.None())?;
         }
         Ok(d.unbind())
@@ -721,6 +831,9 @@ impl BallBall {
             );
             &own_setup
         };
+        if single && setup.settings.method() == Method::ClosedForm {
+            return single_collision(py, setup, &inputs, arrays);
+        }
         let out = Outputs::new(py, n, single);
         // SAFETY: fresh C-contiguous arrays, written only here (see `Outputs`).
         let columns = unsafe { out.columns() };

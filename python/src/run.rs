@@ -27,10 +27,16 @@ pub const TRACE_COLUMNS: [&str; 15] = [
     "H_sfr",
 ];
 
-/// Trace rows kept as columns (theta NaN where the CSV cell is empty).
+/// The trace's column of the compression under a contact law, the CSV's `delta (m)`: after
+/// [`TRACE_COLUMNS`], only when the scene has a law.
+pub const COMPRESSION_COLUMN: &str = "delta";
+
+/// Trace rows kept as columns (theta NaN where the CSV cell is empty), and the compression
+/// of the rows that carry it (a contact law's).
 #[derive(Default)]
 struct Columns {
     data: [Vec<f64>; 15],
+    compression: Vec<f64>,
 }
 
 impl TraceSink for Columns {
@@ -62,6 +68,15 @@ impl TraceSink for Columns {
             }
             col.push(v);
         }
+        if let Some(delta) = r.compression {
+            if !delta.is_finite() {
+                return Err(Error::NonFinite {
+                    field: format!("trace column {COMPRESSION_COLUMN} at t = {}", r.t),
+                    value: delta,
+                });
+            }
+            self.compression.push(delta);
+        }
         Ok(())
     }
 }
@@ -81,8 +96,16 @@ struct Options {
     time_transform: Option<bool>,
 }
 
-/// The report's JSON and the trace columns (with samples or trace=True).
-fn run_json(source: Source, o: &Options) -> Result<(String, Option<Columns>), Error> {
+/// What a run gives the bindings: the report's JSON, the trace columns (with samples or
+/// trace=True), and the warnings for options the run does not use.
+struct RunOutput {
+    json: String,
+    columns: Option<Columns>,
+    unused: Vec<String>,
+}
+
+/// The report's JSON, the trace columns and the warnings for unused options.
+fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     let scene = match source {
         Source::File(p) => Scene::load(&p)?,
         Source::Text { text, base } => {
@@ -95,14 +118,10 @@ fn run_json(source: Source, o: &Options) -> Result<(String, Option<Columns>), Er
             Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e9]"))?)
         }
     };
-    let settings = settings::for_run(
-        &scene,
-        o.method.as_deref(),
-        o.rtol,
-        o.atol,
-        steps,
-        o.time_transform,
-    )?;
+    let overrides =
+        settings::overrides(o.method.as_deref(), o.rtol, o.atol, steps, o.time_transform)?;
+    let settings = overrides.apply(&scene.solver)?;
+    let unused = settings::unused(&overrides, &settings, scene.law.is_some());
     let sampling = match o.samples {
         None => Sampling::Steps,
         Some(n) if n >= 1 => Sampling::Uniform(n as u64),
@@ -116,19 +135,29 @@ fn run_json(source: Source, o: &Options) -> Result<(String, Option<Columns>), Er
         want_trace.then_some((&mut columns as &mut dyn TraceSink, sampling)),
     )?;
     let json = Report::new(&scene, &outcome).to_json()?;
-    Ok((json, want_trace.then_some(columns)))
+    Ok(RunOutput {
+        json,
+        columns: want_trace.then_some(columns),
+        unused,
+    })
 }
 
 fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'py, PyAny>> {
-    let (json, columns) = py.detach(|| run_json(source, &o)).map_err(to_py)?;
+    let out = py.detach(|| run_json(source, &o)).map_err(to_py)?;
+    settings::warn_unused(py, &out.unused)?;
     let report = py
         .import("json")?
-        .call_method1("loads", (json,))?
+        .call_method1("loads", (out.json,))?
         .cast_into::<PyDict>()?;
-    if let Some(c) = columns {
+    if let Some(c) = out.columns {
         let trace = PyDict::new(py);
+        let rows = c.data[0].len();
         for (name, col) in TRACE_COLUMNS.iter().zip(c.data) {
             trace.set_item(name, PyArray1::from_vec(py, col))?;
+        }
+        if !c.compression.is_empty() {
+            debug_assert_eq!(c.compression.len(), rows);
+            trace.set_item(COMPRESSION_COLUMN, PyArray1::from_vec(py, c.compression))?;
         }
         report.set_item("trace", trace)?;
     }
@@ -143,9 +172,13 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 /// given); time_transform (True or False) overrides the scene's `[solver] time_transform`
 /// as `--time-transform` does (None: the scene's, by default the library's True). samples=N adds report["trace"]: numpy arrays keyed by the trace CSV's column
 /// names without units ("t", "f", "p", "U", "V", "W", "omega_a_x" .. "omega_b_z", "S",
-/// "theta", "H_sfr"; SI units, the centre-of-mass frame), at t = i duration / N plus the
-/// stop of sliding; trace=True gives one row per accepted step instead. theta is NaN where
-/// the CSV cell is empty (S(0) = 0).
+/// "theta", "H_sfr"; SI units, the centre-of-mass frame), and "delta" (the compression, m)
+/// when the scene has a contact law, at t = i duration / N plus the stop of sliding (under a
+/// law the time-stepping methods sample its elastic time unit:
+/// docs/contact-law.md#time-stepping); trace=True gives one row per accepted step instead.
+/// theta is NaN where the CSV cell is empty (S(0) = 0). An option the run does not use
+/// (rtol or atol with rk4 or a profile's closed form, time_transform with the closed form
+/// or a contact law) is said in a UserWarning, as the command says it on stderr.
 ///
 /// Bad input raises ValueError with the command's one-line message; a failed run
 /// RuntimeError.

@@ -58,11 +58,7 @@ pub fn batch(args: &BatchArgs) -> Result<(), Error> {
         ..SolverOverrides::default()
     };
     let settings = overrides.apply(&scene.solver)?;
-    let given = [
-        ("--rtol", args.rtol.is_some()),
-        ("--time-transform", args.time_transform.is_some()),
-    ];
-    for w in solver_options_unused(&given, &settings) {
+    for w in solver_options_unused(&overrides, &settings, scene.law.is_some()) {
         warn(w);
     }
     if scene.effects.table {

@@ -1,9 +1,9 @@
 //! The closed choices of the options (`--method`, `--profiles`) as clap value enums over the
-//! library's own lists ([`Method::ALL`], [`ProfileKind::ALL`]) and names, so that each name
+//! library's own lists ([`Method::ALL`], [`StudyForce::ALL`]) and names, so that each name
 //! is defined once and clap lists the accepted values in the help and in its errors; and
 //! the parsers of numeric options, whose errors say what is accepted.
 
-use billiard_contact::profile::ProfileKind;
+use billiard_contact::work_precision::StudyForce;
 use billiard_contact::Method;
 use clap::builder::{EnumValueParser, PossibleValue, TypedValueParser};
 use clap::ValueEnum;
@@ -44,8 +44,8 @@ choice!(
 );
 
 choice!(
-    /// A `--profiles` value.
-    ProfileChoice(ProfileKind)
+    /// A `--profiles` value: a profile or a contact law.
+    ProfileChoice(StudyForce)
 );
 
 /// clap's parser of a value enum applied to the value with surrounding white space removed,
@@ -116,6 +116,8 @@ pub fn number(value: &str) -> Result<f64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use billiard_contact::profile::ProfileKind;
+    use billiard_contact::Damping;
 
     #[test]
     fn every_method_and_profile_is_a_choice_under_its_name() {
@@ -125,14 +127,22 @@ mod tests {
             MethodChoice::from_str("dopri5", false),
             Ok(MethodChoice(Method::Dopri5))
         );
-        let profiles: Vec<ProfileKind> = ProfileChoice::value_variants()
+        let profiles: Vec<StudyForce> = ProfileChoice::value_variants()
             .iter()
             .map(|c| c.0)
             .collect();
-        assert_eq!(profiles, ProfileKind::ALL);
+        assert_eq!(profiles, StudyForce::ALL);
         assert_eq!(
             ProfileChoice::from_str("sine-power", false),
-            Ok(ProfileChoice(ProfileKind::SinePower))
+            Ok(ProfileChoice(StudyForce::Profile(ProfileKind::SinePower)))
+        );
+        assert_eq!(
+            ProfileChoice::from_str("hertz-law", false),
+            Ok(ProfileChoice(StudyForce::Law(Damping::None)))
+        );
+        assert_eq!(
+            ProfileChoice::from_str("kuwabara-kono", false),
+            Ok(ProfileChoice(StudyForce::Law(Damping::KuwabaraKono)))
         );
         assert!(ProfileChoice::from_str("sine", false).is_err());
     }

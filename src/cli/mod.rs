@@ -9,7 +9,8 @@ pub mod sweep;
 pub mod work_precision;
 
 use billiard_contact::formats::plausible::scene_warnings;
-use billiard_contact::{Error, Method, Scene, SolverSettings};
+use billiard_contact::formats::scene::SolverOverrides;
+use billiard_contact::{Error, Scene, SolverSettings};
 use std::path::Path;
 
 /// The scene file, or the built-in default scene when none is given; a warning on stderr
@@ -25,26 +26,18 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene, Error> {
     Ok(scene)
 }
 
-/// The warnings for solver options (`given`: each option's name and whether it was given)
-/// that the run's method does not use: tolerances outside dopri5 and dop853, the time
-/// transform with the closed form.
-pub fn solver_options_unused(given: &[(&str, bool)], settings: &SolverSettings) -> Vec<String> {
-    let method = settings.method();
-    given
-        .iter()
-        .filter(|(_, on)| *on)
-        .filter_map(|(option, _)| {
-            let unused = match *option {
-                "--rtol" | "--atol" => matches!(method, Method::ClosedForm | Method::Rk4),
-                _ => method == Method::ClosedForm,
-            };
-            unused.then(|| {
-                format!(
-                    "{option} has no effect with the method {method} (tolerances act on dopri5 \
-                     and dop853; the time transform on the time-stepping methods)"
-                )
-            })
-        })
+/// The warnings for the solver options of `overrides` that a run with `settings` does not
+/// use ([`SolverOverrides::unused`]: tolerances with rk4 and a profile's closed form, the
+/// time transform with the closed form or under a contact law, `law`), named as options.
+pub fn solver_options_unused(
+    overrides: &SolverOverrides,
+    settings: &SolverSettings,
+    law: bool,
+) -> Vec<String> {
+    overrides
+        .unused(settings, law)
+        .into_iter()
+        .map(|(field, why)| format!("--{} has no effect with {why}", field.replace('_', "-")))
         .collect()
 }
 

@@ -132,12 +132,7 @@ impl RunArgs {
                 ));
             }
         }
-        let given = [
-            ("--rtol", self.rtol.is_some()),
-            ("--atol", self.atol.is_some()),
-            ("--time-transform", self.time_transform.is_some()),
-        ];
-        for w in solver_options_unused(&given, settings) {
+        for w in solver_options_unused(&self.solver_overrides(), settings, scene.law.is_some()) {
             warn(w);
         }
         let table_options = [("--path", &self.ball_paths), ("--plot", &self.plot)];

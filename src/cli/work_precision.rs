@@ -5,7 +5,7 @@ use super::choice::{whole, ProfileChoice, Trimmed};
 use super::{load_scene, progress_bar};
 use billiard_contact::formats::atomic_file::AtomicFile;
 use billiard_contact::plot::work_precision as figure;
-use billiard_contact::work_precision::{self, StudyOptions, StudyRow};
+use billiard_contact::work_precision::{self, StudyForce, StudyOptions, StudyRow};
 use billiard_contact::Error;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -14,13 +14,15 @@ use std::path::{Path, PathBuf};
 #[derive(Args)]
 pub struct StudyArgs {
     /// Scene file (TOML); the built-in default scene when omitted. Its balls, friction,
-    /// impulse and duration are used with every profile.
+    /// impulse and duration are used with every profile (a law scene's realised ones).
     scene: Option<PathBuf>,
     /// Directory for work_precision.csv, .svg, .png and .md (created if missing); the rows a
     /// peer's script appended to an existing work_precision.csv there are kept.
     #[arg(long, value_name = "DIR", default_value = ".")]
     out: PathBuf,
-    /// Profiles (comma-separated; default: all).
+    /// Profiles and contact laws (comma-separated): half-sine, hertz, sine-power, rectangle,
+    /// tabulated; hertz-law (elastic), hunt-crossley, kuwabara-kono (docs/contact-law.md).
+    /// Default: the five profiles, or a law scene's own law.
     #[arg(long, value_delimiter = ',', value_name = "P,...", value_parser = Trimmed::<ProfileChoice>::new())]
     profiles: Option<Vec<ProfileChoice>>,
     /// Timed samples per setting (the median is reported).
@@ -68,10 +70,13 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         Vec::new()
     };
     let scene = load_scene(args.scene.as_deref())?;
-    let mut options = StudyOptions::default();
-    if let Some(list) = &args.profiles {
-        options.profiles = list.iter().map(|p| p.0).collect();
-    }
+    let mut options = StudyOptions {
+        profiles: match &args.profiles {
+            Some(list) => list.iter().map(|p| p.0).collect(),
+            None => StudyForce::defaults_for(&scene),
+        },
+        ..StudyOptions::default()
+    };
     if args.repeats == 0 {
         return Err(Error::invalid("--repeats", 0, "at least 1"));
     }

@@ -127,15 +127,16 @@ fn closed_form(
             Sampling::Uniform(n) => n,
             Sampling::Steps => CLOSED_FORM_TRACE_SAMPLES,
         };
-        closed_form_trace(
-            &real,
-            &outcome.exact,
-            scales,
-            normal,
-            head.duration,
-            sink,
-            n,
-        )?;
+        let stop = match (outcome.stick_time, r.stick_impulse) {
+            (Some(t), Some(p)) if p > 0.0 => Some((t, p)),
+            _ => None,
+        };
+        let pulse = TracedPulse {
+            duration: head.duration,
+            samples: n,
+            stop,
+        };
+        closed_form_trace(&real, &outcome.exact, scales, normal, &pulse, sink)?;
     }
     Ok(outcome)
 }
@@ -180,20 +181,37 @@ fn realised(c: &Collision, impulse: f64) -> Result<Collision, Error> {
     Collision::new(c.balls, contact, c.effects, c.incoming)
 }
 
+/// What the closed form's trace under a law samples: the contact time (s), the number of
+/// intervals, and the stop of sliding (time in s, impulse p_stick in N s) when sliding
+/// stops after the start.
+struct TracedPulse {
+    duration: f64,
+    samples: u64,
+    stop: Option<(f64, f64)>,
+}
+
 /// The closed form's trace under a law: the normal law integrated again with a point every
-/// `duration / n` and at the end, each row the closed form at that point's impulse. Points
-/// closer than 1e-9 `duration` to the next one are not written (the last sample and the end).
+/// `duration / samples`, at the stop of sliding and at the end, each row the closed form at
+/// that point's impulse. The stop row, as the time-stepping methods write it, is at the
+/// reported stick time and at p_stick itself (slip 0), with the force and the compression
+/// of this integration where its impulse reaches p_stick. Points closer than 1e-9
+/// `duration` to the next one are not written (the last sample and the end), except the
+/// stop row.
 fn closed_form_trace(
     real: &Collision,
     exact: &ClosedForm,
     scales: &LawScales,
     normal: &SolverSettings,
-    duration: f64,
+    pulse: &TracedPulse,
     sink: &mut dyn TraceSink,
-    n: u64,
 ) -> Result<(), Error> {
     let theta = real.theta();
-    let row = |[t, p, force, delta]: NormalPoint| {
+    let duration = pulse.duration;
+    let row = |[t, p, force, delta]: NormalPoint, stop: bool| {
+        let (t, p) = match (stop, pulse.stop) {
+            (true, Some(at)) => at,
+            _ => (t, p),
+        };
         let part = exact.at_impulse(p.min(real.impulse));
         TraceRow {
             t,
@@ -206,25 +224,28 @@ fn closed_form_trace(
             compression: Some(delta),
         }
     };
-    let mut pending: Option<TraceRow> = None;
-    let mut write = |point: NormalPoint| -> Result<(), Error> {
-        let next = row(point);
-        if let Some(prev) = pending.take() {
-            if next.t - prev.t > 1e-9 * duration {
-                sink.row(&prev)?;
+    let mut pending: Option<(TraceRow, bool)> = None;
+    let mut write = |point: NormalPoint, stop: bool| -> Result<(), Error> {
+        let next = (row(point, stop), stop);
+        pending = match pending.take() {
+            Some(prev) if next.0.t - prev.0.t > 1e-9 * duration => {
+                sink.row(&prev.0)?;
+                Some(next)
             }
-        }
-        pending = Some(next);
+            // Of two rows that coincide, the stop row is kept.
+            Some(prev) if prev.1 => Some(prev),
+            _ => Some(next),
+        };
         Ok(())
     };
     normal_run(
         scales,
         normal,
-        None,
-        Some((&mut write, duration / n.max(1) as f64)),
+        pulse.stop.map(|(_, p)| p),
+        Some((&mut write, duration / pulse.samples.max(1) as f64)),
     )?;
     match pending {
-        Some(last) => sink.row(&last),
+        Some((last, _)) => sink.row(&last),
         None => Ok(()),
     }
 }

@@ -197,6 +197,63 @@ impl SolverOverrides {
             .with_breakpoints(base.breakpoints())
             .with_time_transform(self.time_transform.unwrap_or(base.time_transform())))
     }
+
+    /// The overrides given here that a run with `settings` does not use, each as its field
+    /// (`rtol`, `atol`, `time_transform`) and what it has no effect with: tolerances with rk4
+    /// and with the closed form of a profile (under a contact law, `law`, the closed form
+    /// integrates the normal law with dop853 at them), the time transform with the closed
+    /// form or under a contact law
+    /// (`law`: a law finds the end of the contact as an event, so its runs step in their own
+    /// time: docs/contact-law.md#time-stepping). `billiard-contact` warns on stderr, the
+    /// Python package with a `UserWarning`.
+    ///
+    /// ```
+    /// use billiard_contact::formats::scene::SolverOverrides;
+    /// use billiard_contact::{Method, SolverSettings};
+    /// let o = SolverOverrides { rtol: Some(1e-8), time_transform: Some(false), ..Default::default() };
+    /// let dop853 = SolverSettings::default();
+    /// assert!(o.unused(&dop853, false).is_empty());
+    /// let unused = o.unused(&dop853, true);
+    /// assert_eq!(unused.len(), 1);
+    /// assert_eq!(unused[0].0, "time_transform");
+    /// assert!(unused[0].1.starts_with("a contact law"));
+    /// let cf = dop853.with_method(Method::ClosedForm);
+    /// let names = |u: Vec<(&'static str, String)>| u.iter().map(|u| u.0).collect::<Vec<_>>();
+    /// assert_eq!(names(o.unused(&cf, false)), ["rtol", "time_transform"]);
+    /// assert_eq!(names(o.unused(&cf, true)), ["time_transform"]);
+    /// ```
+    pub fn unused(&self, settings: &SolverSettings, law: bool) -> Vec<(&'static str, String)> {
+        let method = settings.method();
+        let by_method = || {
+            format!(
+                "the method {method} (tolerances act on dopri5 and dop853; the time transform \
+                 on the time-stepping methods)"
+            )
+        };
+        let mut v = Vec::new();
+        // Under a law the closed form integrates the normal law with dop853 at the run's
+        // tolerances.
+        let tolerances_unused = method == Method::Rk4 || (method == Method::ClosedForm && !law);
+        for (field, given) in [("rtol", self.rtol.is_some()), ("atol", self.atol.is_some())] {
+            if given && tolerances_unused {
+                v.push((field, by_method()));
+            }
+        }
+        if self.time_transform.is_some() {
+            if method == Method::ClosedForm {
+                v.push(("time_transform", by_method()));
+            } else if law {
+                v.push((
+                    "time_transform",
+                    "a contact law (a law finds the end of the contact as an event, so its \
+                     runs step in their own time and need no transform: \
+                     docs/contact-law.md#time-stepping)"
+                        .to_string(),
+                ));
+            }
+        }
+        v
+    }
 }
 
 #[derive(Deserialize)]

@@ -329,8 +329,13 @@ pub struct HeadOn {
 /// compression (m).
 pub(crate) type NormalPoint = [f64; 4];
 
-/// Receives the sample points of a run of the normal law alone.
-pub(crate) type NormalSamples<'s> = (&'s mut dyn FnMut(NormalPoint) -> Result<(), Error>, f64);
+/// Receives the sample points of a run of the normal law alone, each with whether it is
+/// the located mark (the time the impulse reaches the mark asked for), and the sampling
+/// interval (s).
+pub(crate) type NormalSamples<'s> = (
+    &'s mut dyn FnMut(NormalPoint, bool) -> Result<(), Error>,
+    f64,
+);
 
 /// The head-on impact of `law` between balls of reduced mass `reduced_mass` (kg) at the
 /// relative approach speed `v` (m/s), integrated with dop853 at rtol = atol = `rtol`.
@@ -352,7 +357,7 @@ pub(crate) fn normal_settings(settings: &SolverSettings) -> SolverSettings {
 /// The normal law alone (delta and U) from first touch to the end of the contact, with
 /// `settings` (a stepping method), locating the largest compression, the peak force and,
 /// when `mark` is given, the time the impulse reaches `mark` (N s); with `samples`, a point
-/// every `samples.1` (s) and at the end.
+/// every `samples.1` (s), at the located mark, and at the end.
 pub(crate) fn normal_run(
     scales: &LawScales,
     settings: &SolverSettings,
@@ -386,7 +391,7 @@ pub(crate) fn normal_run(
     let dx = samples.as_ref().map(|s| s.1 / sc.tau0);
     let mut next_sample = 1.0;
     if let Some((sink, _)) = samples.as_mut() {
-        sink(point(&y))?;
+        sink(point(&y), false)?;
     }
     loop {
         let b = dx.map_or(LAW_SPAN, |dx| (next_sample * dx).min(LAW_SPAN));
@@ -398,6 +403,9 @@ pub(crate) fn normal_run(
                 if slot.is_none() && watched(i, &reached) <= 0.0 {
                     let at = locate(&mut stepper, &rhs, &prev, &reached, |v| watched(i, v))?;
                     *slot = Some(at);
+                    if let (2, Some((sink, _))) = (i, samples.as_mut()) {
+                        sink(point(&at), true)?;
+                    }
                 }
             }
             if end(&reached) <= 0.0 {
@@ -407,13 +415,13 @@ pub(crate) fn normal_run(
         } else if reached[0] >= LAW_SPAN {
             return Err(contact_never_ends(&sc.law));
         } else if let Some((sink, _)) = samples.as_mut() {
-            sink(point(&reached))?;
+            sink(point(&reached), false)?;
             next_sample += 1.0;
         }
         y = reached;
     }
     if let Some((sink, _)) = samples.as_mut() {
-        sink(point(&y))?;
+        sink(point(&y), false)?;
     }
     let located = |i: usize| found[i].map(|v| point(&v));
     Ok(HeadOn {

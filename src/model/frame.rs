@@ -112,15 +112,18 @@ impl Frame {
         let ex = d / dist;
         // e_z: `up` without its e_x part.
         let mut ez = horizontal(&up, &ex);
-        if ez.norm() < 1e-12 {
+        let mut ez_norm = ez.norm();
+        if ez_norm < 1e-12 {
             // `up` along the line of centres: any perpendicular will do (the result does
             // not depend on it); take the lab axis least aligned with e_x.
             let i = ex.iamin();
             let mut axis = Vector3::zeros();
             axis[i] = 1.0;
             ez = horizontal(&axis, &ex);
+            ez_norm = ez.norm();
         }
-        let ez = ez.normalize();
+        // `normalize` would take the norm again (the batch kernels' hot path).
+        let ez = ez / ez_norm;
         let ey = ez.cross(&ex);
         Ok(Frame {
             basis: Matrix3::from_columns(&[ex, ey, ez]),
@@ -209,7 +212,10 @@ impl Frame {
         let ex = self.basis.column(0).into_owned();
         let line = horizontal(&ex, &self.up);
         let dv = horizontal(delta_v_b, &self.up);
-        if line.norm() < 1e-12 || dv.norm() <= 1e-12 * delta_v_b.norm() || dv.norm() == 0.0 {
+        // |line| < 1e-12, |dv| <= 1e-12 |delta_v_b| or dv = 0, in squares (no square roots
+        // on the batch kernels' hot path).
+        let dv2 = dv.norm_squared();
+        if line.norm_squared() < 1e-24 || dv2 <= 1e-24 * delta_v_b.norm_squared() || dv2 == 0.0 {
             return None;
         }
         let sin = line.cross(&dv).dot(&self.up);

@@ -74,3 +74,28 @@ pub fn warned(out: &Output, want: &[&str]) {
         .unwrap_or_else(|| panic!("no warning with {want:?} in:\n{stderr}"));
     assert!(line.starts_with("warning: "), "{line}");
 }
+
+/// Exit code 0 (stderr in the failure message otherwise).
+pub fn succeeded(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The rows of a CSV file, each a map from the header's column names to the cells.
+pub fn csv_rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    r.records()
+        .map(|rec| {
+            header
+                .iter()
+                .cloned()
+                .zip(rec.unwrap().iter().map(String::from))
+                .collect()
+        })
+        .collect()
+}

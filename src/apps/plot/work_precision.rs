@@ -185,8 +185,9 @@ fn draw_header<DB: DrawingBackend>(
         (FONT, TITLE_FONT).into_font().style(FontStyle::Bold),
     ))?;
     for (k, line) in [
-        "error = largest scaled deviation from the closed form; hollow markers at 1e-17: error \
-         exactly 0; dashed: time transform or breakpoints off.",
+        "error = largest scaled deviation from the closed form (a law's: at its reference \
+         impulse); hollow markers at 1e-17: error exactly 0; dashed: time transform or \
+         breakpoints off.",
         "Beside each panel: p, the observed order (error ~ evaluations^-p) on the straight part \
          of the line, or - and why not: (s) no straight part,",
         "(w) error not set by the work (equal work, different errors), (>12) steeper than any \

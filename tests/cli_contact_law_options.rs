@@ -1,0 +1,168 @@
+//! A contact-law scene through the command line (docs/contact-law.md): the closed form's
+//! trace marks the stop of sliding as the time-stepping methods' traces do, and the time
+//! transform, which a law does not use, is said to have no effect (the run goes on, its
+//! output unchanged), while the tolerances act on the closed form under a law (it
+//! integrates the normal law with dop853 at them).
+
+mod cli_common;
+use cli_common::{bin, fresh_dir, scene, succeeded, warned};
+
+/// The rows of a trace CSV: (t, p, S) and the header.
+fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().to_string();
+    let cols: Vec<&str> = header.split(',').collect();
+    let at = |name: &str| cols.iter().position(|c| c.starts_with(name)).unwrap();
+    let (t, p, s) = (at("t (s)"), at("p (N s)"), at("S (m/s)"));
+    let rows = lines
+        .map(|l| {
+            let v: Vec<f64> = l
+                .split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect();
+            [v[t], v[p], v[s]]
+        })
+        .collect();
+    (header, rows)
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = bin(args);
+    succeeded(&out);
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// The Hunt-Crossley stun cut at 10 degrees (data/scenes/hertz_law_hunt_crossley.toml):
+/// S(0) = 1 m/s tan(10 deg) = 0.17633 m/s, and sliding stops at
+/// p_stick = m S(0) / (2 mu (1 + 1/alpha)) = 0.17 * 0.17633 / (0.12 * 3.5) = 0.071370 N s
+/// (eq 35 for identical balls), before the impulse (1 + e) m U(0) = 0.16575 N s is complete.
+/// Every method's trace has a row at the reported stick time with S = 0 and p = p_stick,
+/// and S > 0 before it; the closed form's stop agrees with dop853's.
+#[test]
+fn every_method_marks_the_stop_of_sliding() {
+    let d = fresh_dir("cli_contact_law_stop_row");
+    let s = scene("hertz_law_hunt_crossley.toml");
+    let p_stick = 0.17 * (10f64.to_radians().tan()) / (2.0 * 0.06 * 3.5);
+    let mut stops = Vec::new();
+    for method in ["closed-form", "rk4", "dopri5", "dop853"] {
+        for samples in [None, Some("10")] {
+            let file = d.join(format!("{method}.{}.csv", samples.unwrap_or("steps")));
+            let f = file.to_str().unwrap();
+            let mut args = vec![
+                "run",
+                s.as_str(),
+                "--method",
+                method,
+                "--json",
+                "--trace",
+                f,
+            ];
+            if let Some(n) = samples {
+                args.extend(["--samples", n]);
+            }
+            let j = json(&args);
+            let t_stick = j["stick_time"].as_f64().unwrap();
+            let p = j["stick_impulse"].as_f64().unwrap();
+            assert!(
+                (p - p_stick).abs() < 1e-9 * p_stick,
+                "{method}: {p} vs {p_stick}"
+            );
+            let (header, rows) = trace(&file);
+            assert!(header.ends_with("delta (m)"), "{header}");
+            let k = rows
+                .iter()
+                .position(|r| r[0] == t_stick)
+                .unwrap_or_else(|| panic!("{method} {samples:?}: no row at {t_stick}"));
+            assert_eq!(rows[k][2], 0.0, "{method} {samples:?}: {:?}", rows[k]);
+            assert!(
+                (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
+                "{:?}",
+                rows[k]
+            );
+            assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{method} {samples:?}");
+            assert!(
+                rows[k..].iter().all(|r| r[2] == 0.0),
+                "{method} {samples:?}"
+            );
+            stops.push((method, t_stick));
+        }
+    }
+    let dop853 = stops.iter().find(|s| s.0 == "dop853").unwrap().1;
+    for (method, t) in &stops {
+        // The default tolerances (rtol 1e-10; rk4 1000 steps): within 1e-8 of the contact.
+        assert!(
+            (t - dop853).abs() < 1e-8 * 4e-4,
+            "{method}: {t} vs {dop853}"
+        );
+    }
+}
+
+/// `--time-transform` with a law scene warns and changes nothing; with a profile scene it
+/// acts silently.
+#[test]
+fn the_time_transform_is_said_to_have_no_effect_under_a_law() {
+    let s = scene("hertz_law_kuwabara_kono.toml");
+    let with = bin(&["run", &s, "--time-transform", "false", "--json"]);
+    warned(
+        &with,
+        &["--time-transform has no effect with a contact law"],
+    );
+    let without = bin(&["run", &s, "--json"]);
+    assert!(
+        without.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&without.stderr)
+    );
+    assert_eq!(with.stdout, without.stdout);
+    let profile = bin(&["run", "--time-transform", "false", "--method", "dop853"]);
+    assert!(profile.status.success() && profile.stderr.is_empty());
+    // batch: the same rule.
+    let d = fresh_dir("cli_contact_law_batch_transform");
+    let input = d.join("in.csv");
+    std::fs::write(&input, "u_x,u_y,u_z\n1,0.5,0\n").unwrap();
+    let out = d.join("out.csv");
+    warned(
+        &bin(&[
+            "batch",
+            input.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--scene",
+            &s,
+            "--method",
+            "dop853",
+            "--time-transform",
+            "false",
+        ]),
+        &["--time-transform has no effect with a contact law"],
+    );
+}
+
+/// Under a law the closed form integrates the normal law with dop853 at --rtol: no warning,
+/// and the realised impulse moves with the tolerance (by more than round-off at 1e-4).
+#[test]
+fn the_tolerances_act_on_the_closed_form_under_a_law() {
+    let s = scene("hertz_law_kuwabara_kono.toml");
+    let run = |rtol: &str| {
+        let out = bin(&[
+            "run",
+            &s,
+            "--method",
+            "closed-form",
+            "--rtol",
+            rtol,
+            "--json",
+        ]);
+        assert!(
+            out.status.success() && out.stderr.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        j["impulse"].as_f64().unwrap()
+    };
+    let (loose, tight) = (run("1e-4"), run("1e-12"));
+    assert!((loose - tight).abs() > 1e-12 * tight, "{loose} {tight}");
+    assert!((loose - tight).abs() < 1e-3 * tight, "{loose} {tight}");
+}
