@@ -41,7 +41,7 @@ pub fn run() -> Result<(), Error> {
         .amax()
         / (ma * lab.a.velocity.norm());
     println!("distance from the closed form {err:.1e} (scaled), lab momentum change {dp:.1e}");
-    if !(err <= TOLERANCE && dp <= MOMENTUM) {
+    if err.is_nan() || dp.is_nan() || err > TOLERANCE || dp > MOMENTUM {
         return Err(Error::invalid(
             "unequal_balls example",
             format!("closed-form distance {err:e}, momentum change {dp:e}"),

@@ -96,7 +96,7 @@ pub fn run_default_with(profile: Profile, stem: &str, tolerance: f64) -> Result<
     println!("  trace: {} rows in {}", rows.len(), path.display());
 
     let distance = distance_from(&scene, &result, &closed_form_of(&scene)?);
-    if !(distance <= tolerance) {
+    if distance.is_nan() || distance > tolerance {
         return Err(Error::invalid(
             "distance from the closed form",
             distance,
@@ -104,7 +104,7 @@ pub fn run_default_with(profile: Profile, stem: &str, tolerance: f64) -> Result<
         ));
     }
     let drift = theta_drift(&scene, &result.cm_in, &rows);
-    if !(drift <= THETA_TOLERANCE) {
+    if drift.is_nan() || drift > THETA_TOLERANCE {
         return Err(Error::invalid(
             "theta drift over the trace",
             drift,
