@@ -182,7 +182,9 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 /// docs/contact-law.md#time-stepping); trace=True gives one row per accepted step instead.
 /// theta is NaN where the CSV cell is empty (S(0) = 0). An option the run does not use
 /// (rtol or atol with rk4 or a profile's closed form, time_transform with the closed form
-/// or a contact law) is said in a UserWarning, as the command says it on stderr.
+/// or a contact law) is said in a UserWarning, as the command says it on stderr; so are the
+/// scene's own warnings (a value far outside any ball game with the likely unit slip,
+/// `[solver] time_transform` under a contact law).
 ///
 /// Bad input raises ValueError with the command's one-line message; a failed run
 /// RuntimeError.
