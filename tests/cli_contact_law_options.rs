@@ -5,7 +5,7 @@
 //! integrates the normal law with dop853 at them).
 
 mod cli_common;
-use cli_common::{bin, fresh_dir, scene, succeeded, warned};
+use cli_common::{bin, fresh_dir, scene, scene_path, succeeded, warned};
 
 /// The rows of a trace CSV: (t, p, S) and the header.
 fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
@@ -136,6 +136,49 @@ fn the_time_transform_is_said_to_have_no_effect_under_a_law() {
             "false",
         ]),
         &["--time-transform has no effect with a contact law"],
+    );
+}
+
+/// A scene's own `[solver] time_transform` under a law warns too (on loading the scene,
+/// whatever the method), and the report is the one without it; a profile scene's does not.
+#[test]
+fn a_scene_time_transform_under_a_law_warns() {
+    let d = fresh_dir("cli_contact_law_scene_transform");
+    let law = std::fs::read_to_string(scene_path("hertz_law_kuwabara_kono.toml")).unwrap();
+    assert!(
+        !law.contains("[solver]"),
+        "the shipped scene has no [solver] section"
+    );
+    let with_key = d.join("law_transform.toml");
+    std::fs::write(
+        &with_key,
+        format!("{law}\n[solver]\ntime_transform = false\n"),
+    )
+    .unwrap();
+    let with_key = with_key.to_string_lossy().into_owned();
+    let plain = scene("hertz_law_kuwabara_kono.toml");
+    for method in ["closed-form", "dop853"] {
+        let with = bin(&["run", &with_key, "--method", method, "--json"]);
+        warned(
+            &with,
+            &["[solver] time_transform has no effect with", "warning: "],
+        );
+        let without = bin(&["run", &plain, "--method", method, "--json"]);
+        assert_eq!(with.stdout, without.stdout, "{method}");
+    }
+    let profile = d.join("profile_transform.toml");
+    let default = std::fs::read_to_string(scene_path("default.toml")).unwrap();
+    assert!(!default.contains("[solver]"));
+    std::fs::write(
+        &profile,
+        format!("{default}\n[solver]\ntime_transform = false\n"),
+    )
+    .unwrap();
+    let out = bin(&["run", &profile.to_string_lossy(), "--method", "dop853"]);
+    assert!(
+        out.status.success() && out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
 }
 

@@ -629,6 +629,7 @@ proptest! {
             law: None,
             incoming: Incoming::Lab(l),
             solver: case.settings(),
+            solver_given: Default::default(),
             effects: Effects::default(),
             source: None,
             table: None,

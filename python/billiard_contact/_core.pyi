@@ -47,7 +47,9 @@ def run(
     centre-of-mass frame; ``theta`` is NaN where the CSV cell is empty (S(0) = 0).
     trace=True (without samples): one row per accepted step. An option the run does not
     use (rtol or atol with rk4 or a profile's closed form, time_transform with the closed
-    form or a contact law) gives a ``UserWarning``, as the command warns on stderr.
+    form or a contact law) gives a ``UserWarning``, as the command warns on stderr; so do
+    the scene's own warnings (a mass, radius or duration far outside any ball game, with the
+    likely unit slip; ``[solver] time_transform`` under a contact law).
 
     Raises ValueError (bad input, the command's one-line message) or RuntimeError (the run
     failed: the integrator gave up, a non-finite result).

@@ -2,6 +2,7 @@
 
 use crate::errors::{to_py, unwrap_scene_message};
 use crate::settings;
+use billiard_contact::formats::plausible::scene_warnings;
 use billiard_contact::{run_scene, Error, Report, Sampling, Scene, TraceRow, TraceSink};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -97,14 +98,16 @@ struct Options {
 }
 
 /// What a run gives the bindings: the report's JSON, the trace columns (with samples or
-/// trace=True), and the warnings for options the run does not use.
+/// trace=True), and the warnings: the scene's (values far outside any ball game, keys it
+/// does not use) and those for options the run does not use.
 struct RunOutput {
     json: String,
     columns: Option<Columns>,
-    unused: Vec<String>,
+    warnings: Vec<String>,
 }
 
-/// The report's JSON, the trace columns and the warnings for unused options.
+/// The report's JSON, the trace columns and the warnings (the command line's, on stderr
+/// there).
 fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     let scene = match source {
         Source::File(p) => Scene::load(&p)?,
@@ -121,7 +124,8 @@ fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     let overrides =
         settings::overrides(o.method.as_deref(), o.rtol, o.atol, steps, o.time_transform)?;
     let settings = overrides.apply(&scene.solver)?;
-    let unused = settings::unused(&overrides, &settings, scene.law.is_some());
+    let mut warnings = scene_warnings(&scene);
+    warnings.extend(settings::unused(&overrides, &settings, scene.law.is_some()));
     let sampling = match o.samples {
         None => Sampling::Steps,
         Some(n) if n >= 1 => Sampling::Uniform(n as u64),
@@ -138,13 +142,13 @@ fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     Ok(RunOutput {
         json,
         columns: want_trace.then_some(columns),
-        unused,
+        warnings,
     })
 }
 
 fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'py, PyAny>> {
     let out = py.detach(|| run_json(source, &o)).map_err(to_py)?;
-    settings::warn_unused(py, &out.unused)?;
+    settings::warn_all(py, &out.warnings)?;
     let report = py
         .import("json")?
         .call_method1("loads", (out.json,))?
@@ -178,7 +182,9 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 /// docs/contact-law.md#time-stepping); trace=True gives one row per accepted step instead.
 /// theta is NaN where the CSV cell is empty (S(0) = 0). An option the run does not use
 /// (rtol or atol with rk4 or a profile's closed form, time_transform with the closed form
-/// or a contact law) is said in a UserWarning, as the command says it on stderr.
+/// or a contact law) is said in a UserWarning, as the command says it on stderr; so are the
+/// scene's own warnings (a value far outside any ball game with the likely unit slip,
+/// `[solver] time_transform` under a contact law).
 ///
 /// Bad input raises ValueError with the command's one-line message; a failed run
 /// RuntimeError.

@@ -42,7 +42,7 @@ pub fn unused(overrides: &SolverOverrides, settings: &SolverSettings, law: bool)
 }
 
 /// Each message as a Python `UserWarning`, attributed to the caller.
-pub fn warn_unused(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+pub fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
     let category = py.get_type::<PyUserWarning>();
     for m in messages {
         let text = std::ffi::CString::new(m.as_str()).unwrap_or_default();

@@ -97,3 +97,19 @@ def test_time_transform_under_a_law_warns():
         bc.run_toml(ELASTIC, method="closed-form", rtol=1e-8)
         bc.run(str(next(s for s in SCENES if s.stem == "default")), method="dop853",
                time_transform=False)
+
+
+def test_scene_warnings_reach_python():
+    """The scene's own warnings, which the command prints on stderr, come as UserWarnings:
+    a [solver] time_transform under a law (no method uses it), a mass in grams."""
+    import warnings
+
+    with pytest.warns(UserWarning, match=r"\[solver\] time_transform has no effect with"):
+        got = bc.run_toml(ELASTIC + "\n[solver]\ntime_transform = false\n", method="dop853")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert got == bc.run_toml(ELASTIC, method="dop853")
+    grams = ELASTIC.replace("mass = 0.17", "mass = 170")
+    assert grams != ELASTIC
+    with pytest.warns(UserWarning, match="170 g = 0.17 kg"):
+        bc.run_toml(grams)

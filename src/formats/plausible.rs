@@ -114,7 +114,8 @@ impl Plausible {
 }
 
 /// The warnings of a scene's values (balls, material, contact duration), one line each;
-/// unequal balls (`[balls.a]`, `[balls.b]`) are named by their own fields.
+/// unequal balls (`[balls.a]`, `[balls.b]`) are named by their own fields. Also a
+/// `[solver] time_transform` under a contact law, which no method uses.
 pub fn scene_warnings(scene: &Scene) -> Vec<String> {
     let (a, b) = (&scene.balls.a, &scene.balls.b);
     let mut checks = if a == b {
@@ -133,10 +134,21 @@ pub fn scene_warnings(scene: &Scene) -> Vec<String> {
         Some(m) => checks.push((YOUNGS_MODULUS, m.youngs_modulus())),
         None => checks.push((DURATION, scene.profile.duration())),
     }
-    checks
+    let mut warnings: Vec<String> = checks
         .into_iter()
         .filter_map(|(p, v)| p.warning(v))
-        .collect()
+        .collect();
+    // A key of the scene's own [solver] that no method uses with this scene: the time
+    // transform under a contact law (the tolerances depend on the method, which a command
+    // line may still change, so they are judged with the run's options instead).
+    if scene.law.is_some() {
+        for (field, why) in scene.solver_given.unused(&scene.solver, true) {
+            if field == "time_transform" {
+                warnings.push(format!("[solver] {field} has no effect with {why}"));
+            }
+        }
+    }
+    warnings
 }
 
 /// For balls that do not touch (|p_B - p_A| = `distance`, r_A + r_B = `contact_distance`,

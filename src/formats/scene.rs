@@ -133,6 +133,9 @@ pub struct Scene {
     pub incoming: Incoming,
     /// Solver settings (`[solver]`, defaults when absent).
     pub solver: SolverSettings,
+    /// The `[solver]` section as written (what it overrides; empty when absent), for the
+    /// warnings about keys the scene does not use.
+    pub solver_given: SolverOverrides,
     /// Effects (`[effects]`).
     pub effects: Effects,
     /// The file it was read from (`None` for the built-in scene).
@@ -704,10 +707,8 @@ impl Scene {
             _ => None,
         };
         let incoming = raw.incoming.build()?;
-        let solver = raw
-            .solver
-            .unwrap_or_default()
-            .apply(&SolverSettings::default())?;
+        let solver_given = raw.solver.unwrap_or_default();
+        let solver = solver_given.apply(&SolverSettings::default())?;
         let contact = Contact { friction, impulse };
         let effects = raw.effects.unwrap_or_default();
         let profile = match (given, &force, &law) {
@@ -738,6 +739,7 @@ impl Scene {
             law,
             incoming,
             solver,
+            solver_given,
             effects,
             source: source.map(Path::to_path_buf),
             table: raw.table.as_ref().map(RawTable::build).transpose()?,
