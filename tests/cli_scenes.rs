@@ -47,6 +47,9 @@ struct Tol {
     /// both come from the integration variable (the time transform's p/P for the half-sine
     /// and hertz), so near the ends the printed t carries the round-off of inverting it.
     trace_force: f64,
+    /// The trace's cumulative impulse p at the default settings over P (the same t as the
+    /// force).
+    trace_impulse: f64,
     /// The trace's sliding heat at the default settings over m v_ref^2.
     trace_heat: f64,
 }
@@ -58,7 +61,7 @@ fn tol(method: &str, speed_dependent: bool) -> Tol {
     match method {
         // Measured worst: state 2.07e-16, stick time 1.81e-16, stick impulse 1.44e-16 P,
         // throw 1.78e-15 degrees; table 1.69e-16, table angles 3.55e-15 degrees; trace
-        // force 1.27e-14, heat 5.90e-17.
+        // force 1.27e-14, impulse 4.90e-16 P, heat 5.90e-17.
         "closed-form" => Tol {
             state: 2e-15,
             stick_time: 2e-15,
@@ -67,11 +70,13 @@ fn tol(method: &str, speed_dependent: bool) -> Tol {
             table: 2e-15,
             table_deg: 4e-14,
             trace_force: 1.5e-13,
+            trace_impulse: 5e-15,
             trace_heat: 6e-16,
         },
         // Measured worst: state 1.33e-13, stick time 2.71e-16, stick impulse 2.89e-16 P,
         // throw 4.84e-14 degrees; table 4.63e-14, table angles 1.88e-12 degrees; trace
-        // force 4.92e-14 over every row (8.9e-15 over the rows checked), heat 1.30e-15.
+        // force 4.92e-14 over every row (8.9e-15 over the rows checked), impulse 1.22e-14
+        // P, heat 1.30e-15.
         "rk4" => Tol {
             state: 1.5e-12,
             stick_time: 3e-15,
@@ -80,11 +85,12 @@ fn tol(method: &str, speed_dependent: bool) -> Tol {
             table: 5e-13,
             table_deg: 2e-11,
             trace_force: 5e-13,
+            trace_impulse: 1.5e-13,
             trace_heat: 1.5e-14,
         },
         // Measured worst: state 6.68e-13, stick time 1.81e-16, stick impulse 1.44e-16 P,
         // throw 7.17e-14 degrees; table 7.59e-14, table angles 2.89e-12 degrees; trace
-        // force 1.27e-11 (hertz_material), heat 4.32e-12.
+        // force 1.27e-11 (hertz_material), impulse 1.78e-11 P, heat 4.32e-12.
         "dopri5" => Tol {
             state: 7e-12,
             stick_time: 2e-15,
@@ -93,11 +99,12 @@ fn tol(method: &str, speed_dependent: bool) -> Tol {
             table: 8e-13,
             table_deg: 3e-11,
             trace_force: 1.5e-10,
+            trace_impulse: 2e-10,
             trace_heat: 5e-11,
         },
         // dop853. Measured worst: state 2.75e-13, stick time 2.17e-16, stick impulse
         // 3.32e-16 P, throw 6.15e-14 degrees; table 1.63e-13, table angles 6.76e-12
-        // degrees; trace force 3.97e-13, heat 7.00e-12.
+        // degrees; trace force 3.97e-13, impulse 5.55e-13 P, heat 7.00e-12.
         _ => Tol {
             state: 3e-12,
             stick_time: 3e-15,
@@ -106,6 +113,7 @@ fn tol(method: &str, speed_dependent: bool) -> Tol {
             table: 2e-12,
             table_deg: 7e-11,
             trace_force: 4e-12,
+            trace_impulse: 6e-12,
             trace_heat: 7e-11,
         },
     }
@@ -943,18 +951,20 @@ fn read_trace(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
     (header, rows)
 }
 
-/// The trace's `f (N)` and `H_sfr (J)` columns at the row's time t (every row of a sampled
-/// trace, every fifth of a trace by steps, and the last): the profile's force
-/// P phi'(t / duration) / duration by its formula ([`ProfileRef::fraction_and_shape`]), and the heat of
+/// The trace's `f (N)`, `p (N s)` and `H_sfr (J)` columns at the row's time t (every row of
+/// a sampled trace, every fifth of a trace by steps, and the last): the profile's force
+/// P phi'(t / duration) / duration and impulse P phi(t / duration) by its formula
+/// ([`ProfileRef::fraction_and_shape`]), and the heat of
 /// sliding friction at the exact impulse p = P phi(t / duration), H_sfr(p) = integral_0^p
 /// mu(S) S dp'. Along the slip dS/dp = -k mu(S) (k = 2 (1 + 1/alpha) / m), so
 /// mu S dp = -S dS / k and H_sfr(p) = (S(0)^2 - S(p)^2) / (2 k) for any mu(S), with S(p)
-/// from [`SceneRef::slip_at`]. Returns the largest scaled differences (force, heat).
-fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f64, f64) {
+/// from [`SceneRef::slip_at`]. Returns the largest scaled differences (force, impulse,
+/// heat).
+fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f64, f64, f64) {
     let b = &sc.balls;
     let k = 2.0 * (1.0 + 1.0 / b.alpha) / b.m;
     let v = sc.pair.v_ref(b.r);
-    let (mut force, mut heat) = (0.0f64, 0.0f64);
+    let (mut force, mut impulse, mut heat) = (0.0f64, 0.0f64, 0.0f64);
     let stride = if rows.len() > 2 * SAMPLES as usize {
         5
     } else {
@@ -967,16 +977,17 @@ fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f
         let f_want = want.impulse / sc.duration * shape;
         force = force.max((r[1].unwrap() - f_want).abs() / (want.impulse / sc.duration));
         let p = want.impulse * q;
+        impulse = impulse.max((r[2].unwrap() - p).abs() / want.impulse);
         let slip = sc.slip_at(want, p);
         let h_want = (want.s0 * want.s0 - slip * slip) / (2.0 * k);
         heat = heat.max((r[14].unwrap() - h_want).abs() / (b.m * v * v));
     }
-    (force, heat)
+    (force, impulse, heat)
 }
 
 /// Trace CSV: the contract header; with --samples N rows at exactly t = i duration / N plus
 /// the stop once; time strictly increasing; S = 0 from the stop on; numbers finite; theta
-/// empty only when S(0) = 0; the force and sliding heat of each row ([`trace_values`]).
+/// empty only when S(0) = 0; the force, impulse and sliding heat of each row ([`trace_values`]).
 #[test]
 fn trace_csv_follows_the_contract() {
     assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
@@ -1003,13 +1014,16 @@ fn trace_csv_follows_the_contract() {
                 let (header, rows) = read_trace(&file);
                 assert_eq!(header, TRACE_HEADER, "{what}");
                 assert!(rows.iter().all(|r| r.len() == 15), "{what}: row width");
-                let (force, heat) = trace_values(&sc, &want, &rows);
+                let (force, impulse, heat) = trace_values(&sc, &want, &rows);
                 note(&mut worst, format!("{method} trace f"), force);
+                note(&mut worst, format!("{method} trace p"), impulse);
                 note(&mut worst, format!("{method} trace H_sfr"), heat);
                 let tol = tol(method, sc.speed_law.is_some());
                 assert!(
-                    force <= tol.trace_force && heat <= tol.trace_heat,
-                    "{what}: force {force:e}, H_sfr {heat:e}"
+                    force <= tol.trace_force
+                        && impulse <= tol.trace_impulse
+                        && heat <= tol.trace_heat,
+                    "{what}: force {force:e}, p {impulse:e}, H_sfr {heat:e}"
                 );
                 let t: Vec<f64> = rows.iter().map(|r| r[0].unwrap()).collect();
                 assert!(

@@ -1,6 +1,8 @@
-//! The examples' own checks (the default scene's outgoing state against the closed form,
-//! theta constant while sliding; the bar-table scene of unequal balls against the closed
-//! form and the lab momentum) run here, so that `cargo test` fails when an
+//! The examples' own checks (the default scene's outgoing state against the closed form
+//! run separately, theta constant over the trace's states by eq 23; the bar-table scene of
+//! unequal balls against the closed form and the lab momentum), each computed by the
+//! example from the runs' states rather than read from the library's report of its own
+//! run, run here, so that `cargo test` fails when an
 //! example's check would: each example's `run` is the one `cargo run --example` calls.
 
 // Each example is a program of its own and declares `mod common;` itself, so the shared

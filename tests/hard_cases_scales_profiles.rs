@@ -320,3 +320,30 @@ fn hard_profiles_every_method() {
         }
     }
 }
+
+/// Without the time transform, a pulse with algebraic ends (hertz) is stepped to each of
+/// the graded ends 2^-k and 1 - 2^-k, k = 2..10 (docs/model.md#time-stepping): the trace by
+/// steps has a row at t = tau 2^-k and t = tau (1 - 2^-k) (to the round-off of the time
+/// the row prints), with both adaptive methods (rk4 takes its equal steps).
+#[test]
+fn graded_ends_are_stepped_to_without_the_time_transform() {
+    use billiard_contact::{run_scene, Sampling, Scene, TraceRow};
+    let mut scene = Scene::default_scene();
+    let tau = scene.profile.duration();
+    scene.profile = billiard_contact::profile::Profile::Hertz(Hertz::new(tau).unwrap());
+    for method in [Method::Dopri5, Method::Dop853] {
+        let settings = scene.solver.with_method(method).with_time_transform(false);
+        let mut rows: Vec<TraceRow> = Vec::new();
+        run_scene(&scene, &settings, Some((&mut rows, Sampling::Steps))).unwrap();
+        for k in 2..=10 {
+            let h = 0.5_f64.powi(k);
+            for s in [h, 1.0 - h] {
+                assert!(
+                    rows.iter()
+                        .any(|r| (r.t - s * tau).abs() <= 4.0 * f64::EPSILON * tau),
+                    "{method:?}: no step ends at s = {s}"
+                );
+            }
+        }
+    }
+}

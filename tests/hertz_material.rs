@@ -300,3 +300,19 @@ fn batch_rows_take_their_own_contact_time() {
         );
     }
 }
+
+/// Speeds so extreme that the contact's numbers leave the normal positive range are refused
+/// naming `contact.profile.duration`: at 1e200 m/s, v^2 overflows and the compression, force
+/// and time come out infinite; at 1e-300 m/s, v^2 underflows and the compression is 0.
+#[test]
+fn contacts_out_of_range_are_refused() {
+    let (ball, material) = (pool_ball(), Material::new(5.4e9, 0.34).unwrap());
+    for v in [1e200, 1e-300] {
+        match HertzContact::between((&ball, &material), (&ball, &material), v) {
+            Err(billiard_contact::Error::InvalidParameter { field, .. }) => {
+                assert_eq!(field, "contact.profile.duration", "v = {v:e}")
+            }
+            other => panic!("v = {v:e}: {other:?}"),
+        }
+    }
+}

@@ -264,16 +264,22 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
                     }
                 }
             }
-            // Pass 2: the closed form of the rows framed; a row failing here comes before
-            // the one that failed in pass 1.
+            // Pass 2: the closed form of the rows framed, up to the first that fails (it
+            // comes before the one that failed in pass 1).
+            let mut resolved = framed;
             for q in 0..framed {
                 let cm = block.frames[q].to_cm(&block.labs[q]);
-                block.results[q] = kernel
-                    .resolve_without_theta(&cm)
-                    .map_err(|e| (start + first + q, e))?;
+                match kernel.resolve_without_theta(&cm) {
+                    Ok(r) => block.results[q] = r,
+                    Err(e) => {
+                        resolved = q;
+                        failed = Some(e);
+                        break;
+                    }
+                }
             }
-            // Pass 3: the outgoing lab motions.
-            for q in 0..framed {
+            // Pass 3: the outgoing lab motions of the rows before the first failure.
+            for q in 0..resolved {
                 let r = &block.results[q];
                 w.put(
                     first + q,
@@ -282,7 +288,7 @@ impl<R: LabRows + ?Sized> Job<'_, R> {
                 );
             }
             if let Some(e) = failed {
-                return Err((start + first + framed, e));
+                return Err((start + first + resolved, e));
             }
         }
         Ok(())

@@ -186,7 +186,15 @@ impl Friction {
                     };
                     ratio * e_over_c / (a + b)
                 } else {
-                    s / a + ((a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p()) / a / c
+                    // cS and the logarithms cancel before the quotients: s / a and the
+                    // logarithms over a each overflow for a tiny a (a = 1e-307 gave -inf)
+                    // where G does not; c S = inf (huge c) leaves s / a.
+                    let logs = (a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p();
+                    if cs.is_finite() {
+                        (cs + logs) / c / a
+                    } else {
+                        s / a + logs / c / a
+                    }
                 }
             }
         }
@@ -374,5 +382,44 @@ mod tests {
                 "S = {s}: {g} vs {textbook}"
             );
         }
+    }
+
+    /// Where e^(cS) overflows (c S > 700) and a is as small as b e^(-cS), the term
+    /// ln(1 + b e^(-cS) / a) carries G: against G = ln((a e^(cS) + b) / (a + b)) / (a c)
+    /// (1/mu = e^(cS') / (a e^(cS') + b), u = e^(cS')), where a e^(cS) = 0.149 and every
+    /// factor is finite. That term is ln(1.67) here, so a wrong one changes G by half.
+    #[test]
+    fn slide_potential_past_overflow_with_a_near_b_exp_minus_cs() {
+        let (a, b, c, s) = (1e-307_f64, 0.1_f64, 1000.0_f64, 0.705_f64);
+        let want = ((a * (c * s).exp() + b) / (a + b)).ln() / (a * c);
+        let g = Friction::speed_dependent(a, b, c)
+            .unwrap()
+            .slide_potential(s);
+        // c S and the logarithms cancel to 1 part in 800.
+        assert!((g - want).abs() <= 1e-12 * want, "{g:e} vs {want:e}");
+        // S / a = 1.5e309 overflows, G = 9.5e307 does not: G = (cS + ln(a + b e^(-cS))
+        // - ln(a + b)) / (a c), the same G with e^(cS) taken out of the logarithm.
+        let (a, b, c, s) = (1e-306_f64, 0.1_f64, 0.5_f64, 1500.0_f64);
+        let want = (c * s + (a + b * (-c * s).exp()).ln() - (a + b).ln()) / c / a;
+        let g = Friction::speed_dependent(a, b, c)
+            .unwrap()
+            .slide_potential(s);
+        assert!(
+            want.is_finite() && (g - want).abs() <= 1e-12 * want,
+            "{g:e} vs {want:e}"
+        );
+    }
+
+    /// The inverse where b (1 - e^(-a c g)) / a overflows (a subnormal, a c g = 1e-9):
+    /// S = ln(((a + b) e^(a c g) - b) / a) / c from G above, with the numerator written as
+    /// b (e^(acg) - 1) + a e^(acg) and the logarithm of the quotient as a difference.
+    #[test]
+    fn slide_speed_where_b_over_a_overflows() {
+        let (a, b, c) = (1e-320_f64, 1.0_f64, 1e10_f64);
+        let g = 1e-9 / (a * c);
+        let acg = a * c * g;
+        let want = ((b * acg.exp_m1() + a * acg.exp()).ln() - a.ln()) / c;
+        let got = Friction::speed_dependent(a, b, c).unwrap().slide_speed(g);
+        assert!((got - want).abs() <= 1e-14 * want, "{got:e} vs {want:e}");
     }
 }

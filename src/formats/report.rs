@@ -764,3 +764,28 @@ fn vec3_text(v: &Vector3<f64>, prec: usize) -> String {
     };
     format!("[{}, {}, {}]", one(v.x), one(v.y), one(v.z))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A component that rounds to zero at the printed precision prints as +0, whatever its
+    /// sign; others keep theirs.
+    #[test]
+    fn vectors_print_round_off_as_plus_zero() {
+        let v = Vector3::new(-1e-17, -4e-10, -0.0);
+        assert_eq!(
+            vec3_text(&v, 9),
+            "[+0.000000000, +0.000000000, +0.000000000]"
+        );
+        let v = Vector3::new(-6e-10, 1.25, -2.5);
+        assert_eq!(
+            vec3_text(&v, 9),
+            "[-0.000000001, +1.250000000, -2.500000000]"
+        );
+        assert_eq!(
+            vec3_text(&Vector3::new(-4e-7, 0.0, 3e-7), 6),
+            "[+0.000000, +0.000000, +0.000000]"
+        );
+    }
+}

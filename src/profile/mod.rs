@@ -391,6 +391,45 @@ pub(crate) mod tests {
         ));
     }
 
+    /// A caller's own profile, which keeps the default inverse: phi(s) = 3 s^2, Phi(s) = s^3,
+    /// so Phi^-1(q) = q^(1/3) exactly.
+    struct Cubic;
+
+    impl ForceProfile for Cubic {
+        fn duration(&self) -> f64 {
+            1.0
+        }
+        fn shape(&self, s: f64) -> f64 {
+            if (0.0..=1.0).contains(&s) {
+                3.0 * s * s
+            } else {
+                0.0
+            }
+        }
+        fn cumulative(&self, s: f64) -> f64 {
+            let s = s.clamp(0.0, 1.0);
+            s * s * s
+        }
+    }
+
+    /// The default inverse keeps full relative accuracy down to tiny impulse fractions (a
+    /// stick after a tiny slip): s from 0.9 down to 1e-30, against q^(1/3). The bracket's
+    /// stop is relative to its upper end; a stop of 4 eps / hi would end the search at
+    /// s ~ 2e-8, far above a root at 1e-10.
+    #[test]
+    fn default_inverse_is_relatively_accurate_at_tiny_fractions() {
+        for s in [0.9, 0.5, 1e-2, 1e-5, 1e-8, 1e-10, 1e-15, 1e-30] {
+            let q: f64 = s * s * s;
+            let want = q.cbrt();
+            let got = invert_cumulative(&Cubic, q);
+            assert!(
+                (got - want).abs() <= 4.0 * f64::EPSILON * want,
+                "q = {q:e}: s = {got:e}, q^(1/3) = {want:e}"
+            );
+            assert_eq!(Cubic.time_at_cumulative(q), got);
+        }
+    }
+
     /// Composite Gauss-Legendre quadrature of phi over [a, b] (independent of `cumulative`),
     /// split at the profile's breakpoints and, for algebraic ends, at points graded toward
     /// them (2^-k and 1 - 2^-k, k = 2..20), with compensated summation.
