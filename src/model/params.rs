@@ -567,3 +567,22 @@ pub(crate) fn positive(field: &str, value: f64, unit: &str) -> Result<f64, Error
     }
     Ok(value)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The last of the constructor's checks: alpha m r times 1e6 must stay finite. For
+    /// m = 1e303 kg, r = 1 m, alpha = 0.4 the others pass (I = 4e302, 1/m = 1e-303 and
+    /// 1/(alpha m r) = 2.5e-303 are normal numbers) and alpha m r 1e6 = 4e308 overflows, so
+    /// the ball is refused; at m = 1e296 kg it is 4e301 and the ball is accepted.
+    #[test]
+    fn refuses_alpha_m_r_without_the_headroom() {
+        let e = Ball::new(1e303, 1.0, 0.4).unwrap_err().to_string();
+        assert!(
+            e.contains("balls") && e.contains("normal double-precision"),
+            "{e}"
+        );
+        assert!(Ball::new(1e296, 1.0, 0.4).is_ok());
+    }
+}
