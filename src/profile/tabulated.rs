@@ -334,6 +334,8 @@ mod tests {
         ]);
         crate::profile::tests::check_profile(&p, 1e-14);
         assert_eq!(p.breakpoints().len(), 6);
+        // Eight knots as given: the accessors count them.
+        assert_eq!((p.len(), p.is_empty()), (8, false));
         // On the zero-force plateau (2.5 .. 3.0) the inverse gives the plateau's start.
         let q = p.cumulative(2.75 / 4.0);
         assert!((p.time_at_cumulative(q) - 2.5 / 4.0).abs() < 1e-12);
