@@ -131,3 +131,29 @@ pub fn cloth_slip(
 ) -> Vector3<f64> {
     horizontal(velocity, up) - ball.radius() * spin.cross(up)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Potential energy m g (x.n - height - r): zero for a ball resting on the cloth, m g h
+    /// for its centre h higher. Balls of 0.17 kg and 28.575 mm touching on a cloth whose
+    /// height follows from them (0.1 m below A's centre along up = +z, g from the defaults).
+    #[test]
+    fn potential_energy_is_zero_on_the_cloth() {
+        let r = 0.028575;
+        let ball = Ball::new(0.17, r, 0.4).unwrap();
+        let (a, b) = (
+            Vector3::new(0.0, 0.0, 0.1 + r),
+            Vector3::new(2.0 * r, 0.0, 0.1 + r),
+        );
+        let params = TableParams::default();
+        let g = params.g();
+        let table = Table::new(params, Vector3::z(), [a, b], [r, r]).unwrap();
+        assert!(table.potential_energy(&ball, &a).abs() < 1e-15);
+        let h = 0.05;
+        let up = a + Vector3::new(0.3, -0.2, h);
+        let want = 0.17 * g * h;
+        assert!((table.potential_energy(&ball, &up) - want).abs() < 1e-15 * want.max(1.0));
+    }
+}
