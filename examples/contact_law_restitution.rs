@@ -16,6 +16,8 @@
 use billiard_contact::details::{elastic_impact, hertz_stiffness};
 use billiard_contact::plot::{register_fonts, write_svg_and_png, FONT};
 use billiard_contact::{Ball, ContactLaw, Damping, Error, Material};
+use plotters::coord::combinators::{LogCoord, WithKeyPoints};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -117,6 +119,55 @@ fn check(law: &ContactLaw, reduced: f64, points: &[(f64, f64, f64)]) -> Result<(
     Ok(())
 }
 
+/// The axes of both panels: speed on a log axis (0.1 to 8 m/s), `y` linear.
+type Axes = Cartesian2d<WithKeyPoints<LogCoord<f64>>, RangedCoordf64>;
+
+/// A panel on `area`: its caption, the speed axis and `y` over `range`, with the mesh drawn.
+fn panel<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    range: std::ops::Range<f64>,
+    y: &str,
+) -> Result<ChartContext<'a, DB, Axes>, String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            (SPEEDS.0..SPEEDS.1)
+                .log_scale()
+                .with_key_points(SPEED_LABELS.to_vec()),
+            range,
+        )
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc("relative approach speed v (m/s)")
+        .x_label_formatter(&|v| format!("{v}"))
+        .y_desc(y)
+        .label_style((FONT, 14))
+        .draw()
+        .map_err(e)?;
+    Ok(chart)
+}
+
+/// The panel's legend at `position`, on a translucent white box.
+fn legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Axes>,
+    position: SeriesLabelPosition,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font((FONT, 13))
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|x| x.to_string())
+}
+
 /// The two panels: e(v) and tau(v), speed on a log axis.
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -126,26 +177,7 @@ fn draw<DB: DrawingBackend>(
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     root.fill(&WHITE).map_err(e)?;
     let (left, right) = root.split_horizontally(550);
-    let mut chart = ChartBuilder::on(&left)
-        .caption("restitution e(v), pool balls", (FONT, 20))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            (SPEEDS.0..SPEEDS.1)
-                .log_scale()
-                .with_key_points(SPEED_LABELS.to_vec()),
-            0.68f64..1.0,
-        )
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc("relative approach speed v (m/s)")
-        .x_label_formatter(&|v| format!("{v}"))
-        .y_desc("e")
-        .label_style((FONT, 14))
-        .draw()
-        .map_err(e)?;
+    let mut chart = panel(&left, "restitution e(v), pool balls", 0.68..1.0, "e")?;
     for c in curves {
         let colour = c.colour;
         chart
@@ -162,34 +194,8 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?
         .label("calibration: e = 0.95 at 1 m/s")
         .legend(|(x, y)| Circle::new((x + 10, y), 4, BLACK.filled()));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .label_font((FONT, 13))
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
-    let mut chart = ChartBuilder::on(&right)
-        .caption("contact time tau(v)", (FONT, 20))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            (SPEEDS.0..SPEEDS.1)
-                .log_scale()
-                .with_key_points(SPEED_LABELS.to_vec()),
-            200.0f64..700.0,
-        )
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc("relative approach speed v (m/s)")
-        .x_label_formatter(&|v| format!("{v}"))
-        .y_desc("tau (us)")
-        .label_style((FONT, 14))
-        .draw()
-        .map_err(e)?;
+    legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
+    let mut chart = panel(&right, "contact time tau(v)", 200.0..700.0, "tau (us)")?;
     for c in curves {
         chart
             .draw_series(LineSeries::new(
@@ -206,14 +212,7 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?
         .label("elastic Hertz, 2.9433 delta_max / v")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font((FONT, 13))
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present().map_err(e)
 }
 

@@ -7,18 +7,22 @@ use cli_common::{command, fresh_dir, succeeded};
 #[test]
 fn work_precision_writes_csv_svg_png_md() {
     let dir = fresh_dir("cli_study_batch_wp");
-    let out = command()
-        .args([
-            "work-precision",
-            "--profiles",
-            "half-sine,rectangle",
-            "--repeats",
-            "1",
-        ])
-        .args(["--no-sticking", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    // The study of two profiles, one timing each, into `dir`.
+    let study = || {
+        command()
+            .args([
+                "work-precision",
+                "--profiles",
+                "half-sine,rectangle",
+                "--repeats",
+                "1",
+            ])
+            .args(["--no-sticking", "--out"])
+            .arg(&dir)
+            .output()
+            .unwrap()
+    };
+    let out = study();
     succeeded(&out);
     let csv = std::fs::read_to_string(dir.join("work_precision.csv")).unwrap();
     let mut lines = csv.lines();
@@ -64,18 +68,7 @@ fn work_precision_writes_csv_svg_png_md() {
         format!("{csv}{peer}\n{gone}\n"),
     )
     .unwrap();
-    let again = command()
-        .args([
-            "work-precision",
-            "--profiles",
-            "half-sine,rectangle",
-            "--repeats",
-            "1",
-        ])
-        .args(["--no-sticking", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let again = study();
     assert!(again.status.success());
     let text = String::from_utf8_lossy(&again.stdout);
     assert!(
