@@ -3,7 +3,7 @@
 //! (`data/scenes/bar_table_cut.toml`; docs/unequal-balls.md derives the physics).
 //!
 //! Runs the scene with dop853, prints the summary, and fails unless the outgoing state is
-//! within 1e-9 (scaled) of the closed form and the lab momentum m_A v_A + m_B v_B is
+//! within 1.2e-10 (scaled) of the closed form and the lab momentum m_A v_A + m_B v_B is
 //! conserved to round-off, both computed here from the run's output.
 //!
 //! ```sh
@@ -19,10 +19,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Largest accepted distance from the closed form (velocities over v_ref, spins over
-/// v_ref / r_A): dop853 at rtol 1e-10 lands near 1e-10 on this scene.
-const TOLERANCE: f64 = 1e-9;
-/// Largest accepted change of the lab momentum over m_A |v_A(0)|.
-const MOMENTUM: f64 = 1e-14;
+/// v_ref / r_A): dop853 at rtol 1e-10 lands at 1.2e-11 on this scene. Ten times that.
+const TOLERANCE: f64 = 1.2e-10;
+/// Largest accepted change of the lab momentum over m_A |v_A(0)|: 2.0e-16 (round-off) on
+/// this scene. Ten times that.
+const MOMENTUM: f64 = 2e-15;
 
 pub fn run() -> Result<(), Error> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/scenes/bar_table_cut.toml");
