@@ -217,3 +217,19 @@ fn parallel_rows_report_the_failing_rows_own_index() {
         1203,
     );
 }
+
+/// `LabRows::is_empty` (provided by the trait) says whether there is a row, for a reader of
+/// its own and for a slice of scenes.
+#[test]
+fn is_empty_is_no_rows() {
+    let rows = |n| Rows {
+        r: 0.03,
+        n,
+        bad: vec![],
+    };
+    assert!(rows(0).is_empty());
+    assert!(!rows(1).is_empty() && !rows(5).is_empty());
+    let scene = rows(1).row(0).unwrap();
+    assert!(LabRows::is_empty(&[][..] as &[LabScene]));
+    assert!(!LabRows::is_empty(&[scene][..]));
+}
