@@ -157,3 +157,60 @@ impl TableOutcome {
         increase
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table_phase::params::TableParams;
+
+    /// The energy check's scale: a roll-out whose recorded start has lost its motion gains,
+    /// at the first evaluation point (the true start), exactly the start's kinetic energy
+    /// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2 (the position, so the potential energy, is the
+    /// same); the check reports it over M v_ref^2, M the pair mass. Every later point loses
+    /// energy, so that is the largest increase.
+    #[test]
+    fn checks_are_scaled_by_pair_mass_and_speed() {
+        let (m, r, alpha) = (0.17, 0.028575, 0.4);
+        let ball = Ball::new(m, r, alpha).unwrap();
+        let balls = BallPair::from(ball);
+        let pa = Vector3::new(0.2, 0.3, r);
+        let pb = pa + Vector3::new(2.0 * r, 0.0, 0.0);
+        let table = Table::new(TableParams::default(), Vector3::z(), [pa, pb], [r, r]).unwrap();
+        let (v, w) = (Vector3::new(0.3, 0.9, 0.0), Vector3::new(-20.0, 5.0, 8.0));
+        let a = LabBall {
+            position: pa,
+            velocity: v,
+            spin: w,
+        };
+        let b = LabBall {
+            position: pb,
+            velocity: Vector3::new(1.2, 0.1, 0.0),
+            spin: Vector3::zeros(),
+        };
+        let speed = 1.5;
+        let mut out = TableOutcome::new(
+            &balls,
+            table,
+            &a,
+            &b,
+            [Vector3::x(), Vector3::zeros()],
+            speed,
+        )
+        .unwrap();
+        assert!(out.check.energy_increase < 1e-15, "{:?}", out.check);
+        out.a.start.velocity = Vector3::zeros();
+        out.a.start.spin = Vector3::zeros();
+        let kinetic = 0.5 * m * v.norm_squared() + 0.5 * alpha * m * r * r * w.norm_squared();
+        let want = kinetic / (m * speed * speed);
+        let got = out.checks(&balls, speed).energy_increase;
+        assert!((got / want - 1.0).abs() < 1e-12, "{got} vs {want}");
+        // The momentum check likewise (with the start restored): 1 mN s of table impulse
+        // that the motion does not show is reported over M v_ref.
+        out.a.start = a;
+        assert!(out.check.momentum_error < 1e-15, "{:?}", out.check);
+        out.a.table_impulse.x += 1e-3;
+        let want = 1e-3 / (m * speed);
+        let got = out.checks(&balls, speed).momentum_error;
+        assert!((got / want - 1.0).abs() < 1e-10, "{got} vs {want}");
+    }
+}
