@@ -188,12 +188,15 @@ impl Friction {
                 } else {
                     // cS and the logarithms cancel before the quotients: s / a and the
                     // logarithms over a each overflow for a tiny a (a = 1e-307 gave -inf)
-                    // where G does not; c S = inf (huge c) leaves s / a.
-                    let logs = (a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p();
+                    // where G does not. c S = inf (huge c) leaves s / a, the limit of G as c
+                    // grows: the logarithms' term is a fraction |ln(a / (a + b))| / (c S) of
+                    // it, with c S past f64::MAX (and it was -inf where a / (a + b)
+                    // underflows).
                     if cs.is_finite() {
+                        let logs = (a / (a + b)).ln() + (b * (-cs).exp() / a).ln_1p();
                         (cs + logs) / c / a
                     } else {
-                        s / a + logs / c / a
+                        s / a
                     }
                 }
             }
@@ -361,6 +364,10 @@ mod tests {
             "mu = a for S > 0: {g}"
         );
         assert!((huge_c.slide_speed(g) - 2.0).abs() <= 1e-12);
+        // With a tiny a as well, a / (a + b) underflows to 0: G = S / a overflows to +inf
+        // (mu = a all the way), where adding ln(a / (a + b)) / (c a) = -inf gave NaN.
+        let tiny_a = Friction::speed_dependent(1e-320, 1e6, f64::MAX).unwrap();
+        assert_eq!(tiny_a.slide_potential(2.0), f64::INFINITY);
         let pure = Friction::speed_dependent(0.0, 0.108, 1.088).unwrap();
         assert_eq!(pure.slide_potential(1e15), f64::INFINITY);
         let law = SlidingLaw::new(pure, 3.7e14, 40.0, true);
