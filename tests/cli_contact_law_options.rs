@@ -85,6 +85,17 @@ fn every_method_marks_the_stop_of_sliding() {
                 rows[k..].iter().all(|r| r[2] == 0.0),
                 "{method} {samples:?}"
             );
+            // No two rows at one time, times increasing. The closed form samples the
+            // realised contact time: with --samples 10, the start, 10 sample times (the last
+            // is the end, to round-off: one row) and the stop row.
+            let contact = j["duration"].as_f64().unwrap();
+            assert!(
+                rows.windows(2).all(|w| w[1][0] - w[0][0] > 1e-9 * contact),
+                "{method} {samples:?}: {rows:?}"
+            );
+            if method == "closed-form" && samples.is_some() {
+                assert_eq!(rows.len(), 12, "{rows:?}");
+            }
             stops.push((method, t_stick));
         }
     }

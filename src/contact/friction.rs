@@ -267,6 +267,10 @@ mod tests {
         let literal =
             SlidingLaw::new(Friction::constant(mu).unwrap(), s0, k, false).at(2.0 * p_stick);
         assert!((literal.slip + s0).abs() < 1e-14);
+        // With constant mu, G(S) = S / mu and its inverse S = mu G.
+        let f = Friction::constant(mu).unwrap();
+        assert_eq!(f.slide_potential(1.2), 1.2 / mu);
+        assert_eq!(f.slide_speed(20.0), mu * 20.0);
     }
 
     /// Past the stop mu is continued analytically for one e-fold, then saturates below
