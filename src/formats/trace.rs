@@ -169,3 +169,33 @@ impl TraceSink for Tee<'_> {
         self.1.row(row)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// `rows()` counts the rows written, one line each after the header.
+    #[test]
+    fn counts_the_rows_written() {
+        let mut trace = CsvTrace::new(Vec::new()).unwrap();
+        assert_eq!(trace.rows(), 0);
+        let zero = Vector3::zeros();
+        for k in 0..3 {
+            let row = TraceRow {
+                t: k as f64 * 1e-4,
+                force: 10.0,
+                impulse: k as f64 * 1e-3,
+                state: CmState::new(Vector3::x(), zero, zero),
+                slip_speed: 0.5,
+                theta: Some(0.25),
+                heat_sliding: 0.0,
+                compression: None,
+            };
+            trace.row(&row).unwrap();
+        }
+        assert_eq!(trace.rows(), 3);
+        let text = String::from_utf8(trace.finish().unwrap()).unwrap();
+        assert_eq!(text.lines().count(), 4);
+    }
+}
