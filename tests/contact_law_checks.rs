@@ -54,20 +54,25 @@ fn tight(method: Method) -> SolverSettings {
         .unwrap()
 }
 
-/// The Hunt-Crossley restitution of beta v = `x`: the root y = beta e v in (0, 1) of
-/// -y - ln(1 - y) = x - ln(1 + x), by bisection; e = y / x.
-fn hunt_crossley_e(x: f64) -> f64 {
-    let rhs = x - x.ln_1p();
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+/// The root in [lo, hi] of an equation whose side `below(y)` holds left of the root, by
+/// bisection to round-off.
+fn bisect(mut lo: f64, mut hi: f64, below: impl Fn(f64) -> bool) -> f64 {
     for _ in 0..200 {
         let y = 0.5 * (lo + hi);
-        if -y - (-y).ln_1p() < rhs {
+        if below(y) {
             lo = y;
         } else {
             hi = y;
         }
     }
-    0.5 * (lo + hi) / x
+    0.5 * (lo + hi)
+}
+
+/// The Hunt-Crossley restitution of beta v = `x`: the root y = beta e v in (0, 1) of
+/// -y - ln(1 - y) = x - ln(1 + x), by bisection; e = y / x.
+fn hunt_crossley_e(x: f64) -> f64 {
+    let rhs = x - x.ln_1p();
+    bisect(0.0, 1.0, |y| -y - (-y).ln_1p() < rhs) / x
 }
 
 /// Elastic Hertz against the exact `hertz` profile: impulse 2 m U(0), the contact time
@@ -241,16 +246,7 @@ fn hunt_crossley_peak_force_from_the_first_integral() {
         for x in [0.05f64, 0.3, 1.0, 3.0] {
             let beta = x / v;
             let h0 = x - x.ln_1p();
-            let (mut lo, mut hi) = (0.0f64, x);
-            for _ in 0..200 {
-                let y = 0.5 * (lo + hi);
-                if h0 - (y - y.ln_1p()) - 0.6 * y > 0.0 {
-                    lo = y;
-                } else {
-                    hi = y;
-                }
-            }
-            let y = 0.5 * (lo + hi);
+            let y = bisect(0.0, x, |y| h0 - (y - y.ln_1p()) - 0.6 * y > 0.0);
             let delta = (1.5 * m * y / (k * beta * beta)).powf(0.4);
             let f_peak = k * delta.powf(1.5) * (1.0 + y);
             let d_max = (2.5 * m * h0 / (k * beta * beta)).powf(0.4);

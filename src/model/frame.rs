@@ -305,6 +305,10 @@ mod tests {
             let d = Vector3::new(2.0 * r * phi.cos(), 2.0 * r * phi.sin(), 0.0);
             let pa = [0.3 + 0.01 * k as f64, 0.9, r];
             let pb = [pa[0] + d.x, pa[1] + d.y, r];
+            // The positions differ from pa + d by round-off: e_x from their own difference.
+            let ex = (Vector3::from(pb) - Vector3::from(pa)).normalize();
+            let by_hand =
+                Matrix3::from_columns(&[ex, Vector3::new(-ex.y, ex.x, 0.0), Vector3::z()]);
             for up in [Vector3::z(), Vector3::new(0.0, 0.0, 4.0)] {
                 let scene = LabScene {
                     a: ball(pa, [1.0, 0.0, 0.0], [0.0; 3]),
@@ -312,15 +316,10 @@ mod tests {
                     up,
                 };
                 let f = Frame::new(&scene, r).unwrap();
-                // Positions differ from pa + d by round-off: compare with their own d.
-                let ex = (scene.b.position - scene.a.position).normalize();
-                let by_hand =
-                    Matrix3::from_columns(&[ex, Vector3::new(-ex.y, ex.x, 0.0), Vector3::z()]);
                 assert_eq!(f.basis, by_hand, "up {up}");
                 assert_eq!(*f.up(), Vector3::z());
             }
             // `up` tilted towards e_y by 0.3 rad: e_z is up itself (still perpendicular to e_x).
-            let ex = d / d.norm();
             let (sin, cos) = 0.3_f64.sin_cos();
             let tilt = Vector3::new(-ex.y * sin, ex.x * sin, cos);
             let scene = LabScene {
