@@ -5,7 +5,7 @@
 use billiard_contact::batch::{resolve_slice, run_csv, BatchInput, BatchSetup};
 use billiard_contact::{CmState, Method, SolverSettings};
 
-mod common;
+use crate::common;
 use billiard_contact::{Incoming, Scene};
 use common::{half_sine_time, resolve, theta_cm, Balls, Law, Pair, Rule};
 use nalgebra::Vector3;

@@ -6,8 +6,8 @@
 //! `batch::closed_form_into`, and the speed-dependent closed form at S(0) = 0 through the
 //! batch kernel.
 
-mod cli_common;
-mod common;
+use crate::cli_common;
+use crate::common;
 
 use cli_common::{command, fresh_dir};
 

@@ -4,7 +4,7 @@
 //! output unchanged), while the tolerances act on the closed form under a law (it
 //! integrates the normal law with dop853 at them).
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{bin, fresh_dir, scene, scene_path, succeeded, warned};
 
 /// The rows of a trace CSV: (t, p, S) and the header.

@@ -3,7 +3,7 @@
 //! did-you-mean, a file that is not a scene says so, balls that do not touch name a radius
 //! in millimetres; `help --help` and every subcommand's `--help` work.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{bin, bin_in, fresh_dir, refused};
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@
 //! (`warning: ...`) says what is not used while the run succeeds. Values far outside any
 //! ball game warn with the likely unit slip.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{bin, fresh_dir, refused, scene, warned};
 use std::path::Path;
 

@@ -6,8 +6,8 @@
 //! of tests/common (`resolve`) of the paper's special case (data/scenes/paper_special_case.toml,
 //! eqs 59-72), its numbers written here.
 
-mod cli_common;
-mod common;
+use crate::cli_common;
+use crate::common;
 
 use cli_common::{bin, fresh_dir, refused, scene, succeeded};
 use common::{amax, resolve, Balls, Law, Pair, Rule};

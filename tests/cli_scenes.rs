@@ -6,10 +6,9 @@
 //! tests/common/table.rs, the trace CSV with its force and sliding-heat columns, and
 //! failures that leave no file behind.
 
-mod cli_common;
-#[path = "common/hard.rs"]
-mod hard;
-use hard::first_principles as common;
+use crate::cli_common;
+use crate::common;
+use crate::hard;
 
 use billiard_contact::CmState;
 use cli_common::fresh_dir;
@@ -22,8 +21,8 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 /// What each method reaches on the scenes at `--rtol 1e-12` (rk4 at the scene's steps),
-/// against the independent resolution: `cargo test --release --test cli_scenes
-/// every_scene -- --nocapture` prints the worst of each quantity. Each tolerance is about
+/// against the independent resolution: `cargo test --release --test suite
+/// cli_scenes::every_scene -- --nocapture` prints the worst of each quantity. Each tolerance is about
 /// ten times the measured worst (in the comment), so a regression of two orders of
 /// magnitude fails.
 struct Tol {

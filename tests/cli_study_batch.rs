@@ -1,7 +1,7 @@
 //! The `work-precision` and `batch` commands end to end: files written, header contract,
 //! figure, atomic output, exit codes.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{command, fresh_dir, succeeded};
 
 #[test]

@@ -3,7 +3,7 @@
 //! says there was no sliding, the table summary agrees with the ball path CSV, numbers
 //! carry SI prefixes or plain decimals without `e0`, and counts have their plural right.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::scene;
 use std::path::Path;
 use std::process::Output;

@@ -1,7 +1,7 @@
 //! The command line with the table effect: `--path`, `--plot`, the JSON `table` object,
 //! and clear errors when the table effect is missing.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{command, fresh_dir, scene_path as scene, succeeded};
 
 /// The jump scene: A hops and bounces, B is pushed into the cloth; the path runs until both

@@ -12,7 +12,7 @@
 //! - `kuwabara-kono` calibrated the same way: 1 - e grows as v^(1/5) to first order in the
 //!   damping, so 1 - e(v) = 0.05 v^(1/5) up to terms of order (1 - e)^2.
 
-mod cli_common;
+use crate::cli_common;
 use cli_common::{bin, csv_rows, fresh_dir, scene, succeeded};
 use std::collections::HashMap;
 

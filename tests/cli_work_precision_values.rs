@@ -6,7 +6,7 @@
 //! integrated exactly; the evaluation counts follow from the steps (4 per rk4 step; 6 and
 //! 12 per dopri5 and dop853 step, plus 3 to start).
 
-mod cli_common;
+use crate::cli_common;
 use std::collections::HashMap;
 use std::path::PathBuf;
 

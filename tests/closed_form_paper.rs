@@ -6,7 +6,7 @@
 //! All comparisons are scaled by the reference scales of docs/model.md#scales-and-scaled-errors: speeds by v_ref, spins by
 //! v_ref / r, impulses by m v_ref, energies by m v_ref^2.
 
-mod common;
+use crate::common;
 
 use billiard_contact::profile::HalfSine;
 use billiard_contact::run_scene;

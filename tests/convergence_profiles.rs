@@ -6,7 +6,7 @@
 //! (`common::resolve`). Stick events are checked against each profile's p(t) computed in
 //! `common` (closed forms and quadratures that do not use the crate's profile code).
 
-mod common;
+use crate::common;
 
 use billiard_contact::profile::{ForceProfile, HalfSine, Hertz, Rectangle, SinePower, Tabulated};
 use billiard_contact::Effects;
@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 
 /// Each tolerance is ten times the worst scaled error measured over the subjects and cases
-/// below (`cargo test --release --test convergence_profiles -- --nocapture` prints each
+/// below (`cargo test --release --test suite convergence_profiles:: -- --nocapture` prints each
 /// subject's worst), so that a regression of two orders of magnitude fails.
 ///
 /// Dop853 at rtol 1e-12 (the promise: within 1e-10 of the closed form, scaled). With the

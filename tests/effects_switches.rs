@@ -4,7 +4,7 @@
 //! U(0) = (1, 0.1, 0) (a stun cut): P = 2 m U(0) = 0.34 N s, S(0) = 2 V = 0.2 m/s,
 //! theta = 0, p_stick = m S(0) / (2 mu (1 + 1/alpha)) = 0.0809... N s < P: eq 57 fails.
 
-mod scenes;
+use crate::scenes;
 
 use billiard_contact::formats::report::{summary, Report};
 use billiard_contact::formats::trace::TraceRow;

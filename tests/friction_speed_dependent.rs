@@ -12,8 +12,7 @@
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
-#[path = "common/hard.rs"]
-mod common;
+use crate::hard as common;
 
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;

@@ -8,13 +8,14 @@
 //! need 1e6 rows x 15 numbers x 8 bytes = 120 MB; the solver's own per-call output vector
 //! (one entry per step of one segment) is what the limit leaves room for.
 
-#[path = "common/hard.rs"]
 mod common;
+#[path = "common/hard.rs"]
+mod hard;
 
 use billiard_contact::formats::trace::{CsvTrace, TraceRow, TraceSink};
 use billiard_contact::profile::HalfSine;
 use billiard_contact::{solve, CmState, Error, ImpulseRule, Method, Sampling, SolverSettings};
-use common::*;
+use hard::*;
 use nalgebra::Vector3;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -14,8 +14,7 @@
 //! observed order (stated at the case); the event rule |p(t_stick) - p_stick| <= 1e-10 P
 //! always; cost at most 20 times the default scene's right-hand-side evaluations.
 
-#[path = "common/hard.rs"]
-mod common;
+use crate::hard as common;
 
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
 use billiard_contact::{

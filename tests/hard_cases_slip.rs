@@ -12,8 +12,7 @@
 //! printed with `--nocapture`). The profile is the half-sine, whose p(t) = P sin^2(pi t / 2 tau)
 //! is exact.
 
-#[path = "common/hard.rs"]
-mod common;
+use crate::hard as common;
 
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;

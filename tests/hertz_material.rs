@@ -4,7 +4,7 @@
 //! give the material instead of a duration, their errors, and the time-stepped solution with
 //! the material's pulse against the closed form.
 
-mod common;
+use crate::common;
 
 use billiard_contact::batch::{resolve_slice, BatchInput, BatchSetup};
 use billiard_contact::formats::report::Report;

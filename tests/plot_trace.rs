@@ -3,7 +3,7 @@
 //! and profile, sliding, sticking and without sliding; the command writes a valid SVG or
 //! PNG, and refuses any other extension for every figure option.
 
-mod cli_common;
+use crate::cli_common;
 
 use billiard_contact::formats::scene::SolverOverrides;
 use billiard_contact::formats::trace::{Tee, HEADER};

@@ -17,8 +17,7 @@
 //! now check against independent quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
 //! proptest-regressions/.
 
-#[path = "common/hard.rs"]
-mod common;
+use crate::hard as common;
 
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
@@ -39,7 +38,7 @@ use std::path::Path;
 use std::sync::Mutex;
 
 /// The largest value each checked quantity reached, per class of case, printed whenever it
-/// grows (`cargo test --release --test properties_invariants -- --nocapture`): the
+/// grows (`cargo test --release --test suite properties_invariants:: -- --nocapture`): the
 /// measurements the tolerances below are set from.
 fn reached(class: &str, what: &str, x: f64) {
     static WORST: Mutex<BTreeMap<String, f64>> = Mutex::new(BTreeMap::new());

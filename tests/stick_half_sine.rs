@@ -7,8 +7,6 @@
 //! |p(t_stick) - p_stick| <= 1e-10 P always; |t - t_stick| <= 1e-10 tau wherever
 //! f(t_stick) >= 1e-3 P / tau.
 
-mod common;
-
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::Effects;

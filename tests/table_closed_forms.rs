@@ -3,7 +3,7 @@
 //! Notation: lab frame, up n = +z, cloth at z = 0, m = 0.17 kg, r = 0.028575 m, solid ball
 //! alpha = 2/5, slip of the contact point u = v_h - r (w x n).
 
-mod scenes;
+use crate::scenes;
 
 use billiard_contact::run_scene;
 use billiard_contact::table_phase::{

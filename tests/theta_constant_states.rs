@@ -8,7 +8,7 @@
 //! the slip recomputed from the row's velocities and spins, (2V + r Omega_z, 2W - r Omega_y)
 //! (eqs 5-6), and the row's own (S, theta) columns, both against the incoming direction.
 
-mod common;
+use crate::common;
 
 use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::{HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated};

@@ -5,7 +5,7 @@
 //! Expected values come from the paper's closed form worked by hand for these shots (the
 //! derivations are next to each test), never from the code under test.
 
-mod cli_common;
+use crate::cli_common;
 use std::path::{Path, PathBuf};
 
 const A: f64 = 9.951e-3;

@@ -8,7 +8,7 @@
 //! spins are compared over v_ref / min(r_A, r_B), impulses over m* v_ref, energies over
 //! m* v_ref^2.
 
-mod common;
+use crate::common;
 
 use billiard_contact::details::ClosedFormBatch;
 use billiard_contact::{

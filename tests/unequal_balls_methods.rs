@@ -5,7 +5,7 @@
 //! (also with speed-dependent mu) and friction that keeps acting past the stop
 //! (`stick = false`). The runs' own conservation checks hold to round-off.
 
-mod common;
+use crate::common;
 
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
 use billiard_contact::{

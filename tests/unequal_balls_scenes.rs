@@ -4,8 +4,8 @@
 //! the scene's balls, and the identical-ball limit given as a pair reproducing `[balls]`
 //! byte for byte.
 
-mod cli_common;
-mod common;
+use crate::cli_common;
+use crate::common;
 
 use billiard_contact::batch::{resolve, BatchInput, BatchSetup, Overrides};
 use billiard_contact::{run_scene, Incoming, Method, Report, Scene};

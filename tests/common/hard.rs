@@ -216,8 +216,9 @@ impl Exact {
     }
 }
 
-#[path = "mod.rs"]
-pub mod first_principles;
+// The first-principles references of tests/common/mod.rs, which the test program that
+// loads this file declares as `common` at its root.
+use crate::common as first_principles;
 
 /// Phi(s) of the Hertz pulse: the inverse of tests/common's `hertz_time`, the quadrature of
 /// the energy integral of delta'' = -delta^(3/2) (not the library's `Hertz`), by the
@@ -508,8 +509,7 @@ pub fn check_outcome_with(x: &Expect<'_>, o: &Outcome, tau: f64, tol: f64) {
     }
 }
 
-// The one copy of the nodes: through tests/common/mod.rs (loading quadrature.rs twice is
-// a duplicate module).
+// The one copy of the nodes: tests/common/mod.rs's.
 pub use first_principles::gauss_legendre;
 
 /// Composite Gauss-Legendre quadrature of `f` over [a, b].
