@@ -27,6 +27,97 @@ fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
     (header, rows)
 }
 
+/// An elastic Hertz law (`damping = "none"`) and a stun cut whose sliding stops at half the
+/// impulse, so that the stop falls on the middle sample time of every even `--samples N`.
+///
+/// Independent derivation. Pool balls (m = 0.17 kg, alpha = 0.4, mu = 0.06), A at 1 m/s
+/// along the line of centres and v_y across it, B at rest: in the centre-of-mass frame
+/// U(0) = 0.5 m/s, V(0) = v_y / 2, S(0) = 2 V(0) = v_y (eqs 5-6). The undamped contact
+/// m* delta'' = -k delta^(3/2) is reversible: delta(t) = delta(tau - t), so f(t) = f(tau - t)
+/// and p(tau / 2) = P / 2, with P = 2 m U(0) = 0.17 N s (e = 1). Sliding stops at
+/// p_stick = m S(0) / (2 mu (1 + 1/alpha)) (docs/model.md#when-sliding-stops-during-contact),
+/// which is P / 2 = m U(0) when v_y = S(0) = 2 mu (1 + 1/alpha) U(0) = 0.21 m/s. Then
+/// t_stick = tau / 2, and a trace with `--samples N` has the start, the sample times
+/// k tau / N (k = 1..N, the last one the end of the contact) and the stop: N + 1 rows for
+/// even N (the stop is the middle sample), N + 2 for odd N, no two closer than 1e-9 tau.
+#[test]
+fn a_stop_on_a_sample_time_is_one_row() {
+    let d = fresh_dir("cli_contact_law_stop_on_sample");
+    let file = d.join("elastic_half.toml");
+    std::fs::write(
+        &file,
+        r#"name = "elastic Hertz law, sliding stops at half the impulse"
+[balls]
+mass = 0.17
+radius = 0.028575
+alpha = 0.4
+youngs_modulus = 5.4e9
+poisson_ratio = 0.34
+[contact]
+mu = 0.06
+[contact.law]
+model = "hertz"
+damping = "none"
+[incoming.lab]
+a = { position = [-0.028575, 0.0, 0.028575], velocity = [1.0, 0.21, 0.0], spin = [0.0, 0.0, 0.0] }
+b = { position = [0.028575, 0.0, 0.028575], velocity = [0.0, 0.0, 0.0], spin = [0.0, 0.0, 0.0] }
+"#,
+    )
+    .unwrap();
+    let (p_total, p_stick): (f64, f64) = (2.0 * 0.17 * 0.5, 0.17 * 0.21 / (2.0 * 0.06 * 3.5));
+    assert!((p_stick - 0.5 * p_total).abs() < 1e-15);
+    for method in ["closed-form", "rk4", "dopri5", "dop853"] {
+        for n in [2usize, 3, 4, 7, 10] {
+            let csv = d.join(format!("{method}.{n}.csv"));
+            let samples = n.to_string();
+            let j = json(&[
+                "run",
+                file.to_str().unwrap(),
+                "--method",
+                method,
+                "--json",
+                "--trace",
+                csv.to_str().unwrap(),
+                "--samples",
+                &samples,
+            ]);
+            let what = format!("{method} --samples {n}");
+            let (tau, t_stick) = (
+                j["duration"].as_f64().unwrap(),
+                j["stick_time"].as_f64().unwrap(),
+            );
+            // Measured: |t_stick / tau - 1/2| <= 1.0e-11 (the closed form; dop853 5.4e-12).
+            assert!(
+                (t_stick / tau - 0.5).abs() < 1e-10,
+                "{what}: {t_stick} / {tau}"
+            );
+            let (_, rows) = trace(&csv);
+            let want = if n % 2 == 0 { n + 1 } else { n + 2 };
+            assert_eq!(rows.len(), want, "{what}: {rows:?}");
+            assert!(
+                rows.windows(2).all(|w| w[1][0] - w[0][0] > 1e-9 * tau),
+                "{what}: {rows:?}"
+            );
+            let k = rows
+                .iter()
+                .position(|r| r[0] == t_stick)
+                .unwrap_or_else(|| panic!("{what}: no row at {t_stick}: {rows:?}"));
+            assert_eq!(rows[k][2], 0.0, "{what}: {:?}", rows[k]);
+            assert!(
+                (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
+                "{what}: {:?}",
+                rows[k]
+            );
+            assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{what}: {rows:?}");
+            assert!(
+                (rows[want - 1][0] - tau).abs() < 1e-9 * tau,
+                "{what}: {rows:?}"
+            );
+            println!("{what}: t_stick / tau - 1/2 = {:.1e}", t_stick / tau - 0.5);
+        }
+    }
+}
+
 fn json(args: &[&str]) -> serde_json::Value {
     let out = bin(args);
     succeeded(&out);

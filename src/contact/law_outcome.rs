@@ -10,9 +10,9 @@
 use crate::contact::closed_form::ClosedForm;
 use crate::contact::outcome::{closed_form_checks, eq57_warning, solve, take_run, Outcome};
 use crate::error::Error;
-use crate::formats::trace::{TraceRow, TraceSink};
+use crate::formats::trace::{CoincidentRows, TraceRow, TraceSink};
 use crate::integrator::law::{
-    integrate_law, normal_run, normal_settings, HeadOn, LawScales, NormalPoint,
+    integrate_law, normal_run, normal_settings, HeadOn, LawScales, NormalPoint, COINCIDENT_ROWS,
 };
 use crate::integrator::{Method, Sampling, SolverSettings};
 use crate::model::collision::Collision;
@@ -224,28 +224,13 @@ fn closed_form_trace(
             compression: Some(delta),
         }
     };
-    let mut pending: Option<(TraceRow, bool)> = None;
-    let mut write = |point: NormalPoint, stop: bool| -> Result<(), Error> {
-        let next = (row(point, stop), stop);
-        pending = match pending.take() {
-            Some(prev) if next.0.t - prev.0.t > 1e-9 * duration => {
-                sink.row(&prev.0)?;
-                Some(next)
-            }
-            // Of two rows that coincide, the stop row is kept.
-            Some(prev) if prev.1 => Some(prev),
-            _ => Some(next),
-        };
-        Ok(())
-    };
+    let mut rows = CoincidentRows::new(COINCIDENT_ROWS * duration);
+    let mut write = |point: NormalPoint, stop: bool| rows.offer(sink, row(point, stop), stop);
     normal_run(
         scales,
         normal,
         pulse.stop.map(|(_, p)| p),
         Some((&mut write, duration / pulse.samples.max(1) as f64)),
     )?;
-    match pending {
-        Some((last, _)) => sink.row(&last),
-        None => Ok(()),
-    }
+    rows.finish(sink)
 }

@@ -63,6 +63,53 @@ pub trait TraceSink {
     fn row(&mut self, row: &TraceRow) -> Result<(), Error>;
 }
 
+/// Of two rows closer in time than a window, writes one: the stop of sliding's when either
+/// is it, else the later. A contact law's sample times (multiples of tau / N) can fall within
+/// round-off of the stop of sliding or of the end of the contact, which are located as events
+/// (docs/formats.md#trace-csv: a stop that falls on a sample time is written once).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CoincidentRows {
+    /// Rows closer than this (s) are one.
+    window: f64,
+    /// The row held back until the next shows whether it coincides, and whether it is the
+    /// stop's.
+    held: Option<(TraceRow, bool)>,
+}
+
+impl CoincidentRows {
+    /// Merges rows closer than `window` seconds.
+    pub(crate) fn new(window: f64) -> Self {
+        CoincidentRows { window, held: None }
+    }
+
+    /// Takes `row` (`stop`: the row of the stop of sliding), writing the row held before it
+    /// to `sink` when the two are clear of each other.
+    pub(crate) fn offer(
+        &mut self,
+        sink: &mut dyn TraceSink,
+        row: TraceRow,
+        stop: bool,
+    ) -> Result<(), Error> {
+        self.held = match self.held.take() {
+            Some(held) if row.t - held.0.t > self.window => {
+                sink.row(&held.0)?;
+                Some((row, stop))
+            }
+            Some(held) if held.1 => Some(held),
+            _ => Some((row, stop)),
+        };
+        Ok(())
+    }
+
+    /// Writes the row held back, if any.
+    pub(crate) fn finish(&mut self, sink: &mut dyn TraceSink) -> Result<(), Error> {
+        match self.held.take() {
+            Some((row, _)) => sink.row(&row),
+            None => Ok(()),
+        }
+    }
+}
+
 /// Collects rows in memory (tests, examples, small runs).
 impl TraceSink for Vec<TraceRow> {
     fn row(&mut self, row: &TraceRow) -> Result<(), Error> {

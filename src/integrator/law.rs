@@ -54,6 +54,10 @@ const X_TOL: f64 = 1e-14;
 const G_TOL: f64 = 1e-14;
 /// Most trials of the event location.
 const MAX_TRIALS: usize = 100;
+/// Trace rows closer than this fraction of the contact time are one row: a sample time
+/// within round-off of the located stop of sliding or end of contact (the events' own
+/// tolerances are 1e-14; a sample step is at least 1e-9 of the contact only for N < 1e9).
+pub(crate) const COINCIDENT_ROWS: f64 = 1e-9;
 
 /// A unit force: with it [`SlidingRhs`] takes its force n from the law at every evaluation.
 #[derive(Debug, Clone, Copy)]
@@ -492,6 +496,10 @@ pub(crate) fn integrate_law(
         stepper: Stepper::new(settings)?,
         rec: Recorder::new(trace, c.theta()),
     };
+    if dx.is_some() {
+        run.rec
+            .merge_coincident(COINCIDENT_ROWS * lp.scales.time(1.0));
+    }
     let mut y = SVector::<f64, LAW_DIM>::zeros();
     y.fixed_rows_mut::<SLIDING_DIM>(0)
         .copy_from(&SlidingState::initial(lp.problem.slip0).0);
@@ -521,10 +529,11 @@ pub(crate) fn integrate_law(
                 } else {
                     ContactStage::Frozen
                 };
-                lp.emit(&mut run.rec, &y, Some(time));
+                lp.emit_stop(&mut run.rec, &y, time);
             }
         }
     }
+    run.rec.finish();
     run.rec.take_error()?;
     Ok(LawIntegrated {
         run: result(&lp.problem, &sliding_part(&y), stop, &run),
@@ -549,14 +558,24 @@ impl LawProblem<'_> {
 
     /// Writes the trace row of `y` (at `time`, s; default its own).
     fn emit(&self, rec: &mut Recorder<'_>, y: &SVector<f64, LAW_DIM>, time: Option<f64>) {
+        rec.emit_with(y[0], |theta| self.row(y, time, theta));
+    }
+
+    /// Writes the trace row of the stop of sliding, state `y` at `time` (s).
+    fn emit_stop(&self, rec: &mut Recorder<'_>, y: &SVector<f64, LAW_DIM>, time: f64) {
+        rec.emit_stop_with(y[0], |theta| self.row(y, Some(time), theta));
+    }
+
+    /// The trace row of `y` (at `time`, s; default its own) with slip angle `theta`.
+    fn row(&self, y: &SVector<f64, LAW_DIM>, time: Option<f64>, theta: Option<f64>) -> TraceRow {
         let sc = &self.scales;
-        rec.emit_with(y[0], |theta| TraceRow {
+        TraceRow {
             t: time.unwrap_or(sc.time(y[0])),
             force: sc.force(y[1], y[COMPRESSION]),
             impulse: sc.impulse(y[1]),
             compression: Some(sc.delta(y[COMPRESSION])),
             ..self.problem.units.row(&sliding_part(y), None, theta)
-        });
+        }
     }
 
     /// Steps `stage` from `y` towards `b`, until it is reached, sliding stops or the contact

@@ -5,7 +5,7 @@ use super::rhs::SlidingState;
 use super::settings::Sampling;
 use super::units::Units;
 use crate::error::Error;
-use crate::formats::trace::{TraceRow, TraceSink};
+use crate::formats::trace::{CoincidentRows, TraceRow, TraceSink};
 use crate::model::state::slip_angle;
 use crate::profile::ForceProfile;
 use nalgebra::{SVector, Vector2};
@@ -25,6 +25,9 @@ pub(super) struct Recorder<'a> {
     pub(super) slip_consistency: f64,
     /// The slip angle the trace rows carry (rad).
     theta_last: Option<f64>,
+    /// Rows closer in time than its window written as one (a contact law's sample rows
+    /// against its events); `None`: every row as it comes.
+    coincident: Option<CoincidentRows>,
 }
 
 impl<'a> Recorder<'a> {
@@ -46,6 +49,22 @@ impl<'a> Recorder<'a> {
             theta_drift: 0.0,
             slip_consistency: 0.0,
             theta_last: theta,
+            coincident: None,
+        }
+    }
+
+    /// From now on, of two rows closer than `window` (s) only one is written: the stop of
+    /// sliding's, else the later. [`Recorder::finish`] writes the last.
+    pub(super) fn merge_coincident(&mut self, window: f64) {
+        self.coincident = Some(CoincidentRows::new(window));
+    }
+
+    /// Writes the row held back by [`Recorder::merge_coincident`], if any.
+    pub(super) fn finish(&mut self) {
+        if let (Some(rows), Some(sink)) = (self.coincident.as_mut(), self.sink.as_deref_mut()) {
+            if let Err(e) = rows.finish(sink) {
+                self.error.get_or_insert(e);
+            }
         }
     }
 
@@ -92,12 +111,25 @@ impl<'a> Recorder<'a> {
     /// variable `x`, unless a row at or after it was written already or an error was
     /// recorded.
     pub(super) fn emit_with(&mut self, x: f64, row: impl FnOnce(Option<f64>) -> TraceRow) {
+        self.write(x, false, row);
+    }
+
+    /// [`Recorder::emit_with`] for the row of the stop of sliding.
+    pub(super) fn emit_stop_with(&mut self, x: f64, row: impl FnOnce(Option<f64>) -> TraceRow) {
+        self.write(x, true, row);
+    }
+
+    fn write(&mut self, x: f64, stop: bool, row: impl FnOnce(Option<f64>) -> TraceRow) {
         if self.error.is_some() || x <= self.last_row_x {
             return;
         }
         let theta = self.theta_last;
         if let Some(sink) = self.sink.as_deref_mut() {
-            if let Err(e) = sink.row(&row(theta)) {
+            let written = match self.coincident.as_mut() {
+                Some(rows) => rows.offer(sink, row(theta), stop),
+                None => sink.row(&row(theta)),
+            };
+            if let Err(e) = written {
                 self.error = Some(e);
             }
         }
