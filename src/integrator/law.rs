@@ -26,7 +26,7 @@ use super::record::Recorder;
 use super::rhs::{Direction, ScaledRhs, SlidingRhs, SlidingState, SLIDING_DIM};
 use super::settings::{Method, Sampling, SolverSettings, Stats};
 use super::stages::{ContactStage, Problem, Run};
-use super::stepping::Stepper;
+use super::stepping::{Stepper, WHOLE_SPAN};
 use super::stop_event::{illinois_update, Bound, Side};
 use super::time_map::TimeMap;
 use crate::error::Error;
@@ -287,7 +287,9 @@ fn locate<const N: usize, R: ScaledRhs<N>>(
             break;
         }
         let x = (lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g))).clamp(lo.q, hi.q);
-        let st = stepper.advance(rhs, x0, *prev, x, x - x0, &mut never)?.y;
+        let st = stepper
+            .advance(rhs, x0, *prev, x, WHOLE_SPAN, &mut never)?
+            .y;
         let g = event(&st);
         if g.abs() < best_g || (g <= 0.0 && g.abs() <= best_g) {
             (best, best_g) = (st, g.abs());

@@ -78,6 +78,11 @@ const RK4_COUNT_SLACK: f64 = 1e-9;
 /// steps = 1e9 would exhaust memory. 4096 steps are 320 kB.
 const RK4_CHUNK: u64 = 4096;
 
+/// First step of an advance that should cross its span in one step when the error allows
+/// (the trials of an event search, which re-integrate one step from its start): `Span::new`
+/// clamps the first step to the span's length.
+pub(super) const WHOLE_SPAN: f64 = f64::INFINITY;
+
 /// Runs an embedded Dormand-Prince pair (`Dopri5` or `Dop853`) with its [`StepControl`]
 /// over a [`Span`] from `(a, y0)` to `b`, with the tolerances of a [`Stepper`]: the 16
 /// positional arguments of `ode_solvers`' `from_param`, each named.

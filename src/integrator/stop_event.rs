@@ -3,7 +3,7 @@
 //! s = g(x) the scaled time of the integration variable.
 
 use super::rhs::{SlidingRhs, SlidingState, SLIDING_DIM};
-use super::stepping::Stepper;
+use super::stepping::{Stepper, WHOLE_SPAN};
 use crate::error::Error;
 use crate::profile::ForceProfile;
 use nalgebra::SVector;
@@ -75,7 +75,7 @@ pub(super) fn locate_stop<P: ForceProfile + ?Sized>(
         }
         let q = lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g));
         let x = map.at_impulse_fraction(profile, q).clamp(x_lo0, x_hi0);
-        let adv = stepper.advance(&frozen, x_lo0, prev.0, x, x - x_lo0, &mut no_stop)?;
+        let adv = stepper.advance(&frozen, x_lo0, prev.0, x, WHOLE_SPAN, &mut no_stop)?;
         let st = SlidingState(adv.y);
         let g = rhs.event(&st);
         if g.abs() < best_g || (g <= 0.0 && g.abs() <= best_g) {
