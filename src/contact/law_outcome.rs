@@ -12,7 +12,7 @@ use crate::contact::outcome::{closed_form_checks, eq57_warning, solve, take_run,
 use crate::error::Error;
 use crate::formats::trace::{CoincidentRows, TraceRow, TraceSink};
 use crate::integrator::law::{
-    integrate_law, normal_run, normal_settings, HeadOn, LawScales, NormalPoint, COINCIDENT_ROWS,
+    integrate_law, normal_run, normal_settings, HeadOn, LawScales, NormalPoint,
 };
 use crate::integrator::{Method, Sampling, SolverSettings};
 use crate::model::collision::Collision;
@@ -224,7 +224,7 @@ fn closed_form_trace(
             compression: Some(delta),
         }
     };
-    let mut rows = CoincidentRows::new(COINCIDENT_ROWS * duration);
+    let mut rows = CoincidentRows::new(duration);
     let mut write = |point: NormalPoint, stop: bool| rows.offer(sink, row(point, stop), stop);
     normal_run(
         scales,

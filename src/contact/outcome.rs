@@ -5,7 +5,7 @@ use crate::contact::closed_form::ClosedForm;
 use crate::contact::law_outcome::LawOutcome;
 use crate::contact::result::ContactResult;
 use crate::error::Error;
-use crate::formats::trace::{TraceRow, TraceSink};
+use crate::formats::trace::{CoincidentRows, TraceRow, TraceSink};
 use crate::integrator::{integrate, Integrated, Method, Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
 use crate::profile::ForceProfile;
@@ -190,17 +190,18 @@ fn closed_form_trace<P: ForceProfile + ?Sized>(
             compression: None,
         }
     };
+    let mut rows = CoincidentRows::new(tau);
     let mut last = -1.0;
     let n = n.max(1);
     for i in 0..=n {
         let s = i as f64 / n as f64;
         if let Some(ss) = stick_s {
-            if ss > last && ss < s {
-                sink.row(&row(ss, ss * tau, exact.result.stick_impulse))?;
+            if ss > last && ss <= s {
+                rows.offer(sink, row(ss, ss * tau, exact.result.stick_impulse), true)?;
             }
         }
-        sink.row(&row(s, i as f64 * tau / n as f64, None))?;
+        rows.offer(sink, row(s, i as f64 * tau / n as f64, None), false)?;
         last = s;
     }
-    Ok(())
+    rows.finish(sink)
 }

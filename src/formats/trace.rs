@@ -63,10 +63,16 @@ pub trait TraceSink {
     fn row(&mut self, row: &TraceRow) -> Result<(), Error>;
 }
 
-/// Of two rows closer in time than a window, writes one: the stop of sliding's when either
-/// is it, else the later. A contact law's sample times (multiples of tau / N) can fall within
-/// round-off of the stop of sliding or of the end of the contact, which are located as events
-/// (docs/formats.md#trace-csv: a stop that falls on a sample time is written once).
+/// Rows closer than this fraction of the contact time are one row. A located event and a
+/// sample time that it falls on differ by round-off (1e-16 to 1e-11 of the contact time);
+/// sample times are a contact time / N apart, far more for any N below 1e9.
+const COINCIDENT: f64 = 1e-9;
+
+/// Of two rows closer in time than [`COINCIDENT`] contact times, writes one: the stop of
+/// sliding's when either is it, else the later. The stop of sliding (and under a contact law
+/// the end of the contact) is located as an event, and where it falls on a sample time the
+/// two times agree only to round-off, in either order (docs/formats.md#trace-csv: a stop that
+/// falls on a sample time is written once).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct CoincidentRows {
     /// Rows closer than this (s) are one.
@@ -77,9 +83,12 @@ pub(crate) struct CoincidentRows {
 }
 
 impl CoincidentRows {
-    /// Merges rows closer than `window` seconds.
-    pub(crate) fn new(window: f64) -> Self {
-        CoincidentRows { window, held: None }
+    /// Merges the rows of a contact of `contact_time` (s).
+    pub(crate) fn new(contact_time: f64) -> Self {
+        CoincidentRows {
+            window: COINCIDENT * contact_time,
+            held: None,
+        }
     }
 
     /// Takes `row` (`stop`: the row of the stop of sliding), writing the row held before it

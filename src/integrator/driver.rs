@@ -90,6 +90,9 @@ pub fn integrate<P: ForceProfile + ?Sized>(
         stepper: Stepper::new(settings)?,
         rec: Recorder::new(trace, c.theta()),
     };
+    if sampling != Sampling::Steps {
+        run.rec.merge_coincident(profile.duration());
+    }
     let mut y = SlidingState::initial(problem.slip0);
     let (mut stage, mut stop) = initial_stage(c);
     run.rec.emit(&problem.units, &y, Some(0.0));
@@ -117,7 +120,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
                 } else {
                     stage = ContactStage::Frozen;
                 }
-                run.rec.emit(&problem.units, &y, stop.time);
+                run.rec.emit_stop(&problem.units, &y, time);
             }
         }
         x = end;
@@ -125,6 +128,7 @@ pub fn integrate<P: ForceProfile + ?Sized>(
             run.rec.emit(&problem.units, &y, Some(t));
         }
     }
+    run.rec.finish();
     run.rec.take_error()?;
     Ok(result(&problem, &y, stop, &run))
 }

@@ -54,10 +54,6 @@ const X_TOL: f64 = 1e-14;
 const G_TOL: f64 = 1e-14;
 /// Most trials of the event location.
 const MAX_TRIALS: usize = 100;
-/// Trace rows closer than this fraction of the contact time are one row: a sample time
-/// within round-off of the located stop of sliding or end of contact (the events' own
-/// tolerances are 1e-14; a sample step is at least 1e-9 of the contact only for N < 1e9).
-pub(crate) const COINCIDENT_ROWS: f64 = 1e-9;
 
 /// A unit force: with it [`SlidingRhs`] takes its force n from the law at every evaluation.
 #[derive(Debug, Clone, Copy)]
@@ -499,8 +495,7 @@ pub(crate) fn integrate_law(
         rec: Recorder::new(trace, c.theta()),
     };
     if dx.is_some() {
-        run.rec
-            .merge_coincident(COINCIDENT_ROWS * lp.scales.time(1.0));
+        run.rec.merge_coincident(lp.scales.time(1.0));
     }
     let mut y = SVector::<f64, LAW_DIM>::zeros();
     y.fixed_rows_mut::<SLIDING_DIM>(0)

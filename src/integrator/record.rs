@@ -53,10 +53,11 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    /// From now on, of two rows closer than `window` (s) only one is written: the stop of
-    /// sliding's, else the later. [`Recorder::finish`] writes the last.
-    pub(super) fn merge_coincident(&mut self, window: f64) {
-        self.coincident = Some(CoincidentRows::new(window));
+    /// From now on, of two rows that coincide in a contact of `contact_time` (s) only one is
+    /// written: the stop of sliding's, else the later ([`CoincidentRows`]).
+    /// [`Recorder::finish`] writes the last.
+    pub(super) fn merge_coincident(&mut self, contact_time: f64) {
+        self.coincident = Some(CoincidentRows::new(contact_time));
     }
 
     /// Writes the row held back by [`Recorder::merge_coincident`], if any.
@@ -105,6 +106,16 @@ impl<'a> Recorder<'a> {
         time: Option<f64>,
     ) {
         self.emit_with(y.x(), |theta| units.row(y, time, theta));
+    }
+
+    /// [`Recorder::emit`] for the row of the stop of sliding, at `time` (s).
+    pub(super) fn emit_stop<P: ForceProfile + ?Sized>(
+        &mut self,
+        units: &Units<'_, P>,
+        y: &SlidingState,
+        time: f64,
+    ) {
+        self.emit_stop_with(y.x(), |theta| units.row(y, Some(time), theta));
     }
 
     /// Writes the row `row` builds from the slip angle, for the state at integration
