@@ -347,6 +347,31 @@ mod tests {
     }
 
     #[test]
+    fn touching_means_within_one_part_in_1e9_of_the_contact_distance() {
+        // docs/formats.md: | |p_B - p_A| - (r_A + r_B) | <= 1e-9 (r_A + r_B). Pool balls of
+        // radius 0.028575 m (2r = 0.05715 m, so 1e-9 2r = 5.7e-11 m, far above the 7e-18 m
+        // of an ulp here), B along x at 2r times 1 + k 1e-9: k = +-0.5 touch, k = +-2 do
+        // not; unequal radii (0.03 + 0.02 m) the same.
+        for radii in [[0.028575, 0.028575], [0.03, 0.02]] {
+            let contact = radii[0] + radii[1];
+            for (k, touches) in [(0.5, true), (-0.5, true), (2.0, false), (-2.0, false)] {
+                let scene = LabScene {
+                    a: ball([0.0; 3], [1.0, 0.0, 0.0], [0.0; 3]),
+                    b: ball([contact * (1.0 + k * 1e-9), 0.0, 0.0], [0.0; 3], [0.0; 3]),
+                    up: Vector3::z(),
+                };
+                match Frame::build(&scene, radii, [0.5, 0.5]) {
+                    Ok(_) => assert!(touches, "{radii:?}, gap {k:e} contact: accepted"),
+                    Err(Error::NotTouching { .. }) => {
+                        assert!(!touches, "{radii:?}, gap {k:e} contact: refused")
+                    }
+                    Err(e) => panic!("{e}"),
+                }
+            }
+        }
+    }
+
+    #[test]
     fn throw_angle_sign_is_counter_clockwise_about_up() {
         let scene = LabScene {
             a: ball([-0.03, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0; 3]),
