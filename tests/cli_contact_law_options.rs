@@ -98,17 +98,7 @@ b = { position = [0.028575, 0.0, 0.028575], velocity = [0.0, 0.0, 0.0], spin = [
                 rows.windows(2).all(|w| w[1][0] - w[0][0] > 1e-9 * tau),
                 "{what}: {rows:?}"
             );
-            let k = rows
-                .iter()
-                .position(|r| r[0] == t_stick)
-                .unwrap_or_else(|| panic!("{what}: no row at {t_stick}: {rows:?}"));
-            assert_eq!(rows[k][2], 0.0, "{what}: {:?}", rows[k]);
-            assert!(
-                (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
-                "{what}: {:?}",
-                rows[k]
-            );
-            assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{what}: {rows:?}");
+            stop_row(&rows, t_stick, p_stick, &what);
             assert!(
                 (rows[want - 1][0] - tau).abs() < 1e-9 * tau,
                 "{what}: {rows:?}"
@@ -116,6 +106,23 @@ b = { position = [0.028575, 0.0, 0.028575], velocity = [0.0, 0.0, 0.0], spin = [
             println!("{what}: t_stick / tau - 1/2 = {:.1e}", t_stick / tau - 0.5);
         }
     }
+}
+
+/// The trace's stop of sliding: a row at the reported stick time with S = 0 and p = p_stick,
+/// S > 0 before it and 0 after it.
+fn stop_row(rows: &[[f64; 3]], t_stick: f64, p_stick: f64, what: &str) {
+    let k = rows
+        .iter()
+        .position(|r| r[0] == t_stick)
+        .unwrap_or_else(|| panic!("{what}: no row at {t_stick}: {rows:?}"));
+    assert_eq!(rows[k][2], 0.0, "{what}: {:?}", rows[k]);
+    assert!(
+        (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
+        "{what}: {:?}",
+        rows[k]
+    );
+    assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{what}: {rows:?}");
+    assert!(rows[k..].iter().all(|r| r[2] == 0.0), "{what}: {rows:?}");
 }
 
 fn json(args: &[&str]) -> serde_json::Value {
@@ -161,21 +168,7 @@ fn every_method_marks_the_stop_of_sliding() {
             );
             let (header, rows) = trace(&file);
             assert!(header.ends_with("delta (m)"), "{header}");
-            let k = rows
-                .iter()
-                .position(|r| r[0] == t_stick)
-                .unwrap_or_else(|| panic!("{method} {samples:?}: no row at {t_stick}"));
-            assert_eq!(rows[k][2], 0.0, "{method} {samples:?}: {:?}", rows[k]);
-            assert!(
-                (rows[k][1] - p_stick).abs() < 1e-9 * p_stick,
-                "{:?}",
-                rows[k]
-            );
-            assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{method} {samples:?}");
-            assert!(
-                rows[k..].iter().all(|r| r[2] == 0.0),
-                "{method} {samples:?}"
-            );
+            stop_row(&rows, t_stick, p_stick, &format!("{method} {samples:?}"));
             // No two rows at one time, times increasing. The closed form samples the
             // realised contact time: with --samples 10, the start, 10 sample times (the last
             // is the end, to round-off: one row) and the stop row.
