@@ -121,6 +121,29 @@ fn closed_form_of_the_slide_potential_matches_quadrature() {
     }
 }
 
+/// mu(S) = a + b e^(-c S) with c = 0 is the constant a + b, with b = 0 the constant a: the
+/// slide potential G(S) = S / mu and its inverse S = mu G (eq 48 with constant mu), for
+/// every a (a = 0 too, where the general formulas divide by a).
+#[test]
+fn degenerate_laws_are_constant_mu() {
+    for (a, b, c) in [(A, B, 0.0), (0.0, B, 0.0), (A, 0.0, C), (A, 0.0, 0.0)] {
+        let f = Friction::speed_dependent(a, b, c).unwrap();
+        let mu = a + b;
+        for s in [1e-9, 0.1, 2.0, 50.0] {
+            let g = f.slide_potential(s);
+            assert!(
+                (g - s / mu).abs() <= 4.0 * f64::EPSILON * g,
+                "({a}, {b}, {c}): G({s}) = {g}"
+            );
+            let back = f.slide_speed(s / mu);
+            assert!(
+                (back - s).abs() <= 4.0 * f64::EPSILON * s,
+                "({a}, {b}, {c}): S = {back} for {s}"
+            );
+        }
+    }
+}
+
 /// The exact outgoing state (eqs 24-33 with J), for incoming U(0) = (U, V, 0), no spin, so
 /// theta = 0 when V > 0: V -> V - J/m, Omega^{A,B}_z -> -J / (alpha m r).
 fn exact_out(u: [f64; 3], j: f64, p: f64) -> CmState {
