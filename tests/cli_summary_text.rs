@@ -67,6 +67,44 @@ fn no_sliding_and_no_heat_in_a_head_on_stun() {
     );
 }
 
+/// A heat well above round-off is printed as it is. stun_cut_sticks.toml: e = 1, A at 2 m/s
+/// and 10 degrees onto B at rest, so U(0) = cos 10 deg, S(0) = 2 V(0) = 2 sin 10 deg m/s, and
+/// sliding stops at p_stick = m S(0) / (2 mu (1 + 1/alpha)) before P = 2 m U(0). Then
+/// J = mu p_stick = m S(0) / 7 (alpha = 0.4), H_sfr = J S(0) - (1 + 1/alpha) J^2 / m =
+/// m S(0)^2 / 14 (eq 49 with the stick rule), and H = H_sfr + P (2 U(0) - P / m) = H_sfr
+/// (eq 50, e = 1): 1.46460778 mJ.
+#[test]
+fn a_heat_above_round_off_is_printed() {
+    let s0 = 0.34729635533386066_f64;
+    let want = 0.17 * s0 * s0 / 14.0;
+    let mj = |x: &str| {
+        x.trim()
+            .strip_suffix(" mJ")
+            .unwrap()
+            .parse::<f64>()
+            .unwrap()
+            * 1e-3
+    };
+    for method in ["closed-form", "dop853", "rk4"] {
+        let s = text(&bin(&[
+            "run",
+            &scene("stun_cut_sticks.toml"),
+            "--method",
+            method,
+        ]));
+        let l = line(&s, "heat H").trim_start_matches("heat H");
+        let (h, sliding) = l.split_once(" (sliding ").unwrap();
+        let (h, sliding) = (mj(h), mj(sliding.trim_end_matches(')')));
+        // 10 digits printed (5e-13 J); H is a difference of kinetic energies of about
+        // 0.34 J, whose round-off (2e-12 J here) the printed value keeps.
+        assert!((h - want).abs() < 1e-11, "{method}: H = {h} vs {want}");
+        assert!(
+            (sliding - want).abs() < 1e-12,
+            "{method}: H_sfr = {sliding} vs {want}"
+        );
+    }
+}
+
 /// jump_follow: B leaves the contact moving into the cloth (v_z = -0.2277 m/s) on a cloth
 /// of restitution 0.5; it bounces at once with v_z = 0.5 * 0.2277 m/s and rises
 /// (0.5 v_z)^2 / (2 g) = 0.66 mm, as its path shows. The summary said "stays on the cloth
