@@ -77,13 +77,9 @@ fn no_sliding_and_no_heat_in_a_head_on_stun() {
 fn a_heat_above_round_off_is_printed() {
     let s0 = 0.34729635533386066_f64;
     let want = 0.17 * s0 * s0 / 14.0;
-    let mj = |x: &str| {
-        x.trim()
-            .strip_suffix(" mJ")
-            .unwrap()
-            .parse::<f64>()
-            .unwrap()
-            * 1e-3
+    let mj = |x: &str| match x.trim().strip_suffix(" mJ").map(str::parse::<f64>) {
+        Some(Ok(v)) => v * 1e-3,
+        _ => panic!("not a heat in mJ: `{x}`"),
     };
     for method in ["closed-form", "dop853", "rk4"] {
         let s = text(&bin(&[
