@@ -25,8 +25,8 @@ pub(super) struct Recorder<'a> {
     pub(super) slip_consistency: f64,
     /// The slip angle the trace rows carry (rad).
     theta_last: Option<f64>,
-    /// Rows closer in time than its window written as one (a contact law's sample rows
-    /// against its events); `None`: every row as it comes.
+    /// Rows closer in time than its window written as one (sample rows against the located
+    /// stop of sliding, or a contact law's end); `None`: every row as it comes.
     coincident: Option<CoincidentRows>,
 }
 
