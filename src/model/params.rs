@@ -585,4 +585,17 @@ mod tests {
         );
         assert!(Ball::new(1e296, 1.0, 0.4).is_ok());
     }
+
+    /// Eq 22's k = 2 (1 + 1/alpha) / m for one ball: a pool ball (m = 0.17 kg, alpha = 2/5)
+    /// has k = 2 (1 + 5/2) / 0.17 = 7 / 0.17 = 41.176... 1/kg; a thin shell (alpha = 2/3)
+    /// 2 (1 + 3/2) / 0.17 = 5 / 0.17. Written out here, not through `BallPair`.
+    #[test]
+    fn slip_rate_is_eq_22s_k() {
+        for (m, alpha, k) in [(0.17, 0.4, 7.0 / 0.17), (0.17, 2.0 / 3.0, 5.0 / 0.17)] {
+            let got = Ball::new(m, 0.028575, alpha)
+                .unwrap()
+                .slip_rate_per_friction_impulse();
+            assert!((got - k).abs() <= 4.0 * f64::EPSILON * k, "{got} vs {k}");
+        }
+    }
 }

@@ -351,6 +351,24 @@ mod tests {
         assert_eq!(p.duration(), 2.0);
     }
 
+    /// The inversion near q = 0 of a table that starts at zero force and rises slowly:
+    /// f = 0.001 t on [0, 1] of a 3-unit pulse of area 1.001, so phi(s) = f(3 s) 3 / 1.001 =
+    /// 0.009 s / 1.001 and Phi(s) = 0.0045 s^2 / 1.001 there, inverted by hand:
+    /// s = sqrt(1.001 q / 0.0045). At q = 1e-300 that is 1.49e-149 (to 1e-14 relative); at
+    /// the smallest positive q (4.9e-324), where the quadratic's discriminant 2 phi' q
+    /// underflows to zero, it is 3.3e-161: the answer must stay near 0, not jump to the
+    /// segment's end (1/3).
+    #[test]
+    fn inverts_near_zero_where_the_force_starts_at_zero() {
+        let p = table(&[(0.0, 0.0), (1.0, 0.001), (2.0, 1.0), (3.0, 0.0)]);
+        let exact = |q: f64| (1.001 * q / 0.0045).sqrt();
+        let got = p.time_at_cumulative(1e-300);
+        assert!((got / exact(1e-300) - 1.0).abs() < 1e-14, "{got}");
+        let tiny = f64::from_bits(1);
+        let got = p.time_at_cumulative(tiny);
+        assert!(got <= 1e-150, "{got} at q = {tiny:e}, exact {:e}", exact(tiny));
+    }
+
     /// Points given directly get the checks `parse_table` makes, naming the point.
     #[test]
     fn new_checks_the_points() {
