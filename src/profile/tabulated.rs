@@ -366,7 +366,11 @@ mod tests {
         assert!((got / exact(1e-300) - 1.0).abs() < 1e-14, "{got}");
         let tiny = f64::from_bits(1);
         let got = p.time_at_cumulative(tiny);
-        assert!(got <= 1e-150, "{got} at q = {tiny:e}, exact {:e}", exact(tiny));
+        assert!(
+            got <= 1e-150,
+            "{got} at q = {tiny:e}, exact {:e}",
+            exact(tiny)
+        );
     }
 
     /// Points given directly get the checks `parse_table` makes, naming the point.
