@@ -13,6 +13,7 @@
 //!   damping, so 1 - e(v) = 0.05 v^(1/5) up to terms of order (1 - e)^2.
 
 use crate::cli_common;
+use crate::common::{bisect, hunt_crossley_e};
 use cli_common::{bin, csv_rows, fresh_dir, scene, succeeded};
 use std::collections::HashMap;
 
@@ -38,27 +39,6 @@ fn study(name: &str, args: &[&str]) -> Vec<Row> {
     rows
 }
 
-/// The root in (lo, hi) of an increasing-then-sign-changing `g`, by bisection.
-fn bisect(g: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let glo = g(lo);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if (g(mid) > 0.0) == (glo > 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// Hunt-Crossley's restitution at x = beta v: the root e in (0, 1) of
-/// -e x - ln(1 - e x) - (x - ln(1 + x)).
-fn hunt_crossley_e(x: f64) -> f64 {
-    let rhs = x - x.ln_1p();
-    bisect(|e| -e * x - (-e * x).ln_1p() - rhs, 1e-9, 1.0)
-}
-
 /// The relative approach speed (m/s) along the line of centres of the built-in default
 /// scene (ball A at 1.5 m/s, 30 degrees to it; B at rest) and of the sticking companion
 /// (2 m/s at 10 degrees): data/scenes/default.toml and stun_cut_sticks.toml.
@@ -80,7 +60,7 @@ fn law_rows_of_the_default_study() {
         ),
     ];
     // beta from the calibration e = 0.95 at 1 m/s, solved here.
-    let beta = bisect(|x| hunt_crossley_e(x) - 0.95, 1e-6, 1.0);
+    let beta = bisect(1e-6, 1.0, |x| hunt_crossley_e(x) > 0.95);
     let (mut worst_rtol, mut worst_stick, mut worst_e) = (0.0_f64, 0.0_f64, [0.0_f64; 3]);
     for (scene, v, sticks) in scenes {
         for law in ["hertz-law", "hunt-crossley", "kuwabara-kono"] {

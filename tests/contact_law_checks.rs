@@ -16,6 +16,7 @@
 //! - Every law: the closed form at the realised impulse P (the outgoing state is a function
 //!   of P alone), and the normal dissipation m U(0)^2 (1 - e^2) (eq 50 with that P).
 
+use crate::common::{bisect, hunt_crossley_e};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::profile::Hertz;
 use billiard_contact::*;
@@ -52,27 +53,6 @@ fn tight(method: Method) -> SolverSettings {
         .unwrap()
         .with_steps(4000)
         .unwrap()
-}
-
-/// The root in [lo, hi] of an equation whose side `below(y)` holds left of the root, by
-/// bisection to round-off.
-fn bisect(mut lo: f64, mut hi: f64, below: impl Fn(f64) -> bool) -> f64 {
-    for _ in 0..200 {
-        let y = 0.5 * (lo + hi);
-        if below(y) {
-            lo = y;
-        } else {
-            hi = y;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// The Hunt-Crossley restitution of beta v = `x`: the root y = beta e v in (0, 1) of
-/// -y - ln(1 - y) = x - ln(1 + x), by bisection; e = y / x.
-fn hunt_crossley_e(x: f64) -> f64 {
-    let rhs = x - x.ln_1p();
-    bisect(0.0, 1.0, |y| -y - (-y).ln_1p() < rhs) / x
 }
 
 /// Elastic Hertz against the exact `hertz` profile: impulse 2 m U(0), the contact time

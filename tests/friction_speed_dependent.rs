@@ -62,19 +62,7 @@ fn g_quad(s: f64) -> f64 {
 
 /// S with G(S) = g by bisection on the quadrature.
 fn s_of_g(g: f64, s_max: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, s_max);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g_quad(mid) < g {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo <= 1e-16 * s_max {
-            break;
-        }
-    }
-    0.5 * (lo + hi)
+    crate::common::bisect(0.0, s_max, |s| g_quad(s) < g)
 }
 
 fn collision(u: [f64; 3], friction: Friction) -> Collision {

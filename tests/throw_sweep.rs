@@ -197,16 +197,7 @@ fn stun_throw_along_the_contact_is_the_integral_closed_form() {
         let j = if g_end <= 0.0 {
             s0 / k
         } else {
-            let (mut lo, mut hi) = (0.0, s0);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if slide_potential(mid) < g_end {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            (s0 - 0.5 * (lo + hi)) / k
+            (s0 - crate::common::bisect(0.0, s0, |s| slide_potential(s) < g_end)) / k
         };
         let want = (j / p).atan().to_degrees();
         let got = row.num(&header, "throw_deg");

@@ -297,21 +297,35 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
     sum
 }
 
-/// Inverts an increasing F on [0, 1] with F(0) = 0, F(1) = 1 by bisection to round-off.
-pub fn invert(f: impl Fn(f64) -> f64, q: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+/// The point in [lo, hi] where `below` turns from true (at lo) to false (at hi), by
+/// bisection to round-off: it stops when the midpoint is one of the ends (or after 200
+/// halvings).
+pub fn bisect(mut lo: f64, mut hi: f64, below: impl Fn(f64) -> bool) -> f64 {
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
         }
-        if f(mid) < q {
+        if below(mid) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
     0.5 * (lo + hi)
+}
+
+/// Inverts an increasing F on [0, 1] with F(0) = 0, F(1) = 1 by bisection to round-off.
+pub fn invert(f: impl Fn(f64) -> f64, q: f64) -> f64 {
+    bisect(0.0, 1.0, |s| f(s) < q)
+}
+
+/// Hunt-Crossley's restitution at x = beta v (f = k delta^(3/2) (1 + beta delta')): energy
+/// along the contact gives the outgoing speed as the root y = e x in (0, 1) of
+/// -y - ln(1 - y) = x - ln(1 + x) (docs/contact-law.md), found by bisection; e = y / x.
+pub fn hunt_crossley_e(x: f64) -> f64 {
+    let rhs = x - x.ln_1p();
+    bisect(0.0, 1.0, |y| -y - (-y).ln_1p() < rhs) / x
 }
 
 /// Half-sine: p(t)/P = (1 - cos(pi t / tau))/2 (docs/model.md#the-exact-state-during-the-contact).
