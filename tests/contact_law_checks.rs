@@ -143,6 +143,16 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
             ] {
                 let o = solve_law(&c, law, &tight(method), None).unwrap();
                 let l = o.law.unwrap();
+                // The reported restitution is that of the reported impulse (eq 52:
+                // P = (1 + e) m U(0)), not of the normal law's run alone.
+                assert_eq!(l.impulse, o.result.impulse, "{method}");
+                let e_of_p = l.impulse / (M * u.x) - 1.0;
+                assert!(
+                    (l.restitution - e_of_p).abs() <= 4.0 * f64::EPSILON,
+                    "{method}: e {} for P {}",
+                    l.restitution,
+                    l.impulse
+                );
                 assert!(
                     o.check.closed_form_error < CLOSED_FORM_TOL,
                     "{} {method}: {:e}",
