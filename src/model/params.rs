@@ -586,6 +586,24 @@ mod tests {
         assert!(Ball::new(1e296, 1.0, 0.4).is_ok());
     }
 
+    /// An explicit impulse is held to eq 56, m u0 <= P <= 2 m u0, with a slack of 1e-12 of
+    /// the upper bound 2 m u0 (relative: the same at every scale). At m u0 = 100 N s the
+    /// slack is 2e-10 N s; at m u0 = 0.005 N s, 1e-14 N s.
+    #[test]
+    fn explicit_impulse_slack_is_relative() {
+        for (m, u0) in [(100.0, 1.0), (0.01, 0.5)] {
+            let (lo, hi) = (m * u0, 2.0 * m * u0);
+            let slack = 1e-12 * hi;
+            let at = |p: f64| ImpulseRule::explicit(p).unwrap().impulse(m, u0);
+            for p in [lo - 0.5 * slack, hi + 0.5 * slack] {
+                assert_eq!(at(p).unwrap(), p, "m u0 = {lo}: {p} inside the slack");
+            }
+            for p in [lo - 2.0 * slack, hi + 2.0 * slack] {
+                assert!(at(p).is_err(), "m u0 = {lo}: {p} outside the slack");
+            }
+        }
+    }
+
     /// Eq 22's k = 2 (1 + 1/alpha) / m for one ball: a pool ball (m = 0.17 kg, alpha = 2/5)
     /// has k = 2 (1 + 5/2) / 0.17 = 7 / 0.17 = 41.176... 1/kg; a thin shell (alpha = 2/3)
     /// 2 (1 + 3/2) / 0.17 = 5 / 0.17. Written out here, not through `BallPair`.

@@ -131,8 +131,8 @@ impl TableOutcome {
     }
 
     /// The largest increase (J) of one ball's energy between consecutive evaluation points
-    /// of its roll-out (0 when it never increases); the open-ended last segment is followed
-    /// 1 s past the end time.
+    /// of its roll-out (0 when it never increases); the open-ended last segment, which starts
+    /// at the end time (`Track::finish`), is followed for 1 s.
     fn largest_energy_increase(&self, ball: &Ball, r: &RollOut) -> f64 {
         let n = self.table.up;
         let energy = |s: &LabBall| {
@@ -145,7 +145,7 @@ impl TableOutcome {
             let t1 = if seg.t1.is_finite() {
                 seg.t1
             } else {
-                seg.t0 + (r.end_time - seg.t0).max(0.0) + 1.0
+                seg.t0 + 1.0
             };
             for i in 0..=ENERGY_POINTS {
                 let t = seg.t0 + (t1 - seg.t0) * f64::from(i) / f64::from(ENERGY_POINTS);
@@ -168,7 +168,7 @@ mod tests {
     /// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2 (the position, so the potential energy, is the
     /// same); the check reports it over M v_ref^2, M the pair mass. Every later point loses
     /// energy, so that is the largest increase. The roll-out's open-ended last segment, made
-    /// to gain energy, is followed 1 s past the end time.
+    /// to gain energy, is followed for 1 s past its start, the end time.
     #[test]
     fn checks_are_scaled_by_pair_mass_and_speed() {
         let (m, r, alpha) = (0.17, 0.028575, 0.4);
@@ -213,21 +213,21 @@ mod tests {
         let want = 1e-3 / (m * speed);
         let got = out.checks(&balls, speed).momentum_error;
         assert!((got / want - 1.0).abs() < 1e-10, "{got} vs {want}");
-        // The open-ended last segment is followed to 1 s past the end time. Make A's a
-        // defect: from rest, the centre accelerating at a = 0.5 m/s^2 along the cloth (the
-        // height, so the potential energy, stays). Over L = max(end - t0, 0) + 1 s its
+        // The open-ended last segment, which starts at the end time, is followed for 1 s.
+        // Make A's a defect: from rest, the centre accelerating at a = 0.5 m/s^2 along the
+        // cloth (the height, so the potential energy, stays). Over L = 1 s its
         // ENERGY_POINTS = 16 points have speeds a L i / 16 and energies m (a L i / 16)^2 / 2,
         // whose largest step is the last: m a^2 L^2 (16^2 - 15^2) / (2 16^2) = m a^2 L^2 31/512.
         // The real roll-out only loses energy, so that is the largest increase.
         out.a.table_impulse.x -= 1e-3;
         let end = out.a.end_time;
         let last = out.a.segments.last_mut().unwrap();
-        assert!(last.t1.is_infinite());
+        assert!(last.t1.is_infinite() && last.t0 == end);
         last.start.velocity = Vector3::zeros();
         last.start.spin = Vector3::zeros();
         (last.accel, last.spin_accel, last.spin_decay_rate) =
             (0.5 * Vector3::x(), Vector3::zeros(), 0.0);
-        let l = (end - last.t0).max(0.0) + 1.0;
+        let l = 1.0;
         let want = m * 0.25 * l * l * 31.0 / 512.0 / (m * speed * speed);
         let got = out.checks(&balls, speed).energy_increase;
         assert!((got / want - 1.0).abs() < 1e-12, "{got} vs {want}");
