@@ -989,24 +989,22 @@ pub fn run_csv<R: Read, W: Write>(
 mod tests {
     use super::*;
 
-    /// A reader that hands out one byte per call: every CR meets the end of a read.
-    struct ByteByByte<'a>(&'a [u8]);
+    /// A reader that hands out at most `.1` bytes per call: with 1 every CR meets the end
+    /// of a read; with more, a CR also ends a read after other bytes ("a,b\r\n" in reads
+    /// of 3: "a,b", "\r\n..."; in reads of 2: "a,", "b\r", "\n...").
+    struct Chunks<'a>(&'a [u8], usize);
 
-    impl Read for ByteByByte<'_> {
+    impl Read for Chunks<'_> {
         fn read(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
-            match (self.0.split_first(), out.is_empty()) {
-                (Some((b, rest)), false) => {
-                    out[0] = *b;
-                    self.0 = rest;
-                    Ok(1)
-                }
-                _ => Ok(0),
-            }
+            let n = self.0.len().min(out.len()).min(self.1);
+            out[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
         }
     }
 
-    fn through(input: &[u8], out_len: usize) -> Vec<u8> {
-        let mut r = CrlfAsLf::new(ByteByByte(input));
+    fn through(input: &[u8], in_len: usize, out_len: usize) -> Vec<u8> {
+        let mut r = CrlfAsLf::new(Chunks(input, in_len));
         let mut all = Vec::new();
         let mut buf = vec![0; out_len];
         loop {
@@ -1018,15 +1016,18 @@ mod tests {
         }
     }
 
-    /// CRLF becomes LF wherever the reads split it, a lone CR stays, and the text ends with
-    /// one LF (added only when missing).
+    /// CRLF becomes LF wherever the reads (of the input, and of the output) split it, a lone
+    /// CR stays, and the text ends with one LF (added only when missing).
     #[test]
     fn crlf_reads_as_lf() {
-        for out_len in [1, 2, 7] {
-            assert_eq!(through(b"a,b\r\n1,2\r\n", out_len), b"a,b\n1,2\n");
-            assert_eq!(through(b"a\rb\r\n\r\nc", out_len), b"a\rb\n\nc\n");
-            assert_eq!(through(b"x\r", out_len), b"x\r\n");
-            assert_eq!(through(b"", out_len), b"");
+        for in_len in [1, 2, 3, 5, 64] {
+            for out_len in [1, 2, 7] {
+                let through = |input: &[u8]| through(input, in_len, out_len);
+                assert_eq!(through(b"a,b\r\n1,2\r\n"), b"a,b\n1,2\n");
+                assert_eq!(through(b"a\rb\r\n\r\nc"), b"a\rb\n\nc\n");
+                assert_eq!(through(b"x\r"), b"x\r\n");
+                assert_eq!(through(b""), b"");
+            }
         }
     }
 }
