@@ -586,6 +586,17 @@ mod tests {
         assert!(Ball::new(1e296, 1.0, 0.4).is_ok());
     }
 
+    /// The moment of inertia I = alpha m r^2 must be a normal number: m = 2.5e-291 kg,
+    /// r = 1e-9 m, alpha = 0.4 give I = 1e-309 (subnormal) while 1/m = 4e290 and
+    /// 1/(alpha m r) = 1e300 are normal, so only I refuses the ball; at r = 1e-6 m,
+    /// I = 1e-303 and the ball is accepted.
+    #[test]
+    fn refuses_a_subnormal_moment_of_inertia() {
+        let e = Ball::new(2.5e-291, 1e-9, 0.4).unwrap_err().to_string();
+        assert!(e.contains("I = alpha m r^2"), "{e}");
+        assert!(Ball::new(2.5e-291, 1e-6, 0.4).is_ok());
+    }
+
     /// An explicit impulse is held to eq 56, m u0 <= P <= 2 m u0, with a slack of 1e-12 of
     /// the upper bound 2 m u0 (relative: the same at every scale). At m u0 = 100 N s the
     /// slack is 2e-10 N s; at m u0 = 0.005 N s, 1e-14 N s.
