@@ -292,6 +292,21 @@ mod tests {
         }
     }
 
+    /// The names the Python package (and any caller of `str::parse`) gives the methods.
+    #[test]
+    fn methods_parse_from_their_names() {
+        for (name, m) in [
+            ("closed-form", Method::ClosedForm),
+            ("rk4", Method::Rk4),
+            ("dopri5", Method::Dopri5),
+            ("dop853", Method::Dop853),
+        ] {
+            assert_eq!(name.parse::<Method>().unwrap(), m);
+        }
+        let e = "rk5".parse::<Method>().unwrap_err().to_string();
+        assert!(e.contains("solver.method") && e.contains("\"rk5\""), "{e}");
+    }
+
     #[test]
     fn defaults() {
         let d = SolverSettings::default();
