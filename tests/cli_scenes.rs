@@ -616,6 +616,13 @@ fn check_contract(j: &Value, lab: bool, method: &str, what: &str) {
     for key in ["rhs_evaluations", "accepted_steps", "rejected_steps"] {
         assert!(j["solver"][key].is_u64(), "{what}: solver.{key}");
     }
+    // Every step tried, accepted or rejected, evaluates the equations at least once.
+    let count = |key: &str| u128::from(j["solver"][key].as_u64().unwrap());
+    assert!(
+        count("accepted_steps") + count("rejected_steps") <= count("rhs_evaluations"),
+        "{what}: {}",
+        j["solver"]
+    );
     assert!(j["collision"].is_boolean() && j["sticks"].is_boolean());
     assert!(j["effects"]
         .as_array()
