@@ -249,6 +249,16 @@ fn ln_1p_product(x: f64, y: f64, z: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// ln(1 + x y z) where x y z overflows: ln(1e200 1e200 1e10) = 410 ln 10 = 944.0598...
+    /// (the 1 is far below round-off there); where it does not, ln_1p of the product.
+    #[test]
+    fn ln_1p_product_past_overflow() {
+        let want = 410.0 * std::f64::consts::LN_10;
+        let got = ln_1p_product(1e200, 1e200, 1e10);
+        assert!((got - want).abs() <= 4.0 * f64::EPSILON * want, "{got} vs {want}");
+        assert_eq!(ln_1p_product(2.0, 0.5, 1e-3), 1e-3f64.ln_1p());
+    }
+
     #[test]
     fn constant_mu_is_eq_48_and_49() {
         let (mu, s0, k) = (0.06, 1.3, 2.0 * 3.5 / 0.17);
