@@ -99,6 +99,20 @@ fn continued_fraction(a: f64, b: f64, x: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// Past a + b = 150 (the logarithmic branch): for a whole b = n, B(a, n) =
+    /// (n - 1)! / (a (a + 1) ... (a + n - 1)), so B(150, 3) = 2 / (150 151 152) and
+    /// B(200.5, 1) = 1 / 200.5.
+    #[test]
+    fn beta_of_large_arguments() {
+        for (a, b, want) in [
+            (150.0, 3.0, 2.0 / (150.0 * 151.0 * 152.0)),
+            (200.5, 1.0, 1.0 / 200.5),
+        ] {
+            let got = beta(a, b);
+            assert!((got / want - 1.0).abs() < 1e-12, "B({a}, {b}) = {got}, not {want}");
+        }
+    }
+
     /// Independent check by composite Gauss-Legendre quadrature of the integrand after
     /// the substitutions u = x v^(1/a), v = t^8, which remove the end singularity at 0.
     fn by_quadrature(a: f64, b: f64, x: f64) -> f64 {
