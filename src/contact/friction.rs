@@ -255,7 +255,10 @@ mod tests {
     fn ln_1p_product_past_overflow() {
         let want = 410.0 * std::f64::consts::LN_10;
         let got = ln_1p_product(1e200, 1e200, 1e10);
-        assert!((got - want).abs() <= 4.0 * f64::EPSILON * want, "{got} vs {want}");
+        assert!(
+            (got - want).abs() <= 4.0 * f64::EPSILON * want,
+            "{got} vs {want}"
+        );
         assert_eq!(ln_1p_product(2.0, 0.5, 1e-3), 1e-3f64.ln_1p());
     }
 

@@ -109,7 +109,10 @@ mod tests {
             (200.5, 1.0, 1.0 / 200.5),
         ] {
             let got = beta(a, b);
-            assert!((got / want - 1.0).abs() < 1e-12, "B({a}, {b}) = {got}, not {want}");
+            assert!(
+                (got / want - 1.0).abs() < 1e-12,
+                "B({a}, {b}) = {got}, not {want}"
+            );
         }
     }
 
