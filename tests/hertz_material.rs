@@ -253,6 +253,44 @@ fn time_stepping_with_the_material_pulse_matches_the_closed_form() {
     );
 }
 
+/// A batch under an elastic Hertz law with the material: the law's stiffness, and so the
+/// contact time, follows each row's own radius. A row at r = 0.04 m stops sliding at its
+/// own textbook contact time times the stop's fraction of the Hertz pulse (the elastic law
+/// is the Hertz profile), like the row at the scene's radius.
+#[test]
+fn batch_rows_under_a_law_take_the_stiffness_of_their_radius() {
+    let text = format!(
+        "[balls]\nmass = {M}\nradius = {R}\nyoungs_modulus = {E:e}\npoisson_ratio = {NU}\n\
+         [contact]\nmu = 0.06\n[contact.law]\nmodel = \"hertz\"\n\
+         [incoming.cm]\nu = [0.5, 0.02, 0.0]\n"
+    );
+    let scene = parse(&text).unwrap();
+    let u0 = 0.5;
+    let q = 0.04 * 2.0 / (2.0 * 0.06 * 3.5) / 2.0; // p_stick / P with S(0) = 0.08 U(0)
+                                                   // Measured at the default settings: closed form 2.7e-11, dop853 1.3e-9 (relative).
+    for (method, tol) in [(Method::ClosedForm, 3e-10), (Method::Dop853, 1.5e-8)] {
+        let setup = BatchSetup::from_scene(&scene, SolverSettings::default().with_method(method));
+        for r in [R, 0.04] {
+            let mut row = BatchInput::cm(CmState::new(
+                Vector3::new(u0, 0.04 * u0, 0.0),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            ));
+            row.overrides.radius = Some(r);
+            let t = resolve_slice(&setup, &[row])[0]
+                .as_ref()
+                .unwrap()
+                .stick_time
+                .unwrap();
+            let want = hertz_identical(M, r, E, NU, 2.0 * u0).duration * common::hertz_time(q);
+            assert!(
+                (t - want).abs() <= tol * want,
+                "{method}: radius {r}: {t} vs {want}"
+            );
+        }
+    }
+}
+
 /// A batch with the material: each row's stick time is its own contact time times the
 /// stick fraction. Rows at approach speeds v and 10^4 v with the same slip ratio stop at
 /// the same fraction of their pulses, so their stick times differ by (10^4)^(-1/5); a
