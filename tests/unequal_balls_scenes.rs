@@ -42,14 +42,18 @@ fn balls_a_and_b_are_read_and_their_errors_name_the_keys() {
     assert_eq!(s.balls.a.mass(), 0.184);
     assert_eq!(s.balls.a.alpha(), 0.4); // default
     assert_eq!(s.balls.b.alpha(), 0.35);
-    // Both forms: an error naming both.
-    let e = parse("[balls]\nmass = 0.17\n[balls.a]\nmass = 0.184\nradius = 0.03\n[balls.b]\nmass = 0.17\nradius = 0.03")
+    // Both forms, whichever shared key is given: an error naming both.
+    for shared in ["mass = 0.17", "radius = 0.03", "alpha = 0.4"] {
+        let e = parse(&format!(
+            "[balls]\n{shared}\n[balls.a]\nmass = 0.184\nradius = 0.03\n[balls.b]\nmass = 0.17\nradius = 0.03"
+        ))
         .unwrap_err()
         .to_string();
-    assert!(
-        e.contains("balls.mass") && e.contains("[balls.a]") && e.contains("[balls.b]"),
-        "{e}"
-    );
+        assert!(
+            e.contains("balls.mass") && e.contains("[balls.a]") && e.contains("[balls.b]"),
+            "{shared}: {e}"
+        );
+    }
     // [balls.a] alone.
     let e = parse("[balls.a]\nmass = 0.184\nradius = 0.03")
         .unwrap_err()
