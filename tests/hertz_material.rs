@@ -27,6 +27,9 @@ const R: f64 = 0.028575;
 /// Phenolic resin.
 const E: f64 = 5.4e9;
 const NU: f64 = 0.34;
+/// Where sliding stops in the batch rows (V(0) = 0.04 U(0), no spin, mu = 0.06, e = 1):
+/// p_stick / P = (m S(0) / (2 mu (1 + 1/alpha))) / (2 m U(0)) with S(0) = 0.08 U(0).
+const STOP_FRACTION: f64 = 0.04 * 2.0 / (2.0 * 0.06 * 3.5) / 2.0;
 
 fn rel(got: f64, want: f64) -> f64 {
     ((got - want) / want).abs()
@@ -266,8 +269,7 @@ fn batch_rows_under_a_law_take_the_stiffness_of_their_radius() {
     );
     let scene = parse(&text).unwrap();
     let u0 = 0.5;
-    let q = 0.04 * 2.0 / (2.0 * 0.06 * 3.5) / 2.0; // p_stick / P with S(0) = 0.08 U(0)
-                                                   // Measured at the default settings: closed form 2.7e-11, dop853 1.3e-9 (relative).
+    // Measured at the default settings: closed form 2.7e-11, dop853 1.3e-9 (relative).
     for (method, tol) in [(Method::ClosedForm, 3e-10), (Method::Dop853, 1.5e-8)] {
         let setup = BatchSetup::from_scene(&scene, SolverSettings::default().with_method(method));
         for r in [R, 0.04] {
@@ -282,7 +284,8 @@ fn batch_rows_under_a_law_take_the_stiffness_of_their_radius() {
                 .unwrap()
                 .stick_time
                 .unwrap();
-            let want = hertz_identical(M, r, E, NU, 2.0 * u0).duration * common::hertz_time(q);
+            let want =
+                hertz_identical(M, r, E, NU, 2.0 * u0).duration * common::hertz_time(STOP_FRACTION);
             assert!(
                 (t - want).abs() <= tol * want,
                 "{method}: radius {r}: {t} vs {want}"
@@ -316,9 +319,9 @@ fn batch_rows_take_their_own_contact_time() {
             .iter()
             .map(|o| o.as_ref().unwrap().stick_time.unwrap())
             .collect();
-        let q = 0.04 * 2.0 / (2.0 * 0.06 * 3.5) / 2.0; // p_stick / P with S(0) = 0.08 U(0)
         for (k, &u0) in [0.005, 50.0].iter().enumerate() {
-            let want = hertz_identical(M, R, E, NU, 2.0 * u0).duration * common::hertz_time(q);
+            let want =
+                hertz_identical(M, R, E, NU, 2.0 * u0).duration * common::hertz_time(STOP_FRACTION);
             assert!(
                 (t[k] - want).abs() <= 1e-9 * want,
                 "{method}: row {k}: {} vs {want}",
