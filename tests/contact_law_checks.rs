@@ -16,7 +16,7 @@
 //! - Every law: the closed form at the realised impulse P (the outgoing state is a function
 //!   of P alone), and the normal dissipation m U(0)^2 (1 - e^2) (eq 50 with that P).
 
-use crate::common::{bisect, hunt_crossley_e};
+use crate::common::{bisect, hunt_crossley_e, resolve, Balls, Law, Pair, Rule};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::profile::Hertz;
 use billiard_contact::*;
@@ -114,6 +114,88 @@ fn elastic_law_is_the_hertz_profile() {
         "largest errors: P {:e}, tau {:e}, state {:e}, stick time {:e}",
         worst[0], worst[1], worst[2], worst[3]
     );
+}
+
+/// Without the stick rule (`stick = false`) friction stays along e0 after the slip reaches
+/// zero, so the paper's formulas apply literally (J = mu P, eq 49) and the slip reverses.
+/// Friction is tangential, so the elastic law's impulse is still 2 m U(0) and its contact
+/// time the textbook 2.9432 delta_max / v; the outgoing state is the first-principles
+/// resolution with stick off (tests/common), and the slip passes zero at
+/// p = m S(0) / (7 mu) (eq 48).
+#[test]
+fn elastic_law_without_stick_slides_on_past_zero() {
+    let k = pool_stiffness();
+    let law = ContactLaw::elastic(k).unwrap();
+    let (u, mu) = (Vector3::new(0.5, 0.05, 0.0), 0.06);
+    let mut c = collision(u, Vector3::zeros(), mu);
+    c.effects.stick = false;
+    let pair = Pair::cm(u, Vector3::zeros(), Vector3::zeros());
+    let reference = Law {
+        stick: false,
+        ..Law::new(mu, Rule::Restitution(1.0))
+    };
+    let balls = Balls {
+        m: M,
+        r: R,
+        alpha: 0.4,
+    };
+    let want = resolve(&balls, &reference, &pair);
+    // S(0) = 0.1 m/s, P = 0.17 N s: the slip reaches zero at p/P = 0.238 and ends at
+    // S(0) - 7 mu P / m = -0.32 m/s.
+    assert!(!want.sticks && want.s_out < -0.3);
+    let v = 2.0 * u.x;
+    let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
+    let tau = 0.8 * BETA_2_5_1_2 * d / v;
+    let p_zero = want.p_stick.unwrap();
+    let v_ref = pair.v_ref(R);
+    // Largest relative errors of P and tau, the scaled state error, the impulse at S = 0.
+    let mut worst = [0.0f64; 4];
+    for method in [
+        Method::ClosedForm,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Dop853,
+    ] {
+        let o = solve_law(&c, &law, &tight(method), None).unwrap();
+        let l = o.law.unwrap();
+        let out = &o.result.out;
+        let state = [
+            (out.u_cm - want.out.va).amax(),
+            R * (out.omega_a - want.out.wa).amax(),
+            R * (out.omega_b - want.out.wb).amax(),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+            / v_ref;
+        let p = o.result.stick_impulse.expect("the slip passes zero");
+        let errs = [
+            (l.impulse - want.impulse).abs() / want.impulse,
+            (l.duration - tau).abs() / tau,
+            state,
+            (p - p_zero).abs() / p_zero,
+        ];
+        // Measured worst: P 1.1e-11 (rk4), tau 9.1e-12 (rk4), state 2.2e-11 (rk4), the impulse
+        // at S = 0 exact (it is eq 48's, reported whatever the method).
+        for (e, tol, what) in [
+            (errs[0], 1e-10, "P"),
+            (errs[1], 1e-10, "tau"),
+            (errs[2], 2e-10, "state"),
+            (errs[3], 1e-14, "impulse at S = 0"),
+        ] {
+            assert!(e < tol, "{method}: {what} {e:e}");
+        }
+        assert!(!o.result.sticks, "{method}");
+        assert!(
+            (o.result.s_out - want.s_out).abs() < 1e-10 * v_ref,
+            "{method}: S out {} vs {}",
+            o.result.s_out,
+            want.s_out
+        );
+        for (w, e) in worst.iter_mut().zip(errs) {
+            *w = w.max(e);
+        }
+    }
+    println!("largest errors: P, tau, state, impulse at S = 0 {worst:?}");
 }
 
 /// Every law and method: the outgoing state is the closed form's at the realised impulse,
