@@ -551,4 +551,53 @@ mod tests {
         assert_eq!(stepper.stats.accepted_steps, 1);
         assert_eq!(a.y[1], 2.0);
     }
+
+    /// y' = 0 where the fractional part of s is below 1/2, 1 above (component 0 is the
+    /// time): a jump in the derivative at every half-integer, which no step crossing it
+    /// meets to a tolerance of 1e-10.
+    struct Jumps;
+    impl ScaledRhs<2> for Jumps {
+        fn derivative(&self, y: &SVector<f64, 2>, dy: &mut SVector<f64, 2>) {
+            let up = y[0] - y[0].floor() >= 0.5;
+            *dy = SVector::from([1.0, if up { 1.0 } else { 0.0 }]);
+        }
+    }
+
+    /// The rejected steps are counted, summed over the calls. Each call starts with a step
+    /// of 1e-6 on y' = 0, which has no error and is accepted (ode_solvers counts no
+    /// rejection before the first acceptance); the steps then grow tenfold until one
+    /// crosses the jump at s = 1/2 or 3/2 and is rejected. The work of the two
+    /// Dormand-Prince codes (Hairer, Norsett and Wanner, the codes DOPRI5 and DOP853, whose
+    /// counts ode_solvers follows) then pins the rejections: a call evaluates the
+    /// right-hand side once at its start; DOPRI5 (first same as last) six times per step
+    /// tried; DOP853 eleven times per step tried and once more at each accepted point.
+    #[test]
+    fn rejected_steps_are_counted_over_calls() {
+        for method in [Method::Dopri5, Method::Dop853] {
+            let settings = SolverSettings::new(method, 1e-10, 1e-10, 1000).unwrap();
+            let mut stepper = Stepper::new(&settings).unwrap();
+            let mut never = |_: &SVector<f64, 2>| false;
+            let first = stepper
+                .advance(&Jumps, 0.0, SVector::zeros(), 1.0, 1e-6, &mut never)
+                .unwrap();
+            assert!((first.y[1] - 0.5).abs() < 1e-6, "{method}: {}", first.y[1]);
+            let once = stepper.stats;
+            stepper
+                .advance(&Jumps, 1.0, first.y, 2.0, 1e-6, &mut never)
+                .unwrap();
+            for (st, calls) in [(once, 1), (stepper.stats, 2)] {
+                let (acc, evals) = (st.accepted_steps, st.rhs_evaluations);
+                // Evaluations in the steps tried, and per step tried.
+                let (in_steps, per_step) = match method {
+                    Method::Dopri5 => (evals - calls, 6),
+                    _ => (evals - calls - acc, 11),
+                };
+                assert_eq!(in_steps % per_step, 0, "{method}: {st:?}");
+                let rejected = in_steps / per_step - acc;
+                assert!(rejected > 0, "{method}: {st:?}");
+                assert_eq!(st.rejected_steps, rejected, "{method}: {st:?}");
+            }
+            assert!(stepper.stats.rejected_steps > once.rejected_steps);
+        }
+    }
 }
