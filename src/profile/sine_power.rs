@@ -104,6 +104,20 @@ impl ForceProfile for SinePower {
 mod tests {
     use super::*;
 
+    /// The pulse is symmetric about its middle, to the bit where 1 - s is exact, so the force
+    /// near the end keeps its relative precision: sin(pi s) itself would lose it as pi s
+    /// nears pi (the rounding of pi s, 6e-9 relative at 1 - s = 2^-30, 5e-5 at 2^-40).
+    #[test]
+    fn symmetric_to_the_bit_near_the_ends() {
+        for n in [1.0, 1.5, 4.0] {
+            let p = SinePower::new(1.0, n).unwrap();
+            for k in 2..=40 {
+                let x = 0.5f64.powi(k);
+                assert_eq!(p.shape(1.0 - x), p.shape(x), "n {n}, 1 - s = 2^-{k}");
+            }
+        }
+    }
+
     #[test]
     fn contract_for_several_exponents() {
         for (n, tol) in [(1.0, 1e-13), (1.5, 1e-10), (0.5, 1e-6), (4.0, 1e-13)] {
