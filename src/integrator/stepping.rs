@@ -510,7 +510,8 @@ mod tests {
     }
 
     /// rk4 takes its share of the steps, rounded up, and snaps to the span's end: on
-    /// y' = y^2 from s = 0 (y = 1) to 1/2 the exact value is 2.
+    /// y' = y^2 from s = 0 (y = 1) to 1/2 the exact value is 2; the last step size, which the
+    /// next span tries first, is the share's.
     #[test]
     fn rk4_share_of_steps() {
         let settings = SolverSettings::new(Method::Rk4, 1e-10, 1e-10, 1000).unwrap();
@@ -520,6 +521,8 @@ mod tests {
             .advance(&BlowUp, 0.0, y0, 0.5, 0.0, &mut |_: &SVector<f64, 2>| false)
             .unwrap();
         assert_eq!(stepper.stats.accepted_steps, 500);
+        // The last step, the first of the next span: 0.5 / 500.
+        assert!((a.h_last - 1e-3).abs() < 1e-15, "{}", a.h_last);
         assert_eq!(a.y[0], 0.5);
         assert!((a.y[1] - 2.0).abs() < 1e-10, "{}", a.y[1]);
     }
