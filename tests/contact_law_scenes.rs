@@ -88,16 +88,22 @@ fn the_material_gives_the_stiffness() {
         "radius = 0.028575",
         "radius = 0.028575\nyoungs_modulus = 5.4e9\npoisson_ratio = 0.34",
     );
-    let scene = parse(&text).unwrap();
-    let law = scene.law.unwrap();
     let k = 4.0 / 3.0 * 5.4e9 / (2.0 * (1.0 - 0.34 * 0.34)) * (0.028575f64 / 2.0).sqrt();
-    assert!((law.stiffness() - k).abs() < 1e-12 * k);
     // The scene's time unit: the elastic Hertz pulse of that stiffness at the relative
-    // approach speed 2 U(0) = 2 m/s, the textbook contact time (tests/common).
-    let tau0 = crate::common::hertz_identical(0.17, 0.028575, 5.4e9, 0.34, 2.0).duration;
-    assert!(matches!(scene.profile, Profile::Hertz(_)));
-    let tau = scene.profile.duration();
-    assert!((tau - tau0).abs() < 1e-12 * tau0, "{tau} vs {tau0}");
+    // approach speed 2 U(0), the textbook contact time (tests/common); at U(0) = 1 m/s, and
+    // at 0.35 m/s, where 2 U(0) and 2 / U(0) differ.
+    for u0 in [1.0, 0.35] {
+        let scene = parse(&text.replace("u = [1.0,", &format!("u = [{u0},"))).unwrap();
+        let law = scene.law.unwrap();
+        assert!((law.stiffness() - k).abs() < 1e-12 * k);
+        let tau0 = crate::common::hertz_identical(0.17, 0.028575, 5.4e9, 0.34, 2.0 * u0).duration;
+        assert!(matches!(scene.profile, Profile::Hertz(_)));
+        let tau = scene.profile.duration();
+        assert!(
+            (tau - tau0).abs() < 1e-12 * tau0,
+            "U(0) {u0}: {tau} vs {tau0}"
+        );
+    }
 }
 
 /// Kuwabara-Kono separates at delta + gamma delta' = 0 with delta > 0: the last trace row has
