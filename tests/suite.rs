@@ -41,6 +41,7 @@ mod hard_cases_scales_profiles;
 mod hard_cases_slip;
 mod hertz_material;
 mod lab_rows_errors;
+mod lab_rows_methods;
 mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;
