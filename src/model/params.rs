@@ -598,15 +598,16 @@ mod tests {
     }
 
     /// An explicit impulse is held to eq 56, m u0 <= P <= 2 m u0, with a slack of 1e-12 of
-    /// the upper bound 2 m u0 (relative: the same at every scale). At m u0 = 100 N s the
-    /// slack is 2e-10 N s; at m u0 = 0.005 N s, 1e-14 N s.
+    /// the upper bound 2 m u0 (relative: the same at every scale), its edges included. At
+    /// m u0 = 100 N s the slack is 2e-10 N s; at m u0 = 0.005 N s, 1e-14 N s.
     #[test]
     fn explicit_impulse_slack_is_relative() {
         for (m, u0) in [(100.0, 1.0), (0.01, 0.5)] {
             let (lo, hi) = (m * u0, 2.0 * m * u0);
             let slack = 1e-12 * hi;
             let at = |p: f64| ImpulseRule::explicit(p).unwrap().impulse(m, u0);
-            for p in [lo - 0.5 * slack, hi + 0.5 * slack] {
+            // The slack's edges belong to it.
+            for p in [lo - slack, lo - 0.5 * slack, hi + 0.5 * slack, hi + slack] {
                 assert_eq!(at(p).unwrap(), p, "m u0 = {lo}: {p} inside the slack");
             }
             for p in [lo - 2.0 * slack, hi + 2.0 * slack] {
