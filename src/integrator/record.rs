@@ -202,3 +202,29 @@ fn consistency(st: &SlidingState, slip0: &Vector2<f64>) -> f64 {
     let recomputed = slip0 + Vector2::new(2.0 * dv + doz, 2.0 * dw - doy);
     (st.slip() - recomputed).amax()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The check compares the carried slip with the one recomputed from the carried changes
+    /// (eqs 20-21: slip = slip(0) + (2 dV + dOmega_z, 2 dW - dOmega_y)). With slip(0) =
+    /// (0.3, -0.1), dV = 0.05, dW = -0.02, dOmega_y = 0.04 and dOmega_z = 0.1 the slip is
+    /// (0.5, -0.18); carried so, the check is zero, and a carried slip off by 0.25 in one
+    /// component reads 0.25.
+    #[test]
+    fn consistency_reads_the_carried_slip_against_the_recomputed_one() {
+        let slip0 = Vector2::new(0.3, -0.1);
+        let mut y = SVector::<f64, 9>::zeros();
+        (y[2], y[3], y[4], y[5]) = (0.05, -0.02, 0.04, 0.1);
+        (y[6], y[7]) = (0.5, -0.18);
+        let st = SlidingState(y);
+        assert_eq!(st.slip(), Vector2::new(0.5, -0.18));
+        assert_eq!(st.delta_u(), [0.0, 0.05, -0.02]);
+        assert_eq!(st.delta_omega_yz(), [0.04, 0.1]);
+        assert!(consistency(&st, &slip0) < 1e-15);
+        y[7] += 0.25;
+        let off = consistency(&SlidingState(y), &slip0);
+        assert!((off - 0.25).abs() < 1e-15, "{off}");
+    }
+}
