@@ -589,3 +589,24 @@ table = true
     assert!((d - expected).abs() <= ANGLE_EXACT_DEG, "{d}");
     assert!(t.a.rolling.velocity.y.abs() <= 1e-15, "rolls on the cloth");
 }
+
+/// The rolling velocity a ball reaches on the cloth: friction at the contact point exerts
+/// no torque about that point, so the angular momentum about it, m v_h + I w x n / r per
+/// unit r (I = alpha m r^2), is kept while the ball slides, and rolling (w x n = v_h / r)
+/// ends at v_h (1 + alpha) = v_h(0) + alpha r w(0) x n. A solid ball at 1.4 m/s along x
+/// (and 0.3 m/s up: only the horizontal part counts) with 20 rad/s of follow spin about y
+/// (w x n = (20, 0, 0) rad/s): (1.4 + 0.4 r 20) / 1.4 = 1.16328... m/s along x; with draw
+/// (-20 rad/s), (1.4 - 0.4 r 20) / 1.4. Side spin about z adds nothing (z x z = 0).
+#[test]
+fn rolling_velocity_keeps_the_angular_momentum_about_the_contact_point() {
+    use billiard_contact::table_phase::rolling_velocity;
+    let v = Vector3::new(1.4, 0.0, 0.3);
+    for (wy, wz) in [(20.0, 0.0), (-20.0, 0.0), (20.0, 35.0)] {
+        let got = rolling_velocity(&ball(), &Vector3::z(), &v, &Vector3::new(0.0, wy, wz));
+        let want = (1.4 + 0.4 * R * wy) / 1.4;
+        assert!(
+            (got - Vector3::new(want, 0.0, 0.0)).amax() <= EXACT * want,
+            "w = (0, {wy}, {wz}): {got:?} vs {want}"
+        );
+    }
+}
