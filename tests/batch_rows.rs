@@ -473,6 +473,22 @@ fn crlf_input_keeps_its_line_numbers() {
     assert!(e.starts_with("in.csv:4: u_y"), "{e}");
 }
 
+/// A quoted id may hold line breaks: each row is numbered by the line it starts on (the
+/// header is line 1; "two / lines" takes lines 2-3, "three / (blank) / lines" 4-6, d is on
+/// line 7), and a bad row after such a one is blamed on its own line.
+#[test]
+fn ids_with_line_breaks_keep_the_line_numbers() {
+    let s = setup(Method::ClosedForm);
+    let text = "id,u_x,u_y,u_z\n\"two\nlines\",1,0.2,0\n\"three\n\nlines\",1,0.1,0\nd,1,0,0\n";
+    let (rows, h) = run(&s, text, 2);
+    let lines: Vec<&str> = rows.iter().map(|r| &r[col(&h, "line")]).collect();
+    assert_eq!(lines, ["2", "4", "7"]);
+    let ids: Vec<&str> = rows.iter().map(|r| &r[col(&h, "id")]).collect();
+    assert_eq!(ids, ["two\nlines", "three\n\nlines", "d"]);
+    let e = batch_error(&s, "id,u_x,u_y,u_z\n\"two\nlines\",1,0.2,0\nx,1,abc,0\n");
+    assert!(e.starts_with("in.csv:4: u_y"), "{e}");
+}
+
 /// Balls that move apart do not collide, and without a collision there is no throw: the
 /// lab row's `throw_angle_deg` is empty (B's velocity change is the round-off of the change
 /// of frame: these velocities once gave a throw of 0.0). The state comes back unchanged.
