@@ -597,6 +597,23 @@ mod tests {
         assert!(Ball::new(2.5e-291, 1e-6, 0.4).is_ok());
     }
 
+    /// The reduced mass m_A m_B / (m_A + m_B) and the pair mass M twice it: balls of 0.17 kg
+    /// and 0.16 kg give 0.0272 / 0.33 = 0.0824242... kg and 0.1648484... kg; identical balls
+    /// of m, m / 2 and exactly m.
+    #[test]
+    fn reduced_and_pair_mass() {
+        let pair = BallPair::new(
+            Ball::new(0.17, 0.028575, 0.4).unwrap(),
+            Ball::new(0.16, 0.028, 0.4).unwrap(),
+        );
+        let m_star = 0.17 * 0.16 / 0.33;
+        assert!((pair.reduced_mass() - m_star).abs() <= 1e-15 * m_star);
+        assert!((pair.pair_mass() - 2.0 * m_star).abs() <= 1e-15 * m_star);
+        let same = BallPair::identical(Ball::new(0.17, 0.028575, 0.4).unwrap());
+        assert_eq!(same.pair_mass(), 0.17);
+        assert_eq!(same.reduced_mass(), 0.085);
+    }
+
     /// An explicit impulse is held to eq 56, m u0 <= P <= 2 m u0, with a slack of 1e-12 of
     /// the upper bound 2 m u0 (relative: the same at every scale), its edges included. At
     /// m u0 = 100 N s the slack is 2e-10 N s; at m u0 = 0.005 N s, 1e-14 N s.
