@@ -586,6 +586,17 @@ mod tests {
         assert!(Ball::new(1e296, 1.0, 0.4).is_ok());
     }
 
+    /// 1/m must be a normal number: m = 5e307 kg (1/m = 2e-308, subnormal), r = 1e-6 m,
+    /// alpha = 0.4 give I = 2e295, 1/(alpha m r) = 5e-302 and alpha m r 1e6 = 2e307, all
+    /// normal, so only 1/m refuses the ball; at m = 4e307 kg (1/m = 2.5e-308, normal) it is
+    /// accepted.
+    #[test]
+    fn refuses_a_subnormal_inverse_mass() {
+        let e = Ball::new(5e307, 1e-6, 0.4).unwrap_err().to_string();
+        assert!(e.contains("1/m"), "{e}");
+        assert!(Ball::new(4e307, 1e-6, 0.4).is_ok());
+    }
+
     /// The moment of inertia I = alpha m r^2 must be a normal number: m = 2.5e-291 kg,
     /// r = 1e-9 m, alpha = 0.4 give I = 1e-309 (subnormal) while 1/m = 4e290 and
     /// 1/(alpha m r) = 1e300 are normal, so only I refuses the ball; at r = 1e-6 m,
