@@ -180,6 +180,29 @@ pub struct LabMotion {
 mod tests {
     use super::*;
 
+    /// Eqs 5-6 for identical balls: S cos(theta) = 2 V + r Omega_z, S sin(theta) =
+    /// 2 W - r Omega_y with Omega = Omega^A + Omega^B. U = (1, 0.3, -0.1) m/s,
+    /// Omega^A = (0, 10, 20), Omega^B = (0, -5, 5) rad/s, r = 0.028575 m: the slip is
+    /// (0.6 + 25 r, -0.2 - 5 r) = (1.314375, -0.342875) m/s.
+    #[test]
+    fn sliding_speed_and_direction_of_eqs_5_6() {
+        let r = 0.028575;
+        let st = CmState::new(
+            Vector3::new(1.0, 0.3, -0.1),
+            Vector3::new(0.0, 10.0, 20.0),
+            Vector3::new(0.0, -5.0, 5.0),
+        );
+        let (sy, sz): (f64, f64) = (1.314375, -0.342875);
+        let s = (sy * sy + sz * sz).sqrt();
+        assert!(
+            (st.sliding_speed(r) - s).abs() <= 1e-15 * s,
+            "{}",
+            st.sliding_speed(r)
+        );
+        let theta = st.theta(r).unwrap();
+        assert!((theta - f64::atan2(sz, sy)).abs() <= 1e-15, "{theta}");
+    }
+
     #[test]
     fn is_finite_catches_every_component() {
         let ok = CmState::new(
