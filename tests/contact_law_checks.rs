@@ -32,6 +32,21 @@ fn pool_stiffness() -> f64 {
 const BETA_2_5_1_2: f64 = 3.679_093_980_405_881;
 /// Scaled state error of every law against the closed form at its realised impulse.
 const CLOSED_FORM_TOL: f64 = 1e-10;
+/// Every method, the closed form first.
+const METHODS: [Method; 4] = [
+    Method::ClosedForm,
+    Method::Rk4,
+    Method::Dopri5,
+    Method::Dop853,
+];
+
+/// Elastic Hertz at the relative approach speed v (m/s): the largest compression
+/// delta_max = (5 m* v^2 / (4 k))^(2/5) (m) and the contact time
+/// (4/5) B(2/5, 1/2) delta_max / v (s).
+fn elastic_hertz(k: f64, v: f64) -> (f64, f64) {
+    let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
+    (d, 0.8 * BETA_2_5_1_2 * d / v)
+}
 
 fn collision(u: Vector3<f64>, spin_a: Vector3<f64>, mu: f64) -> Collision {
     let ball = Ball::new(M, R, 0.4).unwrap();
@@ -69,16 +84,10 @@ fn elastic_law_is_the_hertz_profile() {
     ] {
         let c = collision(u, spin, 0.06);
         let v = 2.0 * u.x;
-        let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
-        let tau = 0.8 * BETA_2_5_1_2 * d / v;
+        let (d, tau) = elastic_hertz(k, v);
         let profile = Hertz::new(tau).unwrap();
         let reference = solve(&c, &profile, &tight(Method::ClosedForm), None).unwrap();
-        for method in [
-            Method::ClosedForm,
-            Method::Rk4,
-            Method::Dopri5,
-            Method::Dop853,
-        ] {
+        for method in METHODS {
             let o = solve_law(&c, &law, &tight(method), None).unwrap();
             let l = o.law.unwrap();
             let p = 2.0 * M * u.x;
@@ -144,18 +153,12 @@ fn elastic_law_without_stick_slides_on_past_zero() {
     // S(0) - 7 mu P / m = -0.32 m/s.
     assert!(!want.sticks && want.s_out < -0.3);
     let v = 2.0 * u.x;
-    let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
-    let tau = 0.8 * BETA_2_5_1_2 * d / v;
+    let (_, tau) = elastic_hertz(k, v);
     let p_zero = want.p_stick.unwrap();
     let v_ref = pair.v_ref(R);
     // Largest relative errors of P and tau, the scaled state error, the impulse at S = 0.
     let mut worst = [0.0f64; 4];
-    for method in [
-        Method::ClosedForm,
-        Method::Rk4,
-        Method::Dopri5,
-        Method::Dop853,
-    ] {
+    for method in METHODS {
         let o = solve_law(&c, &law, &tight(method), None).unwrap();
         let l = o.law.unwrap();
         let out = &o.result.out;
@@ -217,12 +220,7 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
     for law in &laws {
         for (u, spin) in shots {
             let c = collision(u, spin, 0.06);
-            for method in [
-                Method::ClosedForm,
-                Method::Rk4,
-                Method::Dopri5,
-                Method::Dop853,
-            ] {
+            for method in METHODS {
                 let o = solve_law(&c, law, &tight(method), None).unwrap();
                 let l = o.law.unwrap();
                 // The reported restitution is that of the reported impulse (eq 52:
@@ -416,12 +414,7 @@ fn hard_cases_hold() {
                 ContactLaw::calibrated(k, Damping::KuwabaraKono, 0.9, v, M / 2.0).unwrap(),
             ] {
                 let c = collision(Vector3::new(u0, 0.3 * u0, 0.0), Vector3::zeros(), 0.2);
-                for method in [
-                    Method::ClosedForm,
-                    Method::Rk4,
-                    Method::Dopri5,
-                    Method::Dop853,
-                ] {
+                for method in METHODS {
                     let o = solve_law(&c, &law, &tight(method), None)
                         .unwrap_or_else(|e| panic!("k {k} v {v} {} {method}: {e}", law.damping()));
                     let l = o.law.unwrap();
