@@ -68,20 +68,20 @@ impl LabRows for Rows {
     }
 }
 
-/// The columns of `n` rows, NaN until written.
-struct Out {
-    va: Vec<[f64; 3]>,
-    wa: Vec<[f64; 3]>,
-    vb: Vec<[f64; 3]>,
-    wb: Vec<[f64; 3]>,
-    p: Vec<f64>,
-    j: Vec<f64>,
-    sticks: Vec<bool>,
-    throw: Vec<f64>,
+/// The columns of `n` rows, NaN until written (also for tests/lab_rows_methods.rs).
+pub(crate) struct Out {
+    pub(crate) va: Vec<[f64; 3]>,
+    pub(crate) wa: Vec<[f64; 3]>,
+    pub(crate) vb: Vec<[f64; 3]>,
+    pub(crate) wb: Vec<[f64; 3]>,
+    pub(crate) p: Vec<f64>,
+    pub(crate) j: Vec<f64>,
+    pub(crate) sticks: Vec<bool>,
+    pub(crate) throw: Vec<f64>,
 }
 
 impl Out {
-    fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         let v = vec![[f64::NAN; 3]; n];
         Out {
             va: v.clone(),
@@ -95,7 +95,7 @@ impl Out {
         }
     }
 
-    fn columns(&mut self) -> LabOutColumns<'_> {
+    pub(crate) fn columns(&mut self) -> LabOutColumns<'_> {
         LabOutColumns {
             va: &mut self.va,
             wa: &mut self.wa,

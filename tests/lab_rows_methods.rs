@@ -3,7 +3,8 @@
 //! first-principles resolution at its fourth order.
 
 use crate::common::{resolve, Balls, Law, Pair, Rule};
-use billiard_contact::batch::{resolve_lab_into, BatchSetup, LabOutColumns};
+use crate::lab_rows_errors::Out;
+use billiard_contact::batch::{resolve_lab_into, BatchSetup};
 use billiard_contact::{Friction, LabBall, LabScene, Method, Scene, SolverSettings};
 use nalgebra::Vector3;
 
@@ -41,25 +42,8 @@ fn rk4_error(steps: u32, n: usize) -> f64 {
         .unwrap();
     let setup = BatchSetup::from_scene(&scene, settings);
     let rows = rows(b.r, n);
-    let mut va = vec![[f64::NAN; 3]; n];
-    let (mut wa, mut vb, mut wb) = (va.clone(), va.clone(), va.clone());
-    let (mut p, mut j, mut sticks, mut throw) =
-        (vec![0.0; n], vec![0.0; n], vec![false; n], vec![0.0; n]);
-    resolve_lab_into(
-        &setup,
-        rows.as_slice(),
-        LabOutColumns {
-            va: &mut va,
-            wa: &mut wa,
-            vb: &mut vb,
-            wb: &mut wb,
-            impulse: &mut p,
-            tangential_impulse: &mut j,
-            sticks: &mut sticks,
-            throw_angle_deg: &mut throw,
-        },
-    )
-    .unwrap();
+    let mut out = Out::new(n);
+    resolve_lab_into(&setup, rows.as_slice(), out.columns()).unwrap();
     let mu = 0.06;
     assert_eq!(scene.contact.friction, Friction::constant(mu).unwrap());
     let mut worst = 0.0f64;
@@ -72,9 +56,9 @@ fn rk4_error(steps: u32, n: usize) -> f64 {
             wb: row.b.spin,
         };
         let want = resolve(&b, &Law::new(mu, Rule::Restitution(1.0)), &pair).out;
-        let e = (Vector3::from(va[i]) - want.va)
+        let e = (Vector3::from(out.va[i]) - want.va)
             .amax()
-            .max((Vector3::from(vb[i]) - want.vb).amax());
+            .max((Vector3::from(out.vb[i]) - want.vb).amax());
         worst = worst.max(e);
     }
     worst
