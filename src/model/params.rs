@@ -595,6 +595,9 @@ mod tests {
         let e = Ball::new(5e307, 1e-6, 0.4).unwrap_err().to_string();
         assert!(e.contains("1/m"), "{e}");
         assert!(Ball::new(4e307, 1e-6, 0.4).is_ok());
+        // Plain values pass whatever alpha m r is: exactly 1 and 1/2 here.
+        assert!(Ball::new(2.0, 1.0, 0.5).is_ok());
+        assert!(Ball::new(1.0, 1.0, 0.5).is_ok());
     }
 
     /// The moment of inertia I = alpha m r^2 must be a normal number: m = 2.5e-291 kg,
