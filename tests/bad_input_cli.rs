@@ -300,11 +300,38 @@ fn non_finite_numbers_anywhere() {
         "up = [0.0, nan, 1.0]",
         &["incoming.lab.up[1]", "NaN"],
     );
-    // Finite but so large that the energy m v^2 overflows.
+    // Finite but so large that the energy m v^2 overflows. The message names the balls and
+    // the largest speed they allow, sqrt(f64::MAX / m) with the pair mass m: 0.17 kg gives
+    // 1.3408e154 / 0.41231 = 3.2519e154 m/s; unequal balls of 0.17 and 0.16 kg, whose pair
+    // mass is 2 (0.17 0.16 / 0.33) = 0.16485 kg, 3.3023e154 m/s.
     cm(
         "u = [0.5, 0.25, 0.0]",
         "u = [1e160, 0.25, 0.0]",
-        &["incoming", "1e160", "finite"],
+        &[
+            "incoming",
+            "1e160",
+            "finite",
+            "(m = 0.17 kg, r = 0.028575 m)",
+            "speeds below 3.3e154 m/s",
+        ],
+    );
+    let unequal = edit(
+        CM,
+        "[balls]\nmass = 0.17\nradius = 0.028575\nalpha = 0.4",
+        "[balls.a]\nmass = 0.17\nradius = 0.028575\nalpha = 0.4\n\
+         [balls.b]\nmass = 0.16\nradius = 0.028\nalpha = 0.4",
+    );
+    refuse(
+        "unequal balls, u = 1e160",
+        &edit(&unequal, "u = [0.5, 0.25, 0.0]", "u = [1e160, 0.25, 0.0]"),
+        TABLE,
+        &["run", "{dir}scene.toml"],
+        &[
+            "incoming",
+            "1e160",
+            "(m_A = 0.17 kg, r_A = 0.028575 m, m_B = 0.16 kg, r_B = 0.028 m)",
+            "speeds below 3.3e154 m/s",
+        ],
     );
 }
 

@@ -105,7 +105,7 @@ fn round_off_heat_of_heavy_balls_is_zero() {
 /// sliding stops at p_stick = m S(0) / (2 mu (1 + 1/alpha)) before P = 2 m U(0). Then
 /// J = mu p_stick = m S(0) / 7 (alpha = 0.4), H_sfr = J S(0) - (1 + 1/alpha) J^2 / m =
 /// m S(0)^2 / 14 (eq 49 with the stick rule), and H = H_sfr + P (2 U(0) - P / m) = H_sfr
-/// (eq 50, e = 1): 1.46460778 mJ.
+/// (eq 50, e = 1): 1.46460778 mJ. The summary says where sliding stops.
 #[test]
 fn a_heat_above_round_off_is_printed() {
     let s0 = 0.34729635533386066_f64;
@@ -130,6 +130,29 @@ fn a_heat_above_round_off_is_printed() {
         assert!(
             (sliding - want).abs() < 1e-12,
             "{method}: H_sfr = {sliding} vs {want}"
+        );
+        // Where sliding stops: p_stick = m S(0) / (2 mu (1 + 1/alpha)) = 0.14057 N s, of
+        // P = 2 m U(0) = 0.33484 N s; the half-sine's p(t) = P (1 - cos(pi t / tau)) / 2
+        // gives t = tau / pi acos(1 - 2 p_stick / P) = 112.18 us. Both printed to 7 digits.
+        let p_stick = 0.17 * s0 / (2.0 * 0.06 * (1.0 + 1.0 / 0.4));
+        let big_p = 2.0 * 0.17 * 1.969615506024416 / 2.0;
+        let t_stick = 2.5e-4 / std::f64::consts::PI * (1.0 - 2.0 * p_stick / big_p).acos();
+        let l = line(&s, "sliding stops").trim_start_matches("sliding stops");
+        let (t, p) = l
+            .trim()
+            .strip_prefix("at t = ")
+            .and_then(|r| r.strip_suffix(" N s; then purely normal"))
+            .and_then(|r| r.split_once(", p = "))
+            .unwrap_or_else(|| panic!("{method}: `{l}`"));
+        let t: f64 = t.strip_suffix(" µs").unwrap().parse::<f64>().unwrap() * 1e-6;
+        let p: f64 = p.parse().unwrap();
+        assert!(
+            (t / t_stick - 1.0).abs() < 1e-6,
+            "{method}: {t} vs {t_stick}"
+        );
+        assert!(
+            (p / p_stick - 1.0).abs() < 1e-6,
+            "{method}: {p} vs {p_stick}"
         );
     }
 }

@@ -611,6 +611,30 @@ mod tests {
         assert!(Ball::new(2.5e-291, 1e-6, 0.4).is_ok());
     }
 
+    /// 1/(alpha m r) must be a normal number, alpha m r itself need not be: m = 1e-308 kg
+    /// (1/m = 1e308), r = 3 m, alpha = 0.5 give alpha m r = 1.5e-308 (below the least
+    /// normal 2.2e-308) with 1/(alpha m r) = 6.7e307 and I = 4.5e-308 normal, and the ball
+    /// is accepted; at r = 20 m, alpha = 0.01, alpha m r = 2e-309 and its inverse
+    /// overflows, while I = 4e-308 and 1/m stay normal, so only 1/(alpha m r) refuses it.
+    #[test]
+    fn inverse_of_alpha_m_r_must_be_normal_not_alpha_m_r() {
+        assert!(Ball::new(1e-308, 3.0, 0.5).is_ok());
+        let e = Ball::new(1e-308, 20.0, 0.01).unwrap_err().to_string();
+        assert!(e.contains("1/(alpha m r)"), "{e}");
+    }
+
+    /// Each rule answers for its own kind and `None` for the other.
+    #[test]
+    fn rule_accessors() {
+        let e = ImpulseRule::restitution(0.93).unwrap();
+        assert_eq!(e.restitution_coefficient(), Some(0.93));
+        assert_eq!(e.explicit_impulse(), None);
+        let p = ImpulseRule::explicit(0.3).unwrap();
+        assert_eq!(p.restitution_coefficient(), None);
+        assert_eq!(p.explicit_impulse(), Some(0.3));
+        assert_eq!(ImpulseRule::ELASTIC.restitution_coefficient(), Some(1.0));
+    }
+
     /// The reduced mass m_A m_B / (m_A + m_B) and the pair mass M twice it: balls of 0.17 kg
     /// and 0.16 kg give 0.0272 / 0.33 = 0.0824242... kg and 0.1648484... kg; identical balls
     /// of m, m / 2 and exactly m.
