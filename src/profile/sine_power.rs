@@ -118,6 +118,14 @@ mod tests {
         }
     }
 
+    /// The accessor returns the exponent the pulse was built with.
+    #[test]
+    fn exponent_as_built() {
+        for n in [0.5, 1.5, 4.0, 64.0] {
+            assert_eq!(SinePower::new(2.5e-4, n).unwrap().exponent(), n);
+        }
+    }
+
     #[test]
     fn contract_for_several_exponents() {
         for (n, tol) in [(1.0, 1e-13), (1.5, 1e-10), (0.5, 1e-6), (4.0, 1e-13)] {
