@@ -288,3 +288,47 @@ fn trace_rows_as_documented() {
         "a row at the stop, t = {stop}"
     );
 }
+
+/// A speed-dependent mu held at the initial slip (`evaluate = "initial"`) is named in the
+/// summary and in the JSON's `friction` object with mu(S(0)). A stun cut with U(0) = 1 m/s
+/// and V(0) = 0.25 m/s, no spin: S(0) = 2 V(0) = 0.5 m/s (eqs 5-6), so with Alciatore's
+/// constants mu = 9.951e-3 + 0.108 exp(-1.088 * 0.5) = 0.0725769...; along the contact
+/// (the default) there is no `friction` object and no such line.
+#[test]
+fn a_held_mu_is_named_with_its_value() {
+    let dir = cli_common::fresh_dir("cli_summary_held_mu");
+    let want = 9.951e-3 + 0.108 * (-1.088f64 * 0.5).exp();
+    for evaluate in ["initial", "along-contact"] {
+        let path = dir.join(format!("{evaluate}.toml"));
+        std::fs::write(
+            &path,
+            format!(
+                "[balls]\nmass = 0.17\nradius = 0.028575\n[contact]\n\
+                 mu = {{ model = \"speed-dependent\", a = 9.951e-3, b = 0.108, c = 1.088, \
+                 evaluate = \"{evaluate}\" }}\n\
+                 [contact.profile]\nshape = \"half-sine\"\nduration = 2.5e-4\n\
+                 [incoming.cm]\nu = [1.0, 0.25, 0.0]\n"
+            ),
+        )
+        .unwrap();
+        let p = path.to_str().unwrap();
+        let s = text(&bin(&["run", p]));
+        let j: serde_json::Value =
+            serde_json::from_slice(&bin(&["run", p, "--json"]).stdout).unwrap();
+        if evaluate == "along-contact" {
+            assert!(j.get("friction").is_none_or(|f| f.is_null()), "{j}");
+            assert!(!s.contains("held through the contact"), "{s}");
+            continue;
+        }
+        let f = &j["friction"];
+        assert_eq!(f["model"], "speed-dependent");
+        assert_eq!(f["evaluate"], "initial");
+        let mu = f["mu"].as_f64().unwrap();
+        assert!((mu - want).abs() <= 1e-15 * want, "{mu} vs {want}");
+        assert_eq!(
+            line(&s, "friction"),
+            format!("friction          mu(S(0)) = {want:.6} held through the contact (evaluate = initial)")
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
