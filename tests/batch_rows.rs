@@ -540,6 +540,22 @@ fn unknown_columns_are_refused() {
     assert_eq!(rows.len(), 1);
 }
 
+/// A cell that is not UTF-8 (a Latin-1 e-acute, byte 0xE9, in the second cell of line 3)
+/// is named by its cell and line.
+#[test]
+fn a_cell_not_in_utf8_is_named() {
+    let s = setup(Method::ClosedForm);
+    for text in [
+        &b"u_x,u_y,u_z\n1,0,0\n1,\xe9,0\n"[..],
+        b"u_x,u_y,u_z\r\n1,0,0\r\n1,\xe9,0",
+    ] {
+        let e = run_csv(&s, text, Path::new("in.csv"), Vec::new(), 2, |_, _| {})
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "in.csv:3: cell 2 is not valid UTF-8", "{text:?}");
+    }
+}
+
 /// A row with too few cells is blamed on its own line, after CRLF and blank lines, in
 /// words (not the CSV reader's own, off-by-one, record position).
 #[test]
