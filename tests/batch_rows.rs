@@ -535,9 +535,14 @@ fn unknown_columns_are_refused() {
     );
     let msg = e("u_x,u_y,u_z,\n1,0.2,0,5\n");
     assert!(msg.starts_with("in.csv:1: column 4 has no name"), "{msg}");
-    // A unit in parentheses is not part of the name.
+    // A unit in parentheses is not part of the name; an unclosed one is.
     let (rows, _) = run(&s, "u_x (m/s),u_y,u_z,omega_a_x (rad/s)\n1,0.2,0,5\n", 2);
     assert_eq!(rows.len(), 1);
+    let msg = e("u_x (m/s,u_y,u_z\n1,0.2,0\n");
+    assert!(
+        msg.starts_with("in.csv:1: column `u_x (m/s`: unknown column"),
+        "{msg}"
+    );
 }
 
 /// A cell that is not UTF-8 (a Latin-1 e-acute, byte 0xE9, in the second cell of line 3)

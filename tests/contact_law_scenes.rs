@@ -212,3 +212,25 @@ fn a_calibrated_coefficient_follows_the_mass() {
         );
     }
 }
+
+/// Without slip (a head-on hit, no spin: S(0) = 0 by eqs 5-6) the surfaces never slide: the
+/// stick rule holds from the start, at p = 0 and t = 0, for every method, as with a
+/// prescribed force.
+#[test]
+fn no_slip_sticks_at_the_start() {
+    let scene = parse(&BASE.replace("u = [1.0, 0.5, 0.0]", "u = [1.0, 0.0, 0.0]")).unwrap();
+    for method in [
+        Method::ClosedForm,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Dop853,
+    ] {
+        let settings = scene.solver.with_method(method);
+        let run = run_scene(&scene, &settings, None).unwrap();
+        let o = &run.outcome;
+        assert_eq!(o.result.s0, 0.0, "{method}");
+        assert!(o.result.sticks, "{method}");
+        assert_eq!(o.result.stick_impulse, Some(0.0), "{method}");
+        assert_eq!(o.stick_time, Some(0.0), "{method}");
+    }
+}

@@ -99,6 +99,32 @@ fn impact_that_sticks_rolls_at_once() {
     assert!(close(r.rolling.velocity.x, 5.0 / 7.0 * 0.1, EXACT));
 }
 
+/// Impact of a ball already rolling: v = (1, 0, -0.5), w = (0, 1/r, 0), so the contact
+/// point's slip v_x - r w_y is 0 and no friction acts: J_t = 0, the spin is unchanged, and
+/// with e_t = 0.5 the ball leaves with v' = (1, 0, 0.25), P_n = 1.5 m 0.5. (v_x is written
+/// r (1/r), 1 to an ulp, so that the slip is 0 exactly.)
+#[test]
+fn impact_without_slip_is_purely_normal() {
+    let b = ball();
+    let t = table(0.2, 0.5);
+    let vx = R * (1.0 / R);
+    let imp = cloth_impact(
+        &b,
+        &t.params,
+        &t.up,
+        0.0,
+        &Vector3::new(vx, 0.0, -0.5),
+        &Vector3::new(0.0, 1.0 / R, 0.0),
+    );
+    assert!(imp.sticks);
+    assert_eq!(imp.tangential_impulse, 0.0);
+    assert!(close(imp.normal_impulse, 0.75 * M, EXACT));
+    assert_eq!(imp.velocity.x, vx);
+    assert_eq!(imp.velocity.y, 0.0);
+    assert!(close(imp.velocity.z, 0.25, EXACT));
+    assert_eq!(imp.spin, Vector3::new(0.0, 1.0 / R, 0.0));
+}
+
 /// A ball with no vertical velocity: hop_time = hop_height = 0 and an impact with zero
 /// impulses at t = 0 (docs/model.md#the-table-phase, step 2).
 #[test]
