@@ -69,10 +69,10 @@ fn run(
 }
 
 /// The error of a batch of `text` (named `in.csv`), read in chunks of 2 rows.
-fn batch_error(setup: &BatchSetup, text: &str) -> String {
+fn batch_error(setup: &BatchSetup, text: impl AsRef<[u8]>) -> String {
     run_csv(
         setup,
-        text.as_bytes(),
+        text.as_ref(),
         Path::new("in.csv"),
         Vec::new(),
         2,
@@ -554,9 +554,7 @@ fn a_cell_not_in_utf8_is_named() {
         &b"u_x,u_y,u_z\n1,0,0\n1,\xe9,0\n"[..],
         b"u_x,u_y,u_z\r\n1,0,0\r\n1,\xe9,0",
     ] {
-        let e = run_csv(&s, text, Path::new("in.csv"), Vec::new(), 2, |_, _| {})
-            .unwrap_err()
-            .to_string();
+        let e = batch_error(&s, text);
         assert_eq!(e, "in.csv:3: cell 2 is not valid UTF-8", "{text:?}");
     }
 }

@@ -32,13 +32,6 @@ fn pool_stiffness() -> f64 {
 const BETA_2_5_1_2: f64 = 3.679_093_980_405_881;
 /// Scaled state error of every law against the closed form at its realised impulse.
 const CLOSED_FORM_TOL: f64 = 1e-10;
-/// Every method, the closed form first.
-const METHODS: [Method; 4] = [
-    Method::ClosedForm,
-    Method::Rk4,
-    Method::Dopri5,
-    Method::Dop853,
-];
 
 /// Elastic Hertz at the relative approach speed v (m/s): the largest compression
 /// delta_max = (5 m* v^2 / (4 k))^(2/5) (m) and the contact time
@@ -87,7 +80,7 @@ fn elastic_law_is_the_hertz_profile() {
         let (d, tau) = elastic_hertz(k, v);
         let profile = Hertz::new(tau).unwrap();
         let reference = solve(&c, &profile, &tight(Method::ClosedForm), None).unwrap();
-        for method in METHODS {
+        for method in Method::ALL {
             let o = solve_law(&c, &law, &tight(method), None).unwrap();
             let l = o.law.unwrap();
             let p = 2.0 * M * u.x;
@@ -158,7 +151,7 @@ fn elastic_law_without_stick_slides_on_past_zero() {
     let v_ref = pair.v_ref(R);
     // Largest relative errors of P and tau, the scaled state error, the impulse at S = 0.
     let mut worst = [0.0f64; 4];
-    for method in METHODS {
+    for method in Method::ALL {
         let o = solve_law(&c, &law, &tight(method), None).unwrap();
         let l = o.law.unwrap();
         let out = &o.result.out;
@@ -220,7 +213,7 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
     for law in &laws {
         for (u, spin) in shots {
             let c = collision(u, spin, 0.06);
-            for method in METHODS {
+            for method in Method::ALL {
                 let o = solve_law(&c, law, &tight(method), None).unwrap();
                 let l = o.law.unwrap();
                 // The reported restitution is that of the reported impulse (eq 52:
@@ -414,7 +407,7 @@ fn hard_cases_hold() {
                 ContactLaw::calibrated(k, Damping::KuwabaraKono, 0.9, v, M / 2.0).unwrap(),
             ] {
                 let c = collision(Vector3::new(u0, 0.3 * u0, 0.0), Vector3::zeros(), 0.2);
-                for method in METHODS {
+                for method in Method::ALL {
                     let o = solve_law(&c, &law, &tight(method), None)
                         .unwrap_or_else(|e| panic!("k {k} v {v} {} {method}: {e}", law.damping()));
                     let l = o.law.unwrap();

@@ -219,12 +219,7 @@ fn a_calibrated_coefficient_follows_the_mass() {
 #[test]
 fn no_slip_sticks_at_the_start() {
     let scene = parse(&BASE.replace("u = [1.0, 0.5, 0.0]", "u = [1.0, 0.0, 0.0]")).unwrap();
-    for method in [
-        Method::ClosedForm,
-        Method::Rk4,
-        Method::Dopri5,
-        Method::Dop853,
-    ] {
+    for method in Method::ALL {
         let settings = scene.solver.with_method(method);
         let run = run_scene(&scene, &settings, None).unwrap();
         let o = &run.outcome;
