@@ -179,6 +179,7 @@ pub struct LabMotion {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::params::Ball;
 
     /// Eqs 5-6 for identical balls: S cos(theta) = 2 V + r Omega_z, S sin(theta) =
     /// 2 W - r Omega_y with Omega = Omega^A + Omega^B. U = (1, 0.3, -0.1) m/s,
@@ -200,6 +201,29 @@ mod tests {
             st.sliding_speed(r)
         );
         let theta = st.theta(r).unwrap();
+        assert!((theta - f64::atan2(sz, sy)).abs() <= 1e-15, "{theta}");
+    }
+
+    /// The slip of unequal balls, written out: the tangential part of (v_A - v_B) +
+    /// Omega^A x (r_A e_x) + Omega^B x (r_B e_x), with Omega x (r e_x) = (0, r Omega_z,
+    /// -r Omega_y) and v_A - v_B = 2 U. The state above with r_A = 0.03 m, r_B = 0.02 m:
+    /// (0.6 + 0.03 * 20 + 0.02 * 5, -0.2 - 0.03 * 10 - 0.02 * (-5)) = (1.3, -0.4) m/s.
+    #[test]
+    fn sliding_speed_and_direction_of_unequal_balls() {
+        let st = CmState::new(
+            Vector3::new(1.0, 0.3, -0.1),
+            Vector3::new(0.0, 10.0, 20.0),
+            Vector3::new(0.0, -5.0, 5.0),
+        );
+        let balls = BallPair::new(
+            Ball::new(0.17, 0.03, 0.4).unwrap(),
+            Ball::new(0.1, 0.02, 0.4).unwrap(),
+        );
+        let (sy, sz): (f64, f64) = (1.3, -0.4);
+        let s = (sy * sy + sz * sz).sqrt();
+        let got = st.sliding_speed_of(&balls);
+        assert!((got - s).abs() <= 1e-15 * s, "{got}");
+        let theta = st.theta_of(&balls).unwrap();
         assert!((theta - f64::atan2(sz, sy)).abs() <= 1e-15, "{theta}");
     }
 
