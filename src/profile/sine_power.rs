@@ -118,6 +118,24 @@ mod tests {
         }
     }
 
+    /// The impulse still to come after 1 - s is the impulse delivered before s, to the bit
+    /// (1 - s and 1 - (1 - s) are exact for s = k / 1024): the late half of the pulse is
+    /// its early half mirrored, not the sines of arguments past pi.
+    #[test]
+    fn cumulative_symmetric_to_the_bit() {
+        for n in [1.0, 1.5, 4.0] {
+            let p = SinePower::new(1.0, n).unwrap();
+            for k in 1..512 {
+                let s = f64::from(k) / 1024.0;
+                assert_eq!(
+                    p.cumulative(1.0 - s),
+                    1.0 - p.cumulative(s),
+                    "n {n}, s = {s}"
+                );
+            }
+        }
+    }
+
     /// The accessor returns the exponent the pulse was built with.
     #[test]
     fn exponent_as_built() {
