@@ -161,6 +161,8 @@ fn a_heat_above_round_off_is_printed() {
 /// of restitution 0.5; it bounces at once with v_z = 0.5 * 0.2277 m/s and rises
 /// (0.5 v_z)^2 / (2 g) = 0.66 mm, as its path shows. The summary said "stays on the cloth
 /// (no hop)": it now says it bounces, and the height it prints is the path's.
+/// A leaves moving up and hops: the summary's hop time, height and landing time are those
+/// of a ballistic flight.
 #[test]
 fn the_table_summary_agrees_with_the_path() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("summary_text_jump");
@@ -185,6 +187,30 @@ fn the_table_summary_agrees_with_the_path() {
         b.starts_with("B: pressed into the cloth at separation, bounces off it at t = 0, up to "),
         "{b}"
     );
+    // A leaves moving up (v_z > 0): a ballistic hop of 2 v_z / g, v_z^2 / (2 g) high,
+    // landing at the hop's end (v_z = 0.2277 m/s: 46.42 ms, 2.642 mm).
+    let az = j["lab_out"]["a"]["velocity"][2].as_f64().unwrap();
+    assert!(az > 0.0, "A moves up at separation: {az}");
+    let a = line(&s, "A:");
+    let nums: Vec<f64> = a
+        .strip_prefix("A: hops ")
+        .unwrap_or_else(|| panic!("{a}"))
+        .split(", ")
+        .map(|part| {
+            let part = part.trim_start_matches("lands at t = ");
+            part.split(' ').next().unwrap().parse().unwrap()
+        })
+        .collect();
+    assert_eq!(a.matches(" ms").count(), 2, "{a}");
+    assert!(a.contains(" mm high, lands at t = "), "{a}");
+    let (hop, height) = (2.0 * az / 9.81, az * az / (2.0 * 9.81));
+    for (got, want) in [
+        (nums[0] * 1e-3, hop),
+        (nums[1] * 1e-3, height),
+        (nums[2] * 1e-3, hop),
+    ] {
+        assert!((got / want - 1.0).abs() < 1e-6, "{a}: {got} vs {want}");
+    }
     let printed: f64 = b
         .rsplit("up to ")
         .next()
