@@ -213,25 +213,37 @@ impl Friction {
                 if c == 0.0 || b == 0.0 {
                     (a + b) * g
                 } else if a == 0.0 {
-                    ln_1p_product(b, c, g) / c
+                    ln_1p_over_c(b, c, g)
                 } else {
                     let acg = a * g * c;
-                    // ln(1 + (b/a)(1 - e^(-a c g))), without 0 * inf for huge c or tiny a.
+                    // ln(1 + (b/a)(1 - e^(-a c g))) / c, without 0 * inf for huge c or tiny a.
                     let ln_term = if acg < 1e-10 {
-                        ln_1p_product(b * (1.0 - 0.5 * acg), c, g)
+                        ln_1p_over_c(b * (1.0 - 0.5 * acg), c, g)
                     } else {
                         let t = -(-acg).exp_m1();
                         let z = b * t / a;
                         if z.is_finite() {
-                            z.ln_1p()
+                            z.ln_1p() / c
                         } else {
-                            (b * t).ln() - a.ln()
+                            ((b * t).ln() - a.ln()) / c
                         }
                     };
-                    a * g + ln_term / c
+                    a * g + ln_term
                 }
             }
         }
+    }
+}
+
+/// ln(1 + x c g) / c for x, c, g >= 0 and c > 0, also where x c g underflows (a subnormal
+/// c: x g (1 - x c g / 2), the series of ln(1 + p) / p to p^2 / 3 < 4e-21) or overflows.
+fn ln_1p_over_c(x: f64, c: f64, g: f64) -> f64 {
+    let q = x * g;
+    let p = q * c;
+    if p < 1e-10 {
+        q * (1.0 - 0.5 * p)
+    } else {
+        ln_1p_product(x, c, g) / c
     }
 }
 
@@ -405,6 +417,27 @@ mod tests {
                 (g - textbook).abs() <= 1e-12 * textbook,
                 "S = {s}: {g} vs {textbook}"
             );
+        }
+    }
+
+    /// A subnormal c: mu(S) = a + b e^(-cS) is a + b in f64 for every S here, so G = S /
+    /// (a + b) (S / b for a = 0), and its inverse S = (a + b) G. c S underflows (5e-324 x
+    /// 0.3 rounds to 0 or 5e-324), so (e^(cS) - 1) / c taken from c S itself would give 0
+    /// or 1 instead of S; the inverse's ln(1 + b c G) / c from b c G gave 1e-12 back as
+    /// 8.4e-14.
+    #[test]
+    fn subnormal_c_is_constant_friction() {
+        for (a, b) in [(9.951e-3, 0.108), (0.0, 0.108)] {
+            let f = Friction::speed_dependent(a, b, 5e-324).unwrap();
+            for s in [1e-12, 0.3, 2.0, 7.5] {
+                let (g, want) = (f.slide_potential(s), s / (a + b));
+                assert!(
+                    (g - want).abs() <= 1e-15 * want,
+                    "a = {a}, S = {s}: {g} vs {want}"
+                );
+                let back = f.slide_speed(g);
+                assert!((back - s).abs() <= 1e-15 * s, "a = {a}, S = {s}: {back}");
+            }
         }
     }
 
