@@ -73,3 +73,42 @@ impl Segment {
         t >= self.t0 && t <= self.t1
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `contains` is the closed interval [t0, t1] of its docs, open-ended for the last
+    /// segment (t1 infinite).
+    #[test]
+    fn contains_is_the_closed_interval() {
+        let still = LabBall {
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            spin: Vector3::zeros(),
+        };
+        let seg = |t0: f64, t1: f64| Segment {
+            phase: BallMotion::Sliding,
+            t0,
+            t1,
+            start: still,
+            accel: Vector3::zeros(),
+            spin_accel: Vector3::zeros(),
+            spin_decay_rate: 0.0,
+        };
+        let s = seg(0.125, 0.375);
+        for (t, inside) in [
+            (0.0, false),
+            (0.124, false),
+            (0.125, true),
+            (0.25, true),
+            (0.375, true),
+            (0.376, false),
+            (f64::NAN, false),
+        ] {
+            assert_eq!(s.contains(t), inside, "t = {t}");
+        }
+        let last = seg(0.375, f64::INFINITY);
+        assert!(last.contains(0.375) && last.contains(1e9) && !last.contains(0.374));
+    }
+}
