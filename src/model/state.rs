@@ -181,6 +181,15 @@ mod tests {
     use super::*;
     use crate::model::params::Ball;
 
+    /// U = (1, 0.3, -0.1) m/s, Omega^A = (0, 10, 20), Omega^B = (0, -5, 5) rad/s.
+    fn slipping_state() -> CmState {
+        CmState::new(
+            Vector3::new(1.0, 0.3, -0.1),
+            Vector3::new(0.0, 10.0, 20.0),
+            Vector3::new(0.0, -5.0, 5.0),
+        )
+    }
+
     /// Eqs 5-6 for identical balls: S cos(theta) = 2 V + r Omega_z, S sin(theta) =
     /// 2 W - r Omega_y with Omega = Omega^A + Omega^B. U = (1, 0.3, -0.1) m/s,
     /// Omega^A = (0, 10, 20), Omega^B = (0, -5, 5) rad/s, r = 0.028575 m: the slip is
@@ -188,11 +197,7 @@ mod tests {
     #[test]
     fn sliding_speed_and_direction_of_eqs_5_6() {
         let r = 0.028575;
-        let st = CmState::new(
-            Vector3::new(1.0, 0.3, -0.1),
-            Vector3::new(0.0, 10.0, 20.0),
-            Vector3::new(0.0, -5.0, 5.0),
-        );
+        let st = slipping_state();
         let (sy, sz): (f64, f64) = (1.314375, -0.342875);
         let s = (sy * sy + sz * sz).sqrt();
         assert!(
@@ -206,15 +211,11 @@ mod tests {
 
     /// The slip of unequal balls, written out: the tangential part of (v_A - v_B) +
     /// Omega^A x (r_A e_x) + Omega^B x (r_B e_x), with Omega x (r e_x) = (0, r Omega_z,
-    /// -r Omega_y) and v_A - v_B = 2 U. The state above with r_A = 0.03 m, r_B = 0.02 m:
+    /// -r Omega_y) and v_A - v_B = 2 U. `slipping_state` with r_A = 0.03 m, r_B = 0.02 m:
     /// (0.6 + 0.03 * 20 + 0.02 * 5, -0.2 - 0.03 * 10 - 0.02 * (-5)) = (1.3, -0.4) m/s.
     #[test]
     fn sliding_speed_and_direction_of_unequal_balls() {
-        let st = CmState::new(
-            Vector3::new(1.0, 0.3, -0.1),
-            Vector3::new(0.0, 10.0, 20.0),
-            Vector3::new(0.0, -5.0, 5.0),
-        );
+        let st = slipping_state();
         let balls = BallPair::new(
             Ball::new(0.17, 0.03, 0.4).unwrap(),
             Ball::new(0.1, 0.02, 0.4).unwrap(),
