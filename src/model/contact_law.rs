@@ -171,7 +171,9 @@ impl ContactLaw {
 
     /// The rate df/dt (N/s) of the unclipped force along the motion, at compression `delta`
     /// (m > 0), rate `delta_dot` (m/s) and acceleration delta'' = -f / m* (`reduced_mass` m*
-    /// in kg): its zero is the peak force.
+    /// in kg): its zero is the peak force. Under `kuwabara-kono` it is +inf at delta <= 0:
+    /// the damped force rises as sqrt(delta) from first touch, and a positive rate keeps the
+    /// start of contact from reading as the peak (gamma = 0 included).
     #[inline]
     pub fn force_rate(&self, delta: f64, delta_dot: f64, reduced_mass: f64) -> f64 {
         let d = delta.max(0.0);
@@ -408,6 +410,18 @@ mod tests {
         assert_eq!(law.separation(delta, w), 0.0);
         assert!(law.force(delta, w).abs() < 1e-9);
         assert_eq!(law.force(delta, 1.5 * w), 0.0);
+    }
+
+    /// Kuwabara-Kono's rate at first touch: +inf (the sqrt(delta) rise), not 0.5 w^2 / 0
+    /// times gamma, which is NaN for gamma = 0 or w = 0.
+    #[test]
+    fn kuwabara_kono_rate_at_first_touch_is_infinite() {
+        for gamma in [0.0, 2e-6] {
+            let law = ContactLaw::new(1e9, Damping::KuwabaraKono, gamma).unwrap();
+            for w in [0.0, 0.5] {
+                assert_eq!(law.force_rate(0.0, w, 0.085), f64::INFINITY, "{gamma} {w}");
+            }
+        }
     }
 
     /// df/dt against a central difference of f along the motion delta(t), delta'(t).
