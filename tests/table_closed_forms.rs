@@ -529,6 +529,9 @@ table = true
         .unwrap_err()
         .to_string();
     assert!(e.contains("above the cloth"), "{e}");
+    // The same centres 0.1 m up on a cloth at height 0.1 - R: each centre is R above it.
+    let raised = text.replace("height = 0.0", &format!("height = {:?}", 0.1 - R));
+    Scene::parse(&raised, Path::new("."), None).expect("centres R above a raised cloth");
     let bad = cm.replace("table = true", "table = true\n[table]\nrestitution = 1.0");
     let e = Scene::parse(&bad, Path::new("."), None)
         .unwrap_err()
