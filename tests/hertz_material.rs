@@ -336,6 +336,23 @@ fn batch_rows_take_their_own_contact_time() {
             );
         }
         assert!(rel(t[1] / t[0], 1e4f64.powf(-0.2)) <= 1e-9, "{method}");
+        // Balls that touch without approaching (U(0) = 0) or that recede (U(0) < 0) do not
+        // collide: the row passes through unchanged, with no stick time. The material's
+        // contact time exists only for U(0) > 0, so it must not be asked for here.
+        for u0 in [0.0, -0.3] {
+            let cm = CmState::new(
+                Vector3::new(u0, 0.1, 0.0),
+                Vector3::zeros(),
+                Vector3::new(0.0, 0.0, 5.0),
+            );
+            let got = resolve_slice(&setup, &[BatchInput::cm(cm)]);
+            let o = got[0]
+                .as_ref()
+                .unwrap_or_else(|e| panic!("{method}: U(0) = {u0}: {e}"));
+            assert!(!o.result.collided(), "{method}: U(0) = {u0}");
+            assert_eq!(o.result.out, cm, "{method}: U(0) = {u0}");
+            assert_eq!(o.stick_time, None, "{method}: U(0) = {u0}");
+        }
         let mut bad = rows[0];
         bad.overrides.duration = Some(2.5e-4);
         let e = resolve_slice(&setup, &[bad])[0]
