@@ -414,7 +414,7 @@ impl std::io::Write for Checker {
 }
 
 /// Streaming design: 30 000 rows through chunks of 256 hold at most 256 rows at a time,
-/// in order, whatever the number of rows.
+/// in order, whatever the number of rows; the summary counts every row, collision and stick.
 #[test]
 fn streaming_holds_one_chunk() {
     let s = setup(Method::ClosedForm);
@@ -436,6 +436,18 @@ fn streaming_holds_one_chunk() {
     .unwrap();
     assert_eq!(summary.rows, 30_000);
     assert_eq!(summary.collisions, 30_000);
+    // Rows that stick: with no spin S(0) = 2 |V(0)|, and sliding stops at the impulse
+    // p_stick = m S(0) / (2 mu (1 + 1/alpha)) (eq 22), before the end P = (1 + e) m U(0)
+    // (eq 52) when |V(0)| < 2 mu (1 + 1/alpha) U(0) = 0.42 U(0) (mu = 0.06, alpha = 0.4,
+    // e = 1: the default scene). No row comes within 1.2e-5 U(0) of the boundary.
+    let sticking = (0..30_000)
+        .filter(|&i| {
+            let a = i as f64;
+            let (u, v) = (1.0 + (a * 0.37).sin() * 0.5, (a * 0.11).cos() * 0.4);
+            v.abs() < 2.0 * 0.06 * (1.0 + 1.0 / 0.4) * u
+        })
+        .count();
+    assert_eq!(summary.sticks, sticking as u64);
     assert_eq!(summary.max_rows_in_memory, 256);
     assert_eq!(w.expected_line, 30_002);
     assert_eq!(progress_calls, 30_000usize.div_ceil(256));
