@@ -420,6 +420,23 @@ mod tests {
         }
     }
 
+    /// Where c S < 1e-8 a series stands in for (e^(cS) - 1) / c. Against G = (e^(cS) - 1) /
+    /// (b c) for a = 0 (1/mu = e^(cS') / b integrated over [0, S]), which `exp_m1` gives to
+    /// an ulp at these c S: the series' own error, (c S)^2 / 6 relative, is below 2e-17.
+    #[test]
+    fn slide_potential_where_c_s_is_small() {
+        let (b, c) = (0.108, 1.088);
+        let f = Friction::speed_dependent(0.0, b, c).unwrap();
+        for s in [1e-9, 4e-9, 9e-9] {
+            let want = (c * s).exp_m1() / (b * c);
+            let g = f.slide_potential(s);
+            assert!(
+                (g - want).abs() <= 1e-15 * want,
+                "S = {s}: {g:e} vs {want:e}"
+            );
+        }
+    }
+
     /// A subnormal c: mu(S) = a + b e^(-cS) is a + b in f64 for every S here, so G = S /
     /// (a + b) (S / b for a = 0), and its inverse S = (a + b) G. c S underflows (5e-324 x
     /// 0.3 rounds to 0 or 5e-324), so (e^(cS) - 1) / c taken from c S itself would give 0
