@@ -239,6 +239,72 @@ fn the_table_summary_agrees_with_the_path() {
     assert!(s.contains(", 7 bounces") && !s.contains("bounce(s)"), "{s}");
 }
 
+/// draw_table: A leaves moving into the cloth (v_z < 0 in the JSON) and the cloth's
+/// restitution is 0, so the impact takes its normal velocity and it neither hops nor
+/// bounces: "stays on the cloth (no hop)"; B leaves moving up and hops.
+#[test]
+fn a_ball_pressed_into_a_dead_cloth_stays_on_it() {
+    let text_of = std::fs::read_to_string(scene("draw_table.toml")).unwrap();
+    assert!(text_of.contains("[table]") && text_of.contains("restitution = 0.0\n"));
+    let j: serde_json::Value =
+        serde_json::from_slice(&bin(&["run", &scene("draw_table.toml"), "--json"]).stdout).unwrap();
+    assert!(j["lab_out"]["a"]["velocity"][2].as_f64().unwrap() < 0.0);
+    assert_eq!(j["table"]["restitution"].as_f64(), Some(0.0));
+    let s = text(&bin(&["run", &scene("draw_table.toml")]));
+    assert_eq!(line(&s, "A:"), "A: stays on the cloth (no hop)", "{s}");
+    assert!(line(&s, "B:").starts_with("B: hops "), "{s}");
+}
+
+/// A contact law's line: its damping and coefficient as the scene gives them, and for the
+/// elastic law (`damping = "none"`, stiffness k = 4.5e8 N/m^1.5, U(0) = 1 m/s, so an
+/// approach speed v = 2 m/s and m* = m/2 = 0.085 kg) restitution 1 and the textbook
+/// largest compression delta = (5 m* v^2 / (4 k))^(2/5) and peak force k delta^(3/2),
+/// printed to five significant digits.
+#[test]
+fn the_contact_law_line() {
+    let kk = text(&bin(&["run", &scene("hertz_law_kuwabara_kono.toml")]));
+    assert!(
+        line(&kk, "contact law").starts_with(
+            "contact law hertz, damping kuwabara-kono (coefficient 2e-6 s): restitution 0."
+        ),
+        "{kk}"
+    );
+    let dir = cli_common::fresh_dir("summary_text_law");
+    let file = dir.join("elastic.toml");
+    let kk_text = std::fs::read_to_string(scene("hertz_law_kuwabara_kono.toml")).unwrap();
+    let elastic = kk_text
+        .replace("damping = \"kuwabara-kono\"", "damping = \"none\"")
+        .replace("coefficient = 2e-6", "");
+    assert_ne!(elastic, kk_text);
+    std::fs::write(&file, elastic).unwrap();
+    let s = text(&bin(&["run", file.to_str().unwrap()]));
+    let l = line(&s, "contact law");
+    let rest = l
+        .strip_prefix("contact law hertz, damping none (coefficient 0 -): restitution ")
+        .unwrap_or_else(|| panic!("{l}"));
+    let parts: Vec<&str> = rest.split(", ").collect();
+    let e: f64 = parts[0].parse().unwrap();
+    assert!((e - 1.0).abs() <= 2e-9, "{l}");
+    let (k, m_star, v) = (4.5e8_f64, 0.085_f64, 2.0_f64);
+    let delta = (5.0 * m_star * v * v / (4.0 * k)).powf(0.4);
+    let force = k * delta.powf(1.5);
+    let number = |part: &str, key: &str, unit: &str, scale: f64| -> f64 {
+        part.strip_prefix(key)
+            .and_then(|p| p.strip_suffix(unit))
+            .unwrap_or_else(|| panic!("{l}"))
+            .parse::<f64>()
+            .unwrap()
+            * scale
+    };
+    let got_delta = number(parts[1], "compression ", " µm", 1e-6);
+    let got_force = number(parts[2], "peak force ", " kN", 1e3);
+    assert!(
+        (got_delta / delta - 1.0).abs() < 5e-5,
+        "{l}: delta = {delta}"
+    );
+    assert!((got_force / force - 1.0).abs() < 5e-5, "{l}: f = {force}");
+}
+
 /// No `e0` exponents ("1.561453e0 s", "2.0000e-4 s", "0.0e0") in any scene's summary; the
 /// duration of a 2.5e-4 s pulse reads 250 µs.
 #[test]
