@@ -437,6 +437,24 @@ mod tests {
         }
     }
 
+    /// Where b c G < 1e-10 the inverse takes ln(1 + b c G) / c from its series. Against S =
+    /// ln(1 + b c G) / c for a = 0 (the inverse of G = (e^(cS) - 1) / (b c)), which `ln_1p`
+    /// gives to an ulp at these b c G; the series' own error is (b c G)^2 / 3 relative.
+    #[test]
+    fn slide_speed_where_b_c_g_is_small() {
+        let (b, c) = (0.108, 1.088);
+        let f = Friction::speed_dependent(0.0, b, c).unwrap();
+        for p in [1e-12, 3e-11, 9e-11] {
+            let g = p / (b * c);
+            let want = (b * c * g).ln_1p() / c;
+            let got = f.slide_speed(g);
+            assert!(
+                (got - want).abs() <= 1e-15 * want,
+                "b c G = {p}: {got:e} vs {want:e}"
+            );
+        }
+    }
+
     /// A subnormal c: mu(S) = a + b e^(-cS) is a + b in f64 for every S here, so G = S /
     /// (a + b) (S / b for a = 0), and its inverse S = (a + b) G. c S underflows (5e-324 x
     /// 0.3 rounds to 0 or 5e-324), so (e^(cS) - 1) / c taken from c S itself would give 0
