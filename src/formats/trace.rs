@@ -200,7 +200,9 @@ impl<W: Write> TraceSink for CsvTrace<W> {
             match v {
                 Some(v) => {
                     let v = finite_output(v, || format!("trace column {name} at t = {}", r.t))?;
-                    self.out.write_field(shortest(v))?;
+                    // + 0.0: a zero is written 0.0, never -0.0 (a contact law's p(0) and
+                    // H_sfr(0) come out as -0.0).
+                    self.out.write_field(shortest(v + 0.0))?;
                 }
                 None => self.out.write_field("")?,
             }
@@ -208,7 +210,7 @@ impl<W: Write> TraceSink for CsvTrace<W> {
         if self.compression {
             let delta = r.compression.unwrap_or(0.0);
             let delta = finite_output(delta, || format!("trace column delta at t = {}", r.t))?;
-            self.out.write_field(shortest(delta))?;
+            self.out.write_field(shortest(delta + 0.0))?;
         }
         self.out.write_record(None::<&[u8]>)?;
         self.rows += 1;
@@ -253,5 +255,26 @@ mod tests {
         assert_eq!(trace.rows(), 3);
         let text = String::from_utf8(trace.finish().unwrap()).unwrap();
         assert_eq!(text.lines().count(), 4);
+    }
+
+    /// Zeros are written 0.0 whatever their sign: -0.0 in a CSV reads as a value below 0.
+    #[test]
+    fn negative_zero_is_written_as_zero() {
+        let mut trace = CsvTrace::with_columns(Vec::new(), true).unwrap();
+        let z = Vector3::new(-0.0, -0.0, -0.0);
+        let row = TraceRow {
+            t: 0.0,
+            force: -0.0,
+            impulse: -0.0,
+            state: CmState::new(z, z, z),
+            slip_speed: -0.0,
+            theta: Some(-0.0),
+            heat_sliding: -0.0,
+            compression: Some(-0.0),
+        };
+        trace.row(&row).unwrap();
+        let text = String::from_utf8(trace.finish().unwrap()).unwrap();
+        let cells: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!(cells, vec!["0.0"; 16], "{text}");
     }
 }
