@@ -545,7 +545,13 @@ fn wrong_types_and_missing_sections() {
     cm(
         "mass = 0.17",
         "mass = \"heavy\"",
-        &["line 3", "balls.mass", "\"heavy\"", "expected a number"],
+        // `mass = "heavy"` on line 3: the value starts at its 8th character.
+        &[
+            "line 3, column 8",
+            "balls.mass",
+            "\"heavy\"",
+            "expected a number",
+        ],
     );
     cm(
         "u = [0.5, 0.25, 0.0]",
