@@ -227,4 +227,109 @@ mod tests {
         let off = consistency(&SlidingState(y), &slip0);
         assert!((off - 0.25).abs() < 1e-15, "{off}");
     }
+
+    /// A sink that keeps the rows' times and thetas and fails on demand.
+    #[derive(Default)]
+    struct Rows {
+        got: Vec<(f64, Option<f64>)>,
+        fail: bool,
+    }
+
+    impl TraceSink for Rows {
+        fn row(&mut self, row: &TraceRow) -> Result<(), Error> {
+            if self.fail {
+                return Err(Error::io("trace", std::io::Error::other("disk full")));
+            }
+            self.got.push((row.t, row.theta));
+            Ok(())
+        }
+    }
+
+    fn row_at(t: f64) -> impl FnOnce(Option<f64>) -> TraceRow {
+        move |theta| TraceRow {
+            t,
+            force: 0.0,
+            impulse: 0.0,
+            state: crate::CmState::new(
+                nalgebra::Vector3::zeros(),
+                nalgebra::Vector3::zeros(),
+                nalgebra::Vector3::zeros(),
+            ),
+            slip_speed: 0.0,
+            theta,
+            heat_sliding: 0.0,
+            compression: None,
+        }
+    }
+
+    /// A state whose carried slip is `slip` and whose changes are zero.
+    fn with_slip(slip: Vector2<f64>) -> SlidingState {
+        let mut y = SVector::<f64, 9>::zeros();
+        (y[6], y[7]) = (slip.x, slip.y);
+        SlidingState(y)
+    }
+
+    /// A row at or before the last one written is not written; after a failed write no
+    /// row is offered, and the failure is the run's error.
+    #[test]
+    fn rows_only_move_forward_and_stop_at_an_error() {
+        let mut sink = Rows::default();
+        let mut rec = Recorder::new(Some((&mut sink, Sampling::Steps)), Some(0.5));
+        rec.emit_with(1.0, row_at(1.0));
+        rec.emit_with(1.0, row_at(1.5));
+        rec.emit_with(0.5, row_at(2.0));
+        rec.emit_with(2.0, row_at(3.0));
+        assert!(rec.take_error().is_ok());
+        drop(rec);
+        assert_eq!(sink.got, vec![(1.0, Some(0.5)), (3.0, Some(0.5))]);
+        sink.fail = true;
+        let mut rec = Recorder::new(Some((&mut sink, Sampling::Steps)), None);
+        rec.emit_with(1.0, row_at(1.0));
+        assert!(rec.has_error());
+        drop(rec);
+        sink.fail = false;
+        let mut rec = Recorder::new(Some((&mut sink, Sampling::Steps)), None);
+        rec.emit_with(1.0, row_at(1.0));
+        rec.error = Some(Error::io("trace", std::io::Error::other("earlier")));
+        rec.emit_with(2.0, row_at(2.0));
+        drop(rec);
+        assert_eq!(sink.got.len(), 3, "{:?}", sink.got);
+    }
+
+    /// The measures of a sliding step: the drift |slip x e0| (largest so far), and the
+    /// rows' theta, the slip's angle atan2(S_y, S_x) taken only while |slip| is above the
+    /// floor (below it the angle kept is the last one above).
+    #[test]
+    fn measure_sliding_keeps_the_largest_drift_and_the_angle_above_the_floor() {
+        let mut sink = Rows::default();
+        let e0 = Vector2::new(0.6, 0.8);
+        let mut rec = Recorder::new(Some((&mut sink, Sampling::Steps)), Some(0.8f64.atan2(0.6)));
+        let slip0 = Vector2::new(0.6, 0.8);
+        // Along e0: no drift.
+        rec.measure_sliding(&with_slip(slip0), e0, &slip0, 1e-3);
+        assert_eq!(rec.theta_drift, 0.0);
+        // Off e0 by 0.01 across it: drift 0.01; the angle is the slip's.
+        let off = Vector2::new(0.3 - 0.008, 0.4 + 0.006);
+        rec.measure_sliding(&with_slip(off), e0, &slip0, 1e-3);
+        assert!(
+            (rec.theta_drift - 0.01).abs() < 1e-15,
+            "{}",
+            rec.theta_drift
+        );
+        // The carried slip differs from slip0 with zero changes by 0.8 - 0.406 = 0.394 at most.
+        assert!(
+            (rec.slip_consistency - 0.394).abs() < 1e-15,
+            "{}",
+            rec.slip_consistency
+        );
+        rec.emit_with(1.0, row_at(1.0));
+        // Below the floor: the angle stays; a smaller drift leaves the largest.
+        let tiny = Vector2::new(-2e-4, 1e-4);
+        rec.measure_sliding(&with_slip(tiny), e0, &slip0, 1e-3);
+        assert!((rec.theta_drift - 0.01).abs() < 1e-15);
+        rec.emit_with(2.0, row_at(2.0));
+        drop(rec);
+        let want = 0.406f64.atan2(0.292);
+        assert_eq!(sink.got, vec![(1.0, Some(want)), (2.0, Some(want))]);
+    }
 }
