@@ -110,7 +110,7 @@ fn a_new_rtol_carries_atol() {
 
 /// `--steps N` with rk4: the report's steps, N accepted steps, 4 N evaluations, and the
 /// error against the independent resolution falling by 2^4 per doubling (measured ratios
-/// 16.1, 16.0, 16.0 from 5 to 40 steps; 10 steps 3.0e-6).
+/// 16.1, 16.0, 16.0 from 5 to 40 steps; 10 steps 3.0e-6), also past one solver's chunk.
 #[test]
 fn steps_set_rk4s_count_and_its_fourth_order() {
     let s = scene(SPECIAL);
@@ -136,6 +136,17 @@ fn steps_set_rk4s_count_and_its_fourth_order() {
         let ratio = w[0] / w[1];
         assert!((15.0..=17.0).contains(&ratio), "{errors:?}");
     }
+    // 10,000 steps run in chunks of at most 4,096 solver steps (4,096, 4,096, 1,808): still
+    // N accepted steps and 4 N evaluations, ending at the contact time; the error is
+    // round-off (10 steps' 3.0e-6 over 1000^4).
+    let j = json(&["run", &s, "--json", "--method", "rk4", "--steps", "10000"]);
+    assert_eq!(solver(&j, "accepted_steps"), 10_000.0);
+    assert_eq!(solver(&j, "rhs_evaluations"), 40_000.0);
+    assert!(
+        special_case_error(&j) <= 1e-13,
+        "{}",
+        special_case_error(&j)
+    );
 }
 
 /// `--plot x.png` writes a PNG (its magic number) that decodes to the size of the same
