@@ -383,5 +383,12 @@ mod tests {
         assert!((a - 45.0).abs() < 1e-12);
         let a = f.throw_angle_deg(&Vector3::new(1.0, -1.0, 0.0)).unwrap();
         assert!((a + 45.0).abs() < 1e-12);
+        // The angle does not depend on the size of the change: a change of 1e-9 m/s.
+        let a = f
+            .throw_angle_deg(&Vector3::new(1e-9, 1e-9, -3e-10))
+            .unwrap();
+        assert!((a - 45.0).abs() < 1e-12, "{a}");
+        // A horizontal part at 1e-13 of a vertical change is round-off: no throw.
+        assert_eq!(f.throw_angle_deg(&Vector3::new(1e-13, 0.0, 1.0)), None);
     }
 }
