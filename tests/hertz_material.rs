@@ -165,8 +165,11 @@ fn bad_material_scenes_are_refused_naming_the_fields() {
     let both = scene_text("hertz", [0.5, 0.1, 0.0], "")
         .replace("shape = \"hertz\"", "shape = \"hertz\"\nduration = 2.5e-4");
     let e = message(&both);
+    // Both fields with the values the scene gives (E = 5.4e9 Pa, nu = 0.34).
     assert!(
-        e.contains("contact.profile.duration") && e.contains("balls.youngs_modulus"),
+        e.contains("contact.profile.duration")
+            && e.contains("balls.youngs_modulus = 5400000000")
+            && e.contains("balls.poisson_ratio = 0.34"),
         "{e}"
     );
     // A shape whose duration the material does not set: the material is what is refused
