@@ -420,38 +420,24 @@ mod tests {
         }
     }
 
-    /// Where c S < 1e-8 a series stands in for (e^(cS) - 1) / c. Against G = (e^(cS) - 1) /
-    /// (b c) for a = 0 (1/mu = e^(cS') / b integrated over [0, S]), which `exp_m1` gives to
-    /// an ulp at these c S: the series' own error, (c S)^2 / 6 relative, is below 2e-17.
+    /// Where c S < 1e-8 (and b c G < 1e-10 in the inverse) series stand in for (e^(cS) - 1)
+    /// / c and ln(1 + b c G) / c. Against G = (e^(cS) - 1) / (b c) for a = 0 (1/mu =
+    /// e^(cS') / b integrated over [0, S]) and its inverse S = ln(1 + b c G) / c, which
+    /// `exp_m1` and `ln_1p` give to an ulp there: the series' own errors, (c S)^2 / 6 and
+    /// (b c G)^2 / 3 relative, are below 3e-21.
     #[test]
-    fn slide_potential_where_c_s_is_small() {
+    fn series_of_g_and_its_inverse_at_small_arguments() {
         let (b, c) = (0.108, 1.088);
         let f = Friction::speed_dependent(0.0, b, c).unwrap();
+        let close = |got: f64, want: f64| (got - want).abs() <= 1e-15 * want;
         for s in [1e-9, 4e-9, 9e-9] {
-            let want = (c * s).exp_m1() / (b * c);
-            let g = f.slide_potential(s);
-            assert!(
-                (g - want).abs() <= 1e-15 * want,
-                "S = {s}: {g:e} vs {want:e}"
-            );
+            let (g, want) = (f.slide_potential(s), (c * s).exp_m1() / (b * c));
+            assert!(close(g, want), "S = {s}: {g:e} vs {want:e}");
         }
-    }
-
-    /// Where b c G < 1e-10 the inverse takes ln(1 + b c G) / c from its series. Against S =
-    /// ln(1 + b c G) / c for a = 0 (the inverse of G = (e^(cS) - 1) / (b c)), which `ln_1p`
-    /// gives to an ulp at these b c G; the series' own error is (b c G)^2 / 3 relative.
-    #[test]
-    fn slide_speed_where_b_c_g_is_small() {
-        let (b, c) = (0.108, 1.088);
-        let f = Friction::speed_dependent(0.0, b, c).unwrap();
         for p in [1e-12, 3e-11, 9e-11] {
             let g = p / (b * c);
-            let want = (b * c * g).ln_1p() / c;
-            let got = f.slide_speed(g);
-            assert!(
-                (got - want).abs() <= 1e-15 * want,
-                "b c G = {p}: {got:e} vs {want:e}"
-            );
+            let (s, want) = (f.slide_speed(g), p.ln_1p() / c);
+            assert!(close(s, want), "b c G = {p}: {s:e} vs {want:e}");
         }
     }
 
