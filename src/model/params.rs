@@ -621,6 +621,9 @@ mod tests {
         assert!(Ball::new(1e-308, 3.0, 0.5).is_ok());
         let e = Ball::new(1e-308, 20.0, 0.01).unwrap_err().to_string();
         assert!(e.contains("1/(alpha m r)"), "{e}");
+        // At the other end: m = 1e299 kg, r = 1e4 m, alpha = 0.1 give m r = 1e303 (1e6 m r
+        // overflows) but alpha m r = 1e302, I = 1e306 and their inverses normal: accepted.
+        assert!(Ball::new(1e299, 1e4, 0.1).is_ok());
     }
 
     /// Each rule answers for its own kind and `None` for the other.
