@@ -142,11 +142,8 @@ fn steps_set_rk4s_count_and_its_fourth_order() {
     let j = json(&["run", &s, "--json", "--method", "rk4", "--steps", "10000"]);
     assert_eq!(solver(&j, "accepted_steps"), 10_000.0);
     assert_eq!(solver(&j, "rhs_evaluations"), 40_000.0);
-    assert!(
-        special_case_error(&j) <= 1e-13,
-        "{}",
-        special_case_error(&j)
-    );
+    let error = special_case_error(&j);
+    assert!(error <= 1e-13, "{error}");
 }
 
 /// `--plot x.png` writes a PNG (its magic number) that decodes to the size of the same
