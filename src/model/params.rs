@@ -626,6 +626,26 @@ mod tests {
         assert!(Ball::new(1e299, 1e4, 0.1).is_ok());
     }
 
+    /// Friction's accepted range is closed at both ends: mu = 0 and mu = 1e6 are accepted,
+    /// the next double above 1e6 is refused (for a constant mu and for a and b of the
+    /// speed-dependent law, whose c has no upper limit).
+    #[test]
+    fn friction_limits_are_inclusive() {
+        let above = f64::from_bits(MU_MAX.to_bits() + 1);
+        assert!(Friction::constant(0.0).is_ok());
+        assert!(Friction::constant(1e6).is_ok());
+        let e = Friction::constant(above).unwrap_err().to_string();
+        assert!(e.contains("contact.mu") && e.contains("mu <= 1e6"), "{e}");
+        assert!(Friction::speed_dependent(1e6, 1e6, 0.0).is_ok());
+        assert!(Friction::speed_dependent(0.0, 0.0, 1e300).is_ok());
+        for (a, b, name) in [(above, 0.0, "contact.mu.a"), (0.0, above, "contact.mu.b")] {
+            let e = Friction::speed_dependent(a, b, 1.0)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(name) && e.contains("<= 1e6"), "{e}");
+        }
+    }
+
     /// Each rule answers for its own kind and `None` for the other.
     #[test]
     fn rule_accessors() {

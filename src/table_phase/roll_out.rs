@@ -194,3 +194,73 @@ impl<'a> Track<'a> {
         self.impulse += n * (m * g * (end_time - airborne));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table_phase::TableParams;
+
+    /// A ball left at rest on the cloth (velocity and spin 0, centre at r above it) does
+    /// not hop, bounce, slide or roll: with rolling resistance it has no rest to reach
+    /// (the rolling stage needs a speed to find a direction), the roll-out ends at t = 0
+    /// and the ball stays where it was.
+    #[test]
+    fn a_ball_at_rest_stays_at_rest() {
+        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+        let params = TableParams::default()
+            .with_rolling_resistance(0.01)
+            .unwrap();
+        let up = Vector3::z();
+        let table = Table {
+            params,
+            up,
+            height: 0.0,
+        };
+        let start = LabBall {
+            position: Vector3::new(0.1, -0.2, 0.028575),
+            velocity: Vector3::zeros(),
+            spin: Vector3::zeros(),
+        };
+        let r = roll_out(&ball, &table, &start).unwrap();
+        assert_eq!((r.hop_time, r.bounces, r.slide_time), (0.0, 0, 0.0));
+        assert_eq!(r.rest, None);
+        assert_eq!(r.end_time, 0.0);
+        for t in [0.0, 1.0] {
+            let (_, s) = r.at(&up, t, false);
+            assert_eq!(s.position, start.position, "t = {t}");
+            assert_eq!(s.velocity, Vector3::zeros(), "t = {t}");
+        }
+    }
+
+    /// The bounce limit is inclusive: a ball dropped straight down at v0 onto a cloth of
+    /// restitution e leaves it at v0 e^k after the k-th impact and bounces while that is at
+    /// least `SETTLE_SPEED`, so it bounces n times when SETTLE_SPEED e^-n <= v0 <
+    /// SETTLE_SPEED e^-(n+1). Half a factor of e inside each range (5e-5 relative at
+    /// e = 0.9999, far above the round-off of 10^4 products): n = `MAX_BOUNCES` is accepted,
+    /// one more is refused.
+    #[test]
+    fn bounce_limit_is_inclusive() {
+        use crate::table_phase::flight::{MAX_BOUNCES, SETTLE_SPEED};
+        let e: f64 = 0.9999;
+        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+        let params = TableParams::default().with_restitution(e).unwrap();
+        let up = Vector3::z();
+        let table = Table {
+            params,
+            up,
+            height: 0.0,
+        };
+        let drop = |n: u32| {
+            let v0 = SETTLE_SPEED * e.powf(-(n as f64 + 0.5));
+            let start = LabBall {
+                position: Vector3::new(0.0, 0.0, 0.028575),
+                velocity: Vector3::new(0.0, 0.0, -v0),
+                spin: Vector3::zeros(),
+            };
+            roll_out(&ball, &table, &start)
+        };
+        assert_eq!(drop(MAX_BOUNCES).unwrap().bounces, MAX_BOUNCES);
+        let err = drop(MAX_BOUNCES + 1).unwrap_err().to_string();
+        assert!(err.contains("table.restitution"), "{err}");
+    }
+}
