@@ -200,22 +200,28 @@ mod tests {
     use super::*;
     use crate::table_phase::TableParams;
 
+    /// A pool ball (0.17 kg, 28.575 mm, solid) and a level cloth at height 0, up = z.
+    fn pool_ball_on_level_cloth(params: TableParams) -> (Ball, Table) {
+        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+        let table = Table {
+            params,
+            up: Vector3::z(),
+            height: 0.0,
+        };
+        (ball, table)
+    }
+
     /// A ball left at rest on the cloth (velocity and spin 0, centre at r above it) does
     /// not hop, bounce, slide or roll: with rolling resistance it has no rest to reach
     /// (the rolling stage needs a speed to find a direction), the roll-out ends at t = 0
     /// and the ball stays where it was.
     #[test]
     fn a_ball_at_rest_stays_at_rest() {
-        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
         let params = TableParams::default()
             .with_rolling_resistance(0.01)
             .unwrap();
-        let up = Vector3::z();
-        let table = Table {
-            params,
-            up,
-            height: 0.0,
-        };
+        let (ball, table) = pool_ball_on_level_cloth(params);
+        let up = table.up;
         let start = LabBall {
             position: Vector3::new(0.1, -0.2, 0.028575),
             velocity: Vector3::zeros(),
@@ -242,15 +248,9 @@ mod tests {
     fn bounce_limit_is_inclusive() {
         use crate::table_phase::flight::{MAX_BOUNCES, SETTLE_SPEED};
         let e: f64 = 0.9999;
-        let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
         let params = TableParams::default().with_restitution(e).unwrap();
-        let up = Vector3::z();
-        let table = Table {
-            params,
-            up,
-            height: 0.0,
-        };
-        let drop = |n: u32| {
+        let (ball, table) = pool_ball_on_level_cloth(params);
+        let dropped_to_bounce = |n: u32| {
             let v0 = SETTLE_SPEED * e.powf(-(n as f64 + 0.5));
             let start = LabBall {
                 position: Vector3::new(0.0, 0.0, 0.028575),
@@ -259,8 +259,8 @@ mod tests {
             };
             roll_out(&ball, &table, &start)
         };
-        assert_eq!(drop(MAX_BOUNCES).unwrap().bounces, MAX_BOUNCES);
-        let err = drop(MAX_BOUNCES + 1).unwrap_err().to_string();
+        assert_eq!(dropped_to_bounce(MAX_BOUNCES).unwrap().bounces, MAX_BOUNCES);
+        let err = dropped_to_bounce(MAX_BOUNCES + 1).unwrap_err().to_string();
         assert!(err.contains("table.restitution"), "{err}");
     }
 }
