@@ -3,9 +3,10 @@
 //! contact), and the other methods at the settings that reach the same error, for scale.
 //! One `solve` per iteration: closed form, integration with stick-event watch, and checks.
 
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Hertz, Profile, SinePower};
 use billiard_contact::Scene;
-use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
+use billiard_contact::{solve, Method, SolverSettings};
 use criterion::{black_box, criterion_group, Criterion};
 
 /// The loosest rtol = 10^-k (k = 3..13) at which `method` reaches `target`.

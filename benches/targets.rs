@@ -4,8 +4,9 @@
 
 use billiard_contact::batch::{closed_form_into, BatchSetup};
 use billiard_contact::details::ClosedFormBatch;
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Profile};
-use billiard_contact::{solve, ForceProfile, Method, Scene, SolverSettings};
+use billiard_contact::{solve, Method, Scene, SolverSettings};
 use std::hint::black_box;
 
 #[path = "dop853.rs"]

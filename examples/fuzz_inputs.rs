@@ -21,10 +21,10 @@
 //! slower than a second) and summarised at the end. `tests/fuzz_smoke.rs` runs the same
 //! harness on a few thousand inputs in `cargo test`.
 
-use billiard_contact::formats::report::Report;
 use billiard_contact::profile::{parse_table, ForceProfile, Profile, Tabulated};
 use billiard_contact::run_scene;
 use billiard_contact::Error;
+use billiard_contact::Report;
 use billiard_contact::Scene;
 use billiard_contact::{Method, SolverSettings};
 use std::path::{Path, PathBuf};

@@ -13,7 +13,7 @@
 #[allow(dead_code)] // this example does not run the default scene
 mod common;
 
-use billiard_contact::formats::report::summary;
+use billiard_contact::Report;
 use billiard_contact::{run_scene, Error, Incoming, Method, Scene};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -30,7 +30,7 @@ pub fn run() -> Result<(), Error> {
     let scene = Scene::load(&path)?;
     let settings = scene.solver.with_method(Method::Dop853);
     let run = run_scene(&scene, &settings, None)?;
-    print!("{}", summary(&scene, &run));
+    print!("{}", Report::new(&scene, &run).summary());
 
     let err = common::distance_from(&scene, &run, &common::closed_form_of(&scene)?);
     let Incoming::Lab(lab) = scene.incoming else {

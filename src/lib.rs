@@ -73,14 +73,26 @@
 //! | heat | J | H total loss, H_sfr the sliding-friction part |
 //! | lab frame | m, m/s, rad/s | any axes; `up` is the table's normal; throw is counter-clockwise about `up`, in degrees |
 #![warn(missing_docs)]
+#![warn(unreachable_pub)]
 
+// The layers, lowest first (docs/architecture.md): base; model and profile; the kernels
+// closed_form, integrator and table_phase; solve; scene; outputs; apps; cli. Each imports
+// only itself and the layers below it, never through this file's re-exports
+// (tests/layering.rs checks it). Without the command line some of the writers and the
+// apps' helpers have no caller.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
 mod apps;
-mod contact;
-mod error;
-pub mod formats;
+mod base;
+#[cfg(feature = "cli")]
+pub mod cli;
+mod closed_form;
 mod integrator;
 mod model;
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+mod outputs;
 pub mod profile;
+mod scene;
+mod solve;
 pub mod table_phase;
 
 pub use apps::batch;
@@ -89,17 +101,10 @@ pub use apps::plot;
 pub use apps::sweep;
 pub use apps::work_precision;
 
-pub use apps::runner::{run_scene, SceneOutcome};
-pub use contact::closed_form::ClosedForm;
-pub use contact::law_outcome::{solve_law, LawOutcome};
-pub use contact::outcome::{solve, Outcome};
-pub use contact::result::ContactResult;
-pub use error::Error;
-pub use formats::report::Report;
-pub use formats::scene::{Incoming, Scene};
-pub use formats::trace::{CsvTrace, TraceRow, TraceSink};
-pub use integrator::law::HeadOn;
-pub use integrator::{Method, Sampling, SolverSettings, Stats};
+pub use base::error::Error;
+pub use base::method::Method;
+pub use base::settings::{Sampling, SolverSettings, Stats};
+pub use closed_form::kernel::ClosedForm;
 pub use model::collision::Collision;
 pub use model::contact_law::{ContactLaw, Damping};
 pub use model::effects::Effects;
@@ -109,20 +114,29 @@ pub use model::params::{
     Ball, BallPair, Contact, Evaluate, Friction, FrictionLaw, ImpulseRule, ALPHA_MAX, ALPHA_MIN,
     ALPHA_SOLID, MU_MAX,
 };
+pub use model::result::ContactResult;
 pub use model::state::{CmState, LabBall, LabMotion};
+pub use model::trace::{TraceRow, TraceSink};
 pub use nalgebra;
-pub use profile::{ForceProfile, Profile};
+pub use outputs::report::Report;
+pub use outputs::trace_csv::CsvTrace;
+pub use scene::builder::{ForceSpec, LawSpec, SceneBuilder};
+pub use scene::overrides::SolverOverrides;
+pub use scene::run::{run_scene, SceneOutcome};
+pub use scene::types::{Incoming, Scene};
+pub use solve::law_outcome::solve_law;
+pub use solve::outcome::{solve, LawOutcome, Outcome};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
-/// batch kernel, the checks), for callers who drive them directly.
+/// batch kernel, the checks, a contact law's head-on run and calibration), for callers who
+/// drive them directly.
 pub mod details {
-    pub use crate::contact::check::{checks, state_error, Checks};
-    pub use crate::contact::closed_form::ClosedFormBatch;
-    pub use crate::integrator::law::{head_on, LAW_SPAN};
-    pub use crate::integrator::{
-        integrate, Integrated, TimeMap, DEFAULT_RTOL, DEFAULT_STEPS, GRADED_ENDS,
-    };
-    pub use crate::model::contact_law::CALIBRATION_RTOL;
+    pub use crate::base::settings::{DEFAULT_RTOL, DEFAULT_STEPS};
+    pub use crate::closed_form::kernel::ClosedFormBatch;
+    pub use crate::integrator::calibrate::CALIBRATION_RTOL;
+    pub use crate::integrator::driver::{integrate, Integrated};
+    pub use crate::integrator::law::HeadOn;
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
-    pub use crate::model::material::{elastic_impact, hertz_stiffness, reduced_mass};
+    pub use crate::model::material::{elastic_impact, hertz_stiffness};
+    pub use crate::solve::check::{checks, state_error, Checks};
 }

@@ -3,9 +3,10 @@
 //! vectors grow amortised (a logarithmic number of reallocations), which the contract
 //! accepts; anything per step would show up as thousands.
 
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Profile};
 use billiard_contact::Scene;
-use billiard_contact::{solve, ForceProfile, Method, SolverSettings};
+use billiard_contact::{solve, Method, SolverSettings};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 

@@ -996,7 +996,6 @@ fn trace_values(sc: &SceneRef, want: &Expected, rows: &[Vec<Option<f64>>]) -> (f
 /// empty only when S(0) = 0; the force, impulse and sliding heat of each row ([`trace_values`]).
 #[test]
 fn trace_csv_follows_the_contract() {
-    assert_eq!(billiard_contact::formats::trace::HEADER, TRACE_HEADER);
     let n = SAMPLES.to_string();
     let dir = fresh_dir("cli_scenes_trace");
     let mut worst = Worst::new();

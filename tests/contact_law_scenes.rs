@@ -2,6 +2,7 @@
 //! fields, the JSON object, the trace's compression column, and a Kuwabara-Kono contact that
 //! ends with the balls still compressed.
 
+use billiard_contact::profile::{ForceProfile, Profile};
 use billiard_contact::*;
 use std::path::Path;
 

@@ -6,11 +6,11 @@
 
 use crate::scenes;
 
-use billiard_contact::formats::report::{summary, Report};
-use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::run_scene;
+use billiard_contact::Report;
 use billiard_contact::Sampling;
 use billiard_contact::Scene;
+use billiard_contact::TraceRow;
 use scenes::{cue, lab_scene, M, R};
 use std::path::Path;
 
@@ -181,7 +181,7 @@ fn table_off_ends_at_separation_and_on_adds_the_roll_out() {
         .unwrap()
         .iter()
         .any(|e| e == "table"));
-    assert!(!summary(&off, &so).contains("table"));
+    assert!(!Report::new(&off, &so).summary().contains("table"));
 
     let on = lab_scene(va, wa, "0.06", 1.0, "[effects]\ntable = true");
     let so_on = run_scene(&on, &on.solver, None).unwrap();
@@ -213,7 +213,7 @@ fn table_off_ends_at_separation_and_on_adds_the_roll_out() {
             assert_eq!(b["rolling"][key].as_array().unwrap().len(), 3);
         }
     }
-    let text = summary(&on, &so_on);
+    let text = Report::new(&on, &so_on).summary();
     assert!(text.contains("table") && text.contains("rolling"), "{text}");
 }
 

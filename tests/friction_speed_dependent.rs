@@ -8,15 +8,15 @@
 //! G(S) = integral_0^S dS' / mu(S')
 //! ```
 //!
-//! The library evaluates G in closed form (src/friction.rs). Here G is computed
+//! The library evaluates G in closed form (src/closed_form/sliding.rs). Here G is computed
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
 use crate::hard as common;
 
-use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::Effects;
+use billiard_contact::TraceRow;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
 use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;

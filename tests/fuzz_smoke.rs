@@ -7,10 +7,10 @@
 #[allow(dead_code)]
 mod fuzz;
 
-use billiard_contact::formats::report::Report;
 use billiard_contact::profile::{parse_table, Profile, Tabulated};
 use billiard_contact::run_scene;
 use billiard_contact::Method;
+use billiard_contact::Report;
 use billiard_contact::Scene;
 use std::path::Path;
 

@@ -12,9 +12,9 @@ mod common;
 #[path = "common/hard.rs"]
 mod hard;
 
-use billiard_contact::formats::trace::{CsvTrace, TraceRow, TraceSink};
 use billiard_contact::profile::HalfSine;
 use billiard_contact::{solve, CmState, Error, ImpulseRule, Method, Sampling, SolverSettings};
+use billiard_contact::{CsvTrace, TraceRow, TraceSink};
 use hard::*;
 use nalgebra::Vector3;
 use std::alloc::{GlobalAlloc, Layout, System};

@@ -21,11 +21,12 @@
 //! 1000 steps, and to 1e-5 and 1e-3 P at 200 steps, where they carry the error of the
 //! coarse steps of the nonlinear S(p) before the stop (observed 1.2e-6 and 4.6e-4 P).
 
+use billiard_contact::profile::Profile;
 use billiard_contact::profile::Tabulated;
 use billiard_contact::Effects;
 use billiard_contact::TraceRow;
 use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Profile, Sampling,
+    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Sampling,
     SolverSettings,
 };
 use nalgebra::Vector3;

@@ -16,10 +16,9 @@
 
 use crate::hard as common;
 
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
-use billiard_contact::{
-    solve, CmState, ForceProfile, ImpulseRule, Method, Outcome, SolverSettings,
-};
+use billiard_contact::{solve, CmState, ImpulseRule, Method, Outcome, SolverSettings};
 use common::*;
 use nalgebra::Vector3;
 use std::path::Path;

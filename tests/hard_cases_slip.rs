@@ -14,8 +14,8 @@
 
 use crate::hard as common;
 
-use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
+use billiard_contact::TraceRow;
 use billiard_contact::{solve, CmState, ImpulseRule, Method, Sampling};
 use common::*;
 use nalgebra::Vector3;

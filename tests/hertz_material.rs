@@ -7,7 +7,7 @@
 use crate::common;
 
 use billiard_contact::batch::{resolve_slice, BatchInput, BatchSetup};
-use billiard_contact::formats::report::Report;
+use billiard_contact::Report;
 use billiard_contact::{
     run_scene, Ball, CmState, Error, HertzContact, Material, Method, Scene, SolverSettings,
 };
@@ -148,7 +148,7 @@ fn a_scene_with_the_material_reports_its_hertz_contact() {
     let sp = parse(&scene_text("sine-power", [0.5, 0.1, 0.0], "")).unwrap();
     assert!(
         rel(
-            billiard_contact::ForceProfile::duration(&sp.profile),
+            billiard_contact::profile::ForceProfile::duration(&sp.profile),
             want.duration
         ) <= FORMULA_TOL
     );

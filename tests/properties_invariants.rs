@@ -19,14 +19,15 @@
 
 use crate::hard as common;
 
-use billiard_contact::formats::trace::TraceRow;
+use billiard_contact::profile::Profile;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
 use billiard_contact::run_scene;
 use billiard_contact::Effects;
 use billiard_contact::LabScene;
+use billiard_contact::TraceRow;
 use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, LabBall, Method, Profile,
-    Sampling, SolverSettings,
+    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, LabBall, Method, Sampling,
+    SolverSettings,
 };
 use billiard_contact::{Incoming, Scene};
 use common::Exact;

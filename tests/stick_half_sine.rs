@@ -7,9 +7,9 @@
 //! |p(t_stick) - p_stick| <= 1e-10 P always; |t - t_stick| <= 1e-10 tau wherever
 //! f(t_stick) >= 1e-3 P / tau.
 
-use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::Effects;
+use billiard_contact::TraceRow;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
 use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;

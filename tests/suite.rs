@@ -42,6 +42,7 @@ mod hard_cases_slip;
 mod hertz_material;
 mod lab_rows_errors;
 mod lab_rows_methods;
+mod layering;
 mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;

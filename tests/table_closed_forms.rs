@@ -437,7 +437,7 @@ fn energy_never_increases_and_momentum_changes_only_by_the_cloth() {
                 "{cut} {cloth}: {:?}",
                 t.check
             );
-            let rows = billiard_contact::formats::ball_paths::ball_path_rows(&t, 400);
+            let rows = billiard_contact::table_phase::ball_path_rows(&t, 400);
             let e = |s: &LabBall| {
                 0.5 * M * s.velocity.norm_squared()
                     + 0.5 * b.inertia() * s.spin.norm_squared()

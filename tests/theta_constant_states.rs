@@ -10,9 +10,9 @@
 
 use crate::common;
 
-use billiard_contact::formats::trace::TraceRow;
 use billiard_contact::profile::{HalfSine, Hertz, Profile, Rectangle, SinePower, Tabulated};
 use billiard_contact::Effects;
+use billiard_contact::TraceRow;
 use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
 use billiard_contact::{Method, Sampling, SolverSettings};
 use common::Rng;

@@ -7,10 +7,11 @@
 
 use crate::common;
 
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
 use billiard_contact::{
-    solve, Ball, BallPair, CmState, Collision, Contact, Effects, ForceProfile, Friction,
-    ImpulseRule, Method, SolverSettings,
+    solve, Ball, BallPair, CmState, Collision, Contact, Effects, Friction, ImpulseRule, Method,
+    SolverSettings,
 };
 use common::amax;
 use nalgebra::Vector3;

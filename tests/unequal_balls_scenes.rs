@@ -302,7 +302,7 @@ fn a_material_scene_of_unequal_balls_takes_the_two_spheres_contact_time() {
     );
     let scene = Scene::parse(&text, Path::new("."), None).unwrap();
     let rel = |got: f64, want: f64| ((got - want) / want).abs();
-    let got = billiard_contact::ForceProfile::duration(&scene.profile);
+    let got = billiard_contact::profile::ForceProfile::duration(&scene.profile);
     assert!(rel(got, tau(0.5)) <= 1e-12, "{got} vs {}", tau(0.5));
     let hertz = scene.hertz().unwrap().unwrap();
     assert!(rel(hertz.reduced_mass, ma * mb / (ma + mb)) <= 1e-15);

@@ -3,14 +3,13 @@
 //! closed form run separately and against eq 23 over the trace, both computed here from
 //! the runs' states (never from the checks the library reports about its own run).
 
-use billiard_contact::formats::atomic_file::AtomicFile;
-use billiard_contact::formats::report::summary;
-use billiard_contact::formats::trace::{CsvTrace, TraceRow, TraceSink};
 use billiard_contact::profile::Profile;
 use billiard_contact::Error;
+use billiard_contact::Report;
 use billiard_contact::Sampling;
 use billiard_contact::Scene;
 use billiard_contact::{run_scene, BallPair, CmState, Method, SceneOutcome};
+use billiard_contact::{CsvTrace, TraceRow, TraceSink};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -88,13 +87,13 @@ pub fn run_default_with(profile: Profile, stem: &str, tolerance: f64) -> Result<
     let path = dir.join(format!("{stem}.csv"));
     let mut rows: Vec<TraceRow> = Vec::new();
     let result = run_scene(&scene, &scene.solver, Some((&mut rows, Sampling::Steps)))?;
-    let mut trace = CsvTrace::new(AtomicFile::create(&path)?)?;
+    let mut trace = CsvTrace::new(Vec::new())?;
     for row in &rows {
         trace.row(row)?;
     }
-    trace.finish()?.commit()?;
+    std::fs::write(&path, trace.finish()?).map_err(|e| Error::io(&path, e))?;
 
-    print!("{}", summary(&scene, &result));
+    print!("{}", Report::new(&scene, &result).summary());
     println!("  trace: {} rows in {}", rows.len(), path.display());
 
     let distance = distance_from(&scene, &result, &closed_form_of(&scene)?);

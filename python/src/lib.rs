@@ -3,7 +3,10 @@
 
 mod ball;
 mod errors;
-mod lab;
+mod friction;
+mod inputs;
+mod model;
+mod outputs;
 mod run;
 mod settings;
 
@@ -12,8 +15,8 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ball::Ball>()?;
-    m.add_class::<lab::BallBall>()?;
-    m.add_class::<lab::SpeedDependentFriction>()?;
+    m.add_class::<model::BallBall>()?;
+    m.add_class::<friction::SpeedDependentFriction>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;
     m.add("TRACE_COLUMNS", run::TRACE_COLUMNS.to_vec())?;

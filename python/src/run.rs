@@ -2,7 +2,6 @@
 
 use crate::errors::{to_py, unwrap_scene_message};
 use crate::settings;
-use billiard_contact::formats::plausible::scene_warnings;
 use billiard_contact::{run_scene, Error, Report, Sampling, Scene, TraceRow, TraceSink};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -124,7 +123,7 @@ fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     let overrides =
         settings::overrides(o.method.as_deref(), o.rtol, o.atol, steps, o.time_transform)?;
     let settings = overrides.apply(&scene.solver)?;
-    let mut warnings = scene_warnings(&scene);
+    let mut warnings = scene.warnings();
     warnings.extend(settings::unused(&overrides, &settings, scene.law.is_some()));
     let sampling = match o.samples {
         None => Sampling::Steps,

@@ -1,7 +1,7 @@
 //! Solver settings: how the bindings build them from Python keywords, with the library's own
 //! override rule (the one `billiard-contact run` applies).
 
-use billiard_contact::formats::scene::SolverOverrides;
+use billiard_contact::SolverOverrides;
 use billiard_contact::{Error, Method, SolverSettings};
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;

@@ -2,9 +2,7 @@
 //! work-precision study, throw sweeps and the figures.
 
 pub mod batch;
-mod lab_rows;
 #[cfg(feature = "plots")]
 pub mod plot;
-pub mod runner;
 pub mod sweep;
 pub mod work_precision;

@@ -12,21 +12,22 @@
 //! B's centre is then A + 2 sqrt(r_A r_B) (sin(cut), cos(cut), 0) + (r_B - r_A) e_z, and
 //! r is A's radius in the spins (docs/unequal-balls.md).
 
-use crate::apps::runner::run_scene;
-use crate::error::Error;
-use crate::formats::number::{finite_output, shortest};
-use crate::formats::scene::{Incoming, Scene};
-use crate::integrator::SolverSettings;
+use crate::base::error::Error;
+use crate::base::number::shortest;
+use crate::base::settings::SolverSettings;
+use crate::base::validate::finite_output;
 use crate::model::frame::{horizontal, LabScene};
 use crate::model::params::BallPair;
 use crate::model::state::LabBall;
+use crate::scene::run::run_scene;
+use crate::scene::types::{Incoming, Scene};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 use std::io::Write;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The columns every sweep CSV starts with, in order; with the table effect the two cue
-/// columns are [`ROLLING_CUE_COLUMNS`] instead.
+/// columns are `cue_speed_rolling` and `cue_deflection_rolling_deg` instead.
 pub const COLUMNS: [&str; 13] = [
     "spin",
     "speed",
@@ -45,7 +46,8 @@ pub const COLUMNS: [&str; 13] = [
 
 /// The names of the cue ball's two columns (indices 9 and 10) when the table effect is
 /// on: its speed and deflection once it rolls on the cloth.
-pub const ROLLING_CUE_COLUMNS: [&str; 2] = ["cue_speed_rolling", "cue_deflection_rolling_deg"];
+pub(crate) const ROLLING_CUE_COLUMNS: [&str; 2] =
+    ["cue_speed_rolling", "cue_deflection_rolling_deg"];
 
 /// The cue ball's vertical-plane spin, as a named shot or a multiple of natural roll.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -192,14 +194,7 @@ impl Grid {
 
 /// A list of numbers as the options write them: comma-separated items, each a number or a
 /// range `start:stop:step` (stop included when the steps reach it to 1e-9 of a step).
-///
-/// ```
-/// use billiard_contact::sweep::parse_list;
-/// assert_eq!(parse_list("--cut", "0:60:30").unwrap(), vec![0.0, 30.0, 60.0]);
-/// assert_eq!(parse_list("--speed", "0.447, 1.341").unwrap(), vec![0.447, 1.341]);
-/// assert!(parse_list("--cut", "0:60:0").is_err());
-/// ```
-pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
+pub(crate) fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
     let number = |t: &str| {
         t.trim()
             .parse::<f64>()
@@ -360,7 +355,7 @@ pub fn run_shot(scene: &Scene, settings: &SolverSettings, shot: Shot) -> Result<
 
 /// The header of a sweep CSV: [`COLUMNS`], with [`ROLLING_CUE_COLUMNS`] for the cue ball
 /// when `rolling` (the table effect is on).
-pub fn header(rolling: bool) -> Vec<&'static str> {
+pub(crate) fn header(rolling: bool) -> Vec<&'static str> {
     let mut h = COLUMNS.to_vec();
     if rolling {
         h[9..11].copy_from_slice(&ROLLING_CUE_COLUMNS);
@@ -413,7 +408,7 @@ pub fn write_csv<W: Write>(out: W, rows: &[SweepRow], rolling: bool) -> Result<W
 }
 
 /// The rows of one curve: consecutive rows sharing spin, speed and side (grid order).
-pub fn curves(rows: &[SweepRow]) -> Vec<&[SweepRow]> {
+pub(crate) fn curves(rows: &[SweepRow]) -> Vec<&[SweepRow]> {
     rows.chunk_by(|x, y| {
         let (p, q) = (&x.shot, &y.shot);
         p.spin == q.spin && p.speed == q.speed && p.side == q.side
@@ -423,7 +418,7 @@ pub fn curves(rows: &[SweepRow]) -> Vec<&[SweepRow]> {
 
 /// The largest |throw| of each curve, one line per curve: spin, speed, side, the throw and
 /// its cut angle.
-pub fn summary(rows: &[SweepRow]) -> String {
+pub(crate) fn summary(rows: &[SweepRow]) -> String {
     use std::fmt::Write as _;
     let mut s = String::from("largest throw of each curve:\n");
     for curve in curves(rows) {
@@ -450,15 +445,6 @@ pub fn summary(rows: &[SweepRow]) -> String {
         };
     }
     s
-}
-
-/// The largest |throw difference| (degrees) between two sweeps of the same grid, with the
-/// shot where it occurs; `None` when no shot has a throw in both.
-pub fn largest_difference(a: &[SweepRow], b: &[SweepRow]) -> Option<(f64, Shot)> {
-    a.iter()
-        .zip(b)
-        .filter_map(|(x, y)| Some(((x.throw_deg? - y.throw_deg?).abs(), x.shot)))
-        .max_by(|x, y| x.0.total_cmp(&y.0))
 }
 
 #[cfg(test)]
@@ -513,5 +499,19 @@ mod tests {
         assert!(e.contains("--cut") && e.contains("\"x\""), "{e}");
         assert!(parse_list("--cut", "60:0:1").is_err());
         assert!(parse_list("--speed", "1:2").is_err());
+    }
+
+    /// The examples of the documentation of `parse_list`.
+    #[test]
+    fn parse_list_examples() {
+        assert_eq!(
+            parse_list("--cut", "0:60:30").unwrap(),
+            vec![0.0, 30.0, 60.0]
+        );
+        assert_eq!(
+            parse_list("--speed", "0.447, 1.341").unwrap(),
+            vec![0.447, 1.341]
+        );
+        assert!(parse_list("--cut", "0:60:0").is_err());
     }
 }

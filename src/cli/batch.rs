@@ -1,19 +1,20 @@
 //! `billiard-contact batch`: one collision per row of a CSV file, streamed in chunks over a
 //! thread pool, with a progress bar and a one-line account on stderr.
 
-use super::choice::{number, whole, MethodChoice};
-use super::{load_scene, progress_bar, solver_options_unused, warn};
-use billiard_contact::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS};
-use billiard_contact::formats::atomic_file::AtomicFile;
-use billiard_contact::formats::number::count;
-use billiard_contact::formats::scene::SolverOverrides;
-use billiard_contact::{Error, Method};
+use crate::apps::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS};
+use crate::base::error::Error;
+use crate::base::method::Method;
+use crate::base::number::count;
+use crate::cli::choice::{number, whole, MethodChoice};
+use crate::cli::common::{load_scene, progress_bar, solver_options_unused, warn};
+use crate::outputs::atomic_file::AtomicFile;
+use crate::scene::overrides::SolverOverrides;
 use clap::Args;
 use std::path::PathBuf;
 
 /// The options of `batch`.
 #[derive(Args)]
-pub struct BatchArgs {
+pub(super) struct BatchArgs {
     /// Input CSV, one collision per row.
     input: PathBuf,
     /// Output CSV (written beside it and renamed into place when complete).
@@ -48,7 +49,7 @@ pub struct BatchArgs {
 }
 
 /// Resolves every row of the input into the output CSV (written whole or not at all).
-pub fn batch(args: &BatchArgs) -> Result<(), Error> {
+pub(super) fn batch(args: &BatchArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
     let method: Method = args.method.0;
     let overrides = SolverOverrides {

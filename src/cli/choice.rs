@@ -3,8 +3,8 @@
 //! is defined once and clap lists the accepted values in the help and in its errors; and
 //! the parsers of numeric options, whose errors say what is accepted.
 
-use billiard_contact::work_precision::StudyForce;
-use billiard_contact::Method;
+use crate::apps::work_precision::StudyForce;
+use crate::base::method::Method;
 use clap::builder::{EnumValueParser, PossibleValue, TypedValueParser};
 use clap::ValueEnum;
 use std::ffi::OsStr;
@@ -15,7 +15,7 @@ macro_rules! choice {
     ($(#[$doc:meta])* $choice:ident($inner:ty)) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-        pub struct $choice(pub $inner);
+        pub(crate) struct $choice(pub(crate) $inner);
 
         impl ValueEnum for $choice {
             fn value_variants<'a>() -> &'a [Self] {
@@ -51,11 +51,11 @@ choice!(
 /// clap's parser of a value enum applied to the value with surrounding white space removed,
 /// so that a list reads the same with or without spaces after its commas.
 #[derive(Debug)]
-pub struct Trimmed<E>(PhantomData<E>);
+pub(super) struct Trimmed<E>(PhantomData<E>);
 
 impl<E> Trimmed<E> {
     /// The parser.
-    pub fn new() -> Self {
+    pub(super) fn new() -> Self {
         Trimmed(PhantomData)
     }
 }
@@ -96,7 +96,7 @@ impl<E: ValueEnum + Clone + Send + Sync + 'static> TypedValueParser for Trimmed<
 
 /// A whole-number option (`--samples`, `--steps`, `--threads`, ...), white space around it
 /// ignored; the error says what is accepted.
-pub fn whole<T: std::str::FromStr>(value: &str) -> Result<T, String> {
+pub(super) fn whole<T: std::str::FromStr>(value: &str) -> Result<T, String> {
     value
         .trim()
         .parse()
@@ -106,7 +106,7 @@ pub fn whole<T: std::str::FromStr>(value: &str) -> Result<T, String> {
 /// A real-number option (`--rtol`, `--atol`), white space around it ignored; the error
 /// says what is accepted. NaN and infinities parse: the settings refuse them, naming the
 /// field.
-pub fn number(value: &str) -> Result<f64, String> {
+pub(super) fn number(value: &str) -> Result<f64, String> {
     value
         .trim()
         .parse()
@@ -116,8 +116,8 @@ pub fn number(value: &str) -> Result<f64, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use billiard_contact::profile::ProfileKind;
-    use billiard_contact::Damping;
+    use crate::model::contact_law::Damping;
+    use crate::profile::spec::ProfileKind;
 
     #[test]
     fn every_method_and_profile_is_a_choice_under_its_name() {

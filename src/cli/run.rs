@@ -1,27 +1,33 @@
 //! `billiard-contact run`: one scene, its report or summary on stdout, and optionally its
 //! trace, the balls' paths on the table and their top view.
 
-use super::choice::{number, whole, MethodChoice};
-use super::{load_scene, solver_options_unused, warn};
-use billiard_contact::formats::atomic_file::AtomicFile;
-use billiard_contact::formats::ball_paths::{
-    ball_path_rows, write_ball_paths, DEFAULT_BALL_PATH_SAMPLES,
-};
-use billiard_contact::formats::report::{summary, Report};
-use billiard_contact::formats::scene::SolverOverrides;
-use billiard_contact::formats::trace::{CsvTrace, Tee, TraceRow};
-use billiard_contact::plot::paths::TopView;
-use billiard_contact::plot::trace::TraceFigure;
-use billiard_contact::plot::FigureFormat;
-use billiard_contact::table_phase::TableOutcome;
-use billiard_contact::{run_scene, Error, Method, Sampling, Scene, SceneOutcome, SolverSettings};
+use crate::apps::plot::paths::TopView;
+use crate::apps::plot::trace::TraceFigure;
+use crate::apps::plot::FigureFormat;
+use crate::base::error::Error;
+use crate::base::method::Method;
+use crate::base::settings::Sampling;
+use crate::base::settings::SolverSettings;
+use crate::cli::choice::{number, whole, MethodChoice};
+use crate::cli::common::{load_scene, solver_options_unused, warn};
+use crate::model::trace::{Tee, TraceRow};
+use crate::outputs::atomic_file::AtomicFile;
+use crate::outputs::ball_paths::{write_ball_paths, DEFAULT_BALL_PATH_SAMPLES};
+use crate::outputs::report::Report;
+use crate::outputs::trace_csv::CsvTrace;
+use crate::scene::overrides::SolverOverrides;
+use crate::scene::run::run_scene;
+use crate::scene::run::SceneOutcome;
+use crate::scene::types::Scene;
+use crate::table_phase::outcome::TableOutcome;
+use crate::table_phase::path::ball_path_rows;
 use clap::Args;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The options of `run`.
 #[derive(Args, Clone, Default)]
-pub struct RunArgs {
+pub(super) struct RunArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
     /// Print one JSON object on stdout instead of the summary.
@@ -154,7 +160,7 @@ impl RunArgs {
 }
 
 /// Runs the scene; prints the JSON report or the summary once every file is written.
-pub fn run(args: &RunArgs) -> Result<(), Error> {
+pub(super) fn run(args: &RunArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
     let settings = args.solver_overrides().apply(&scene.solver)?;
     args.validate(&scene, &settings)?;
@@ -166,7 +172,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         Ok(if args.json {
             Report::new(&scene, outcome).to_json()? + "\n"
         } else {
-            summary(&scene, outcome)
+            Report::new(&scene, outcome).summary()
         })
     };
     // The trace becomes visible only once the whole run, report included, succeeded; the

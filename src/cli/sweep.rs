@@ -2,19 +2,19 @@
 //! a CSV and a figure, with a progress bar on stderr and the largest throw of each curve on
 //! stdout.
 
-use super::choice::MethodChoice;
-use super::{load_scene, progress_bar};
-use billiard_contact::formats::atomic_file::AtomicFile;
-use billiard_contact::formats::scene::SolverOverrides;
-use billiard_contact::plot::sweep as figure;
-use billiard_contact::sweep::{self, parse_list, Grid, Spin};
-use billiard_contact::Error;
+use crate::apps::plot::sweep as figure;
+use crate::apps::sweep::{self, parse_list, Grid, Spin};
+use crate::base::error::Error;
+use crate::cli::choice::MethodChoice;
+use crate::cli::common::{load_scene, progress_bar};
+use crate::outputs::atomic_file::AtomicFile;
+use crate::scene::overrides::SolverOverrides;
 use clap::Args;
 use std::path::PathBuf;
 
 /// The options of `sweep`.
 #[derive(Args)]
-pub struct SweepArgs {
+pub(super) struct SweepArgs {
     /// Scene file (TOML; the built-in default scene when omitted): its balls, contact,
     /// profile, solver and effects. Its incoming state is replaced by each shot's: the cue
     /// ball A moves along +y toward the object ball B at rest, B at the cut angle to the
@@ -60,7 +60,7 @@ pub struct SweepArgs {
 }
 
 /// Runs the sweep, writes its CSV and figure, and prints the largest throw of each curve.
-pub fn sweep(args: &SweepArgs) -> Result<(), Error> {
+pub(super) fn sweep(args: &SweepArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
     let overrides = SolverOverrides {
         method: args.method.map(|m| m.0),

@@ -1,18 +1,18 @@
 //! `billiard-contact work-precision`: the study's CSV, figure, cost tables and summary, or
 //! only the figure and tables redrawn from an existing CSV.
 
-use super::choice::{whole, ProfileChoice, Trimmed};
-use super::{load_scene, progress_bar};
-use billiard_contact::formats::atomic_file::AtomicFile;
-use billiard_contact::plot::work_precision as figure;
-use billiard_contact::work_precision::{self, StudyForce, StudyOptions, StudyRow};
-use billiard_contact::Error;
+use crate::apps::plot::work_precision as figure;
+use crate::apps::work_precision::{self, StudyForce, StudyOptions, StudyRow};
+use crate::base::error::Error;
+use crate::cli::choice::{whole, ProfileChoice, Trimmed};
+use crate::cli::common::{load_scene, progress_bar};
+use crate::outputs::atomic_file::AtomicFile;
 use clap::Args;
 use std::path::{Path, PathBuf};
 
 /// The options of `work-precision`.
 #[derive(Args)]
-pub struct StudyArgs {
+pub(super) struct StudyArgs {
     /// Scene file (TOML); the built-in default scene when omitted. Its balls, friction,
     /// impulse and duration are used with every profile (a law scene's realised ones).
     scene: Option<PathBuf>,
@@ -44,7 +44,7 @@ pub struct StudyArgs {
 }
 
 /// Runs the study (or only redraws its figure) and prints its summary.
-pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
+pub(super) fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     let csv_path = args.out.join("work_precision.csv");
     let svg = args.out.join("work_precision.svg");
     let png = args.out.join("work_precision.png");
@@ -96,7 +96,7 @@ pub fn work_precision(args: &StudyArgs) -> Result<(), Error> {
         b.finish_and_clear();
     }
     let own = rows.len();
-    let (rows, dropped) = work_precision::with_peers_of(rows, existing);
+    let (rows, dropped) = crate::apps::work_precision::csv::with_peers_of(rows, existing);
     write_rows(&csv_path, &rows)?;
     figure::write(&rows, &svg, &png)?;
     write_tables(&md, &rows)?;

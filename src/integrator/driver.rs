@@ -17,15 +17,15 @@
 
 use super::record::Recorder;
 use super::rhs::SlidingState;
-use super::settings::{Sampling, SolverSettings, Stats};
 use super::stages::{ContactStage, Problem, Run, StopReason};
 use super::stepping::Stepper;
 use super::time_map::{TimeMap, GRADED_ENDS};
-use crate::error::Error;
-use crate::formats::trace::TraceSink;
+use crate::base::error::Error;
+use crate::base::settings::{Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
 use crate::model::state::CmState;
-use crate::profile::ForceProfile;
+use crate::model::trace::TraceSink;
+use crate::profile::force::ForceProfile;
 use nalgebra::Vector2;
 
 /// The result of a time-stepping run.
@@ -251,9 +251,9 @@ impl<'a, P: ForceProfile + ?Sized> Segments<'a, P> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::base::method::Method;
     use crate::integrator::stages::tests::{stun, TAU};
-    use crate::integrator::Method;
-    use crate::profile::HalfSine;
+    use crate::profile::half_sine::HalfSine;
 
     fn dopri5() -> SolverSettings {
         SolverSettings::new(Method::Dopri5, 1e-10, 1e-10, 1000).unwrap()

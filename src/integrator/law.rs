@@ -24,17 +24,18 @@
 use super::driver::{initial_stage, result, Integrated};
 use super::record::Recorder;
 use super::rhs::{Direction, ScaledRhs, SlidingRhs, SlidingState, SLIDING_DIM};
-use super::settings::{Method, Sampling, SolverSettings, Stats};
 use super::stages::{ContactStage, Problem, Run};
 use super::stepping::{Stepper, WHOLE_SPAN};
-use super::stop_event::{illinois_update, Bound, Side};
 use super::time_map::TimeMap;
-use crate::error::Error;
-use crate::formats::trace::{TraceRow, TraceSink};
+use crate::base::error::Error;
+use crate::base::method::Method;
+use crate::base::root::{illinois_update, Bound, Side};
+use crate::base::settings::{Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
 use crate::model::contact_law::{ContactLaw, STIFFNESS_FIELD};
 use crate::model::material::elastic_impact;
-use crate::profile::ForceProfile;
+use crate::model::trace::{TraceRow, TraceSink};
+use crate::profile::force::ForceProfile;
 use nalgebra::SVector;
 
 /// Components of the state with a law: the sliding state and the scaled compression.
@@ -46,7 +47,7 @@ const NORMAL_LAW_DIM: usize = 3;
 
 /// The longest contact a law may have, in elastic contact times tau_0: a contact still on
 /// after it is an error (a damping so strong that the balls hardly separate).
-pub const LAW_SPAN: f64 = 1e4;
+pub(crate) const LAW_SPAN: f64 = 1e4;
 
 /// Bracket width in the scaled time at which an event is located: a few ulps of 1.
 const X_TOL: f64 = 1e-14;
@@ -341,9 +342,19 @@ pub(crate) type NormalSamples<'s> = (
 
 /// The head-on impact of `law` between balls of reduced mass `reduced_mass` (kg) at the
 /// relative approach speed `v` (m/s), integrated with dop853 at rtol = atol = `rtol`.
-pub fn head_on(law: &ContactLaw, reduced_mass: f64, v: f64, rtol: f64) -> Result<HeadOn, Error> {
+pub(crate) fn head_on(
+    law: &ContactLaw,
+    reduced_mass: f64,
+    v: f64,
+    rtol: f64,
+) -> Result<HeadOn, Error> {
     let scales = LawScales::new(law, 2.0 * reduced_mass, 0.5 * v, 0.5 * v)?;
-    let settings = SolverSettings::new(Method::Dop853, rtol, rtol, super::DEFAULT_STEPS)?;
+    let settings = SolverSettings::new(
+        Method::Dop853,
+        rtol,
+        rtol,
+        crate::base::settings::DEFAULT_STEPS,
+    )?;
     normal_run(&scales, &settings, None, None)
 }
 

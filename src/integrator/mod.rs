@@ -3,9 +3,8 @@
 //!
 //! | file | what it holds |
 //! |---|---|
-//! | `settings` | [`SolverSettings`], [`Method`], [`Stats`], [`Sampling`] |
 //! | `rhs` | eqs 14-19 in scaled, autonomous form, and the states they act on |
-//! | `driver` | [`integrate`]: segments between breakpoints and samples, the result |
+//! | `driver` | `integrate`: segments between breakpoints and samples, the result |
 //! | `stages` | the stages of the contact (sliding, frozen, normal) and why a stage's stepping stops |
 //! | `stepping` | one call of an `ode_solvers` method over a span, with the named step-control constants |
 //! | `stop_event` | location of the stop of sliding (regula falsi, Illinois) |
@@ -14,17 +13,13 @@
 //! | `units` | scaled states back to physical ones and trace rows |
 //! | `record` | trace rows, the first error, theta drift and slip consistency of a run |
 
-mod driver;
+pub(crate) mod calibrate;
+pub(crate) mod driver;
 pub(crate) mod law;
-mod record;
+pub(crate) mod record;
 pub(crate) mod rhs;
-mod settings;
-mod stages;
-mod stepping;
+pub(crate) mod stages;
+pub(crate) mod stepping;
 pub(crate) mod stop_event;
-mod time_map;
-mod units;
-
-pub use driver::{integrate, Integrated};
-pub use settings::{Method, Sampling, SolverSettings, Stats, DEFAULT_RTOL, DEFAULT_STEPS};
-pub use time_map::{TimeMap, GRADED_ENDS};
+pub(crate) mod time_map;
+pub(crate) mod units;

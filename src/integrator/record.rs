@@ -2,12 +2,12 @@
 //! the accepted steps (theta drift, slip consistency).
 
 use super::rhs::SlidingState;
-use super::settings::Sampling;
 use super::units::Units;
-use crate::error::Error;
-use crate::formats::trace::{CoincidentRows, TraceRow, TraceSink};
+use crate::base::error::Error;
+use crate::base::settings::Sampling;
 use crate::model::state::slip_angle;
-use crate::profile::ForceProfile;
+use crate::model::trace::{CoincidentRows, TraceRow, TraceSink};
+use crate::profile::force::ForceProfile;
 use nalgebra::{SVector, Vector2};
 
 /// Mutable bookkeeping of a run.
@@ -250,7 +250,7 @@ mod tests {
             t,
             force: 0.0,
             impulse: 0.0,
-            state: crate::CmState::new(
+            state: crate::model::state::CmState::new(
                 nalgebra::Vector3::zeros(),
                 nalgebra::Vector3::zeros(),
                 nalgebra::Vector3::zeros(),

@@ -44,13 +44,13 @@
 use super::time_map::TimeMap;
 use crate::model::params::Friction;
 use crate::model::state::planar_length;
-use crate::profile::ForceProfile;
+use crate::profile::force::ForceProfile;
 use nalgebra::{SVector, Vector2};
 
 /// Number of components of the sliding state.
-pub const SLIDING_DIM: usize = 9;
+pub(crate) const SLIDING_DIM: usize = 9;
 /// Number of components of the normal-only state.
-pub const NORMAL_DIM: usize = 2;
+pub(crate) const NORMAL_DIM: usize = 2;
 
 /// A right-hand side in scaled, autonomous form (component 0 is the integration variable x).
 pub trait ScaledRhs<const N: usize> {
@@ -61,7 +61,7 @@ pub trait ScaledRhs<const N: usize> {
 /// The sliding state: the integration variable x, changes of U, V, W, Omega_y, Omega_z, the
 /// slip, and H_sfr, all scaled.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlidingState(pub SVector<f64, SLIDING_DIM>);
+pub(crate) struct SlidingState(pub SVector<f64, SLIDING_DIM>);
 
 impl SlidingState {
     const X: usize = 0;
@@ -76,7 +76,7 @@ impl SlidingState {
 
     /// The state at the start of contact: scaled slip `slip0`, all changes 0.
     #[inline]
-    pub fn initial(slip0: Vector2<f64>) -> Self {
+    pub(crate) fn initial(slip0: Vector2<f64>) -> Self {
         let mut y = SVector::zeros();
         y[Self::SY] = slip0.x;
         y[Self::SZ] = slip0.y;
@@ -85,72 +85,72 @@ impl SlidingState {
 
     /// The integration variable x (the scaled time is s = g(x): [`TimeMap`]).
     #[inline]
-    pub fn x(&self) -> f64 {
+    pub(crate) fn x(&self) -> f64 {
         self.0[Self::X]
     }
     /// Sets the integration variable.
     #[inline]
-    pub fn set_x(&mut self, x: f64) {
+    pub(crate) fn set_x(&mut self, x: f64) {
         self.0[Self::X] = x;
     }
     /// Scaled change of (U, V, W).
     #[inline]
-    pub fn delta_u(&self) -> [f64; 3] {
+    pub(crate) fn delta_u(&self) -> [f64; 3] {
         [self.0[Self::DU], self.0[Self::DV], self.0[Self::DW]]
     }
     /// Scaled change of (Omega_y, Omega_z) of Omega = Omega^A + Omega^B.
     #[inline]
-    pub fn delta_omega_yz(&self) -> [f64; 2] {
+    pub(crate) fn delta_omega_yz(&self) -> [f64; 2] {
         [self.0[Self::DOY], self.0[Self::DOZ]]
     }
     /// Scaled slip (S cos theta, S sin theta).
     #[inline]
-    pub fn slip(&self) -> Vector2<f64> {
+    pub(crate) fn slip(&self) -> Vector2<f64> {
         Vector2::new(self.0[Self::SY], self.0[Self::SZ])
     }
     /// Sets the scaled slip (to zero when the surfaces stick).
     #[inline]
-    pub fn set_slip(&mut self, slip: Vector2<f64>) {
+    pub(crate) fn set_slip(&mut self, slip: Vector2<f64>) {
         self.0[Self::SY] = slip.x;
         self.0[Self::SZ] = slip.y;
     }
     /// Scaled sliding heat H_sfr.
     #[inline]
-    pub fn heat(&self) -> f64 {
+    pub(crate) fn heat(&self) -> f64 {
         self.0[Self::H]
     }
     /// Scaled change of U.
     #[inline]
-    pub fn set_delta_u_normal(&mut self, du: f64) {
+    pub(crate) fn set_delta_u_normal(&mut self, du: f64) {
         self.0[Self::DU] = du;
     }
 }
 
 /// The normal-only state: the integration variable x and the scaled change of U.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NormalState(pub SVector<f64, NORMAL_DIM>);
+pub(crate) struct NormalState(pub SVector<f64, NORMAL_DIM>);
 
 impl NormalState {
     /// At integration variable `x` with scaled change of U `du`.
     #[inline]
-    pub fn new(x: f64, du: f64) -> Self {
+    pub(crate) fn new(x: f64, du: f64) -> Self {
         NormalState(SVector::from([x, du]))
     }
     /// The integration variable x.
     #[inline]
-    pub fn x(&self) -> f64 {
+    pub(crate) fn x(&self) -> f64 {
         self.0[0]
     }
     /// Scaled change of U.
     #[inline]
-    pub fn delta_u(&self) -> f64 {
+    pub(crate) fn delta_u(&self) -> f64 {
         self.0[1]
     }
 }
 
 /// How the sliding right-hand side takes the friction direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Direction {
+pub(crate) enum Direction {
     /// From the current slip (eqs 5-8), continued smoothly past a stop.
     CurrentSlip,
     /// Frozen along the initial direction e0: the paper's formulas literally, used after
@@ -167,7 +167,7 @@ fn scaled_force<P: ForceProfile + ?Sized>(profile: &P, map: &TimeMap, impulse: f
 
 /// Eqs 14-19 (with 20-21 and 47) while the balls slide.
 #[derive(Debug, Clone, Copy)]
-pub struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
+pub(crate) struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
     /// Normal-force profile.
     pub profile: &'a P,
     /// The integration variable's map to the scaled time.
@@ -197,18 +197,17 @@ pub struct SlidingRhs<'a, P: ForceProfile + ?Sized> {
 /// error of a few ulps of |slip(0)|, and the direction of a slip of size |slip| is uncertain
 /// by about eps |slip(0)| / |slip|. The stages of the step that reaches the stop of
 /// sliding evaluate the right-hand side at slips near zero, where that direction is random,
-/// and with it those stages' friction (found by the hard cases: an S(0) = 1e-15 U(0) stun
-/// cut got its tangential impulse 1.5e-3 rad off e0 with rk4, and 1e-8 rad with a 1e-12
-/// floor). Below this floor the friction keeps the direction e0, which is the exact one
+/// and with it those stages' friction (an S(0) = 1e-15 U(0) stun cut gets its tangential
+/// impulse 1.5e-3 rad off e0 with rk4 without a floor, and 1e-8 rad with a 1e-12 floor). Below this floor the friction keeps the direction e0, which is the exact one
 /// (theta is constant while sliding), so the exact solution is unchanged; above it the
 /// direction noise is below 1e-9 rad.
-pub const SLIP_ROUND_OFF: f64 = 1e-6;
+pub(crate) const SLIP_ROUND_OFF: f64 = 1e-6;
 
 impl<P: ForceProfile + ?Sized> SlidingRhs<'_, P> {
     /// The event function g = slip . e0 (scaled): positive while sliding, changes sign
     /// where sliding stops (S itself never does).
     #[inline]
-    pub fn event(&self, y: &SlidingState) -> f64 {
+    pub(crate) fn event(&self, y: &SlidingState) -> f64 {
         y.slip().dot(&self.e0)
     }
 }
@@ -261,7 +260,7 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<SLIDING_DIM> for SlidingRhs<'_, P> {
 
 /// Eq 14 alone: the balls do not slide (friction off, or stuck).
 #[derive(Debug, Clone, Copy)]
-pub struct NormalRhs<'a, P: ForceProfile + ?Sized> {
+pub(crate) struct NormalRhs<'a, P: ForceProfile + ?Sized> {
     /// Normal-force profile.
     pub profile: &'a P,
     /// The integration variable's map to the scaled time.
@@ -281,7 +280,7 @@ impl<P: ForceProfile + ?Sized> ScaledRhs<NORMAL_DIM> for NormalRhs<'_, P> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::profile::Rectangle;
+    use crate::profile::rectangle::Rectangle;
 
     /// Eqs 20-21 follow from 15-16 and 18-19: the carried slip's derivative equals the
     /// derivative of (2V + Omega_z, 2W - Omega_y) (scaled, r = 1).

@@ -10,9 +10,9 @@ use super::stepping::Stepper;
 use super::stop_event::{locate_stop, STOP_FLOOR};
 use super::time_map::TimeMap;
 use super::units::Units;
-use crate::error::Error;
+use crate::base::error::Error;
 use crate::model::collision::Collision;
-use crate::profile::ForceProfile;
+use crate::profile::force::ForceProfile;
 use nalgebra::{SVector, Vector2};
 
 /// Which equations the stepping integrates: the stage the contact is in.
@@ -203,11 +203,11 @@ impl<'a, P: ForceProfile + ?Sized> Problem<'a, P> {
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
-    use crate::integrator::settings::SolverSettings;
+    use crate::base::settings::SolverSettings;
     use crate::model::effects::Effects;
     use crate::model::params::{Ball, Contact, Friction, ImpulseRule};
     use crate::model::state::CmState;
-    use crate::profile::HalfSine;
+    use crate::profile::half_sine::HalfSine;
     use nalgebra::Vector3;
     use std::f64::consts::PI;
 

@@ -4,8 +4,9 @@
 
 use super::record::Recorder;
 use super::rhs::ScaledRhs;
-use super::settings::{Method, SolverSettings, Stats};
-use crate::error::Error;
+use crate::base::error::Error;
+use crate::base::method::Method;
+use crate::base::settings::{SolverSettings, Stats};
 use nalgebra::SVector;
 use ode_solvers::dop_shared::IntegrationError;
 use ode_solvers::{Dop853, Dopri5, OutputType, Rk4, System};

@@ -28,8 +28,9 @@
 //! segment ends are mapped by g^-1), trace rows at t = tau g(x) with the force the profile's
 //! f(t), and the stop of sliding from the profile's exact p(t).
 
-use super::settings::SolverSettings;
-use crate::profile::{ForceProfile, HalfSine};
+use crate::base::settings::SolverSettings;
+use crate::profile::force::ForceProfile;
+use crate::profile::half_sine::HalfSine;
 
 /// Scaled times grading the steps toward both ends of a pulse with algebraic ends, used
 /// when the time transform is off: 2^-10 .. 2^-2 and 1 - 2^-2 .. 1 - 2^-10, so that no step
@@ -37,11 +38,11 @@ use crate::profile::{ForceProfile, HalfSine};
 ///
 /// The force is analytic inside the pulse but its expansion about a point converges only
 /// up to the nearer end. A step that reaches from the middle of the pulse to near the end
-/// leaves the region where the embedded error estimates hold: dop853 at rtol 1e-10 took a
-/// step from s = 0.567 to 0.969 of a hertz pulse with a true error of 5e-6 (found by the
-/// property tests). Used as breakpoints, these points cost a few steps and keep the error
+/// leaves the region where the embedded error estimates hold: dop853 at rtol 1e-10 can take
+/// a step from s = 0.567 to 0.969 of a hertz pulse with a true error of 5e-6. Used as
+/// breakpoints, these points cost a few steps and keep the error
 /// at the tolerance's level.
-pub const GRADED_ENDS: [f64; 18] = [
+pub(crate) const GRADED_ENDS: [f64; 18] = [
     1.0 / 1024.0,
     1.0 / 512.0,
     1.0 / 256.0,
@@ -64,7 +65,7 @@ pub const GRADED_ENDS: [f64; 18] = [
 
 /// The map from the integration variable x in [0, 1] to the scaled time s = g(x).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TimeMap {
+pub(crate) enum TimeMap {
     /// s = x: the integrator steps in the scaled time itself.
     Identity,
     /// s = Phi^-1(Phi_hs(x)): the impulse follows the unit half-sine pulse's cumulative
@@ -75,7 +76,10 @@ pub enum TimeMap {
 impl TimeMap {
     /// The map of a run of `profile` with `settings`: the half-sine impulse when the
     /// setting `time_transform` is on and the profile has algebraic ends, else the identity.
-    pub fn for_run<P: ForceProfile + ?Sized>(profile: &P, settings: &SolverSettings) -> Self {
+    pub(crate) fn for_run<P: ForceProfile + ?Sized>(
+        profile: &P,
+        settings: &SolverSettings,
+    ) -> Self {
         match profile.end_power() {
             Some(_) if settings.time_transform() => Self::half_sine_impulse(),
             _ => TimeMap::Identity,
@@ -83,13 +87,13 @@ impl TimeMap {
     }
 
     /// The map under which the impulse follows the half-sine's.
-    pub fn half_sine_impulse() -> Self {
+    pub(crate) fn half_sine_impulse() -> Self {
         const UNIT: f64 = 1.0;
         TimeMap::HalfSineImpulse(HalfSine::new(UNIT).expect("a unit duration is valid"))
     }
 
     /// Whether the integration variable is the scaled time itself.
-    pub fn is_identity(&self) -> bool {
+    pub(crate) fn is_identity(&self) -> bool {
         *self == TimeMap::Identity
     }
 
@@ -98,7 +102,7 @@ impl TimeMap {
     /// the last stage of the last step can land a rounding error beyond the end, where a
     /// profile that does not vanish there (rectangle, tables) would read 0.
     #[inline]
-    pub fn force<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
+    pub(crate) fn force<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
         match self {
             TimeMap::Identity => profile.shape(x.clamp(0.0, 1.0)),
             TimeMap::HalfSineImpulse(hs) => hs.shape(x.clamp(0.0, 1.0)),
@@ -106,7 +110,7 @@ impl TimeMap {
     }
 
     /// The impulse fraction p / P = Phi(g(x)) reached at integration variable `x`.
-    pub fn impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
+    pub(crate) fn impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
         match self {
             TimeMap::Identity => profile.cumulative(x),
             TimeMap::HalfSineImpulse(hs) => hs.cumulative(x),
@@ -114,7 +118,7 @@ impl TimeMap {
     }
 
     /// The integration variable at which the impulse fraction reaches `q` in [0, 1].
-    pub fn at_impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, q: f64) -> f64 {
+    pub(crate) fn at_impulse_fraction<P: ForceProfile + ?Sized>(&self, profile: &P, q: f64) -> f64 {
         match self {
             TimeMap::Identity => profile.time_at_cumulative(q),
             TimeMap::HalfSineImpulse(hs) => hs.time_at_cumulative(q),
@@ -122,7 +126,7 @@ impl TimeMap {
     }
 
     /// The scaled time s = g(x) (for the half-sine impulse, x clamped to [0, 1]).
-    pub fn time<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
+    pub(crate) fn time<P: ForceProfile + ?Sized>(&self, profile: &P, x: f64) -> f64 {
         match self {
             TimeMap::Identity => x,
             TimeMap::HalfSineImpulse(hs) => {
@@ -132,7 +136,7 @@ impl TimeMap {
     }
 
     /// The integration variable x = g^-1(s) at scaled time s in [0, 1].
-    pub fn at_time<P: ForceProfile + ?Sized>(&self, profile: &P, s: f64) -> f64 {
+    pub(crate) fn at_time<P: ForceProfile + ?Sized>(&self, profile: &P, s: f64) -> f64 {
         match self {
             TimeMap::Identity => s,
             TimeMap::HalfSineImpulse(hs) => hs.time_at_cumulative(profile.cumulative(s)),
@@ -143,8 +147,10 @@ impl TimeMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrator::Method;
-    use crate::profile::{Hertz, Rectangle, SinePower};
+    use crate::base::method::Method;
+    use crate::profile::hertz::Hertz;
+    use crate::profile::rectangle::Rectangle;
+    use crate::profile::sine_power::SinePower;
     use std::f64::consts::PI;
 
     /// The half-sine impulse map on a sin^1.5 pulse: the force in x is (pi / 2) sin(pi x),

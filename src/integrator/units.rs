@@ -3,10 +3,10 @@
 
 use super::rhs::SlidingState;
 use super::time_map::TimeMap;
-use crate::formats::trace::TraceRow;
 use crate::model::collision::Collision;
 use crate::model::state::CmState;
-use crate::profile::ForceProfile;
+use crate::model::trace::TraceRow;
+use crate::profile::force::ForceProfile;
 use nalgebra::{Vector2, Vector3};
 
 /// Converts scaled states to physical ones.

@@ -1,7 +1,7 @@
 //! One collision to resolve: balls, contact, effects and the incoming centre-of-mass state,
 //! with the quantities every method derives from them (impulse, slip, reference scales).
 
-use crate::error::Error;
+use crate::base::error::Error;
 use crate::model::effects::Effects;
 use crate::model::params::{BallPair, Contact, Friction};
 use crate::model::state::{planar_length, CmState};
@@ -101,8 +101,8 @@ impl Collision {
                 .max(rb * norm(&incoming.omega_b));
         }
         // Every scale the checks and the integrator divide by must be finite and, for balls
-        // in motion, normal (the fuzz harness found r = 1e308 with m v r = inf, and r = 1e-300
-        // with v / r overflowing, both giving NaN checks).
+        // in motion, normal: r = 1e308 makes m v r infinite, r = 1e-300 overflows v / r, and
+        // either makes the checks NaN.
         let scales_ok = [speed / r, m * speed, m * speed * speed, m * speed * r]
             .iter()
             .all(|x| x.is_finite() && (speed == 0.0 || x.is_normal()));

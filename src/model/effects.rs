@@ -7,8 +7,8 @@
 //! | effect | equations (code) | parameters | outputs | trace |
 //! |---|---|---|---|---|
 //! | `normal-impulse` (always) | eq 14, [`crate::integrator::rhs::NormalRhs`] | `[contact]` restitution / impulse, profile | `impulse`, `cm_out.u` | `U`, `f`, `p` |
-//! | `friction` | eqs 15-23, 47-49, [`crate::integrator::rhs::SlidingRhs`], [`crate::contact::friction`] | `contact.mu` | `s0`, `theta`, `s_out`, `tangential_impulse`, `heat_sliding`, `check.theta_drift` | `V`, `W`, spins, `S`, `theta`, `H_sfr` |
-//! | `stick` | the stop of sliding, [`crate::integrator`] event, [`crate::contact::friction::SlidingLaw`] | none | `sticks`, `stick_time`, `stick_impulse`; off: eq 57 `warnings` | the stop row |
+//! | `friction` | eqs 15-23, 47-49, [`crate::integrator::rhs::SlidingRhs`], [`crate::closed_form::sliding`] | `contact.mu` | `s0`, `theta`, `s_out`, `tangential_impulse`, `heat_sliding`, `check.theta_drift` | `V`, `W`, spins, `S`, `theta`, `H_sfr` |
+//! | `stick` | the stop of sliding, [`crate::integrator`] event, [`crate::closed_form::sliding::SlidingLaw`] | none | `sticks`, `stick_time`, `stick_impulse`; off: eq 57 `warnings` | the stop row |
 //! | `table` | [`crate::table_phase`] | `[table]` | `table` | `--path` CSV, `--plot` |
 
 use serde::{Deserialize, Serialize};

@@ -9,7 +9,7 @@
 //! 2 m_B / (m_A + m_B) u, B with -2 m_A / (m_A + m_B) u relative to the centre of mass
 //! (docs/unequal-balls.md).
 
-use crate::error::Error;
+use crate::base::error::Error;
 use crate::model::params::BallPair;
 use crate::model::state::{CmState, LabBall, LabMotion};
 use nalgebra::{Matrix3, Vector3};
@@ -20,7 +20,7 @@ pub const TOUCH_TOLERANCE: f64 = 1e-9;
 /// The horizontal part of `v`: v - up (v . up), its part perpendicular to the unit vector
 /// `up` (any unit vector: the part perpendicular to it).
 #[inline]
-pub fn horizontal(v: &Vector3<f64>, up: &Vector3<f64>) -> Vector3<f64> {
+pub(crate) fn horizontal(v: &Vector3<f64>, up: &Vector3<f64>) -> Vector3<f64> {
     v - up * v.dot(up)
 }
 
@@ -241,6 +241,48 @@ impl Frame {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn at(p: [f64; 3]) -> LabBall {
+        LabBall {
+            position: Vector3::from(p),
+            velocity: Vector3::new(1.0, 0.0, 0.0),
+            spin: Vector3::zeros(),
+        }
+    }
+
+    /// Balls 7 cm apart with r = 3 cm: NotTouching with a 1 cm gap, bad input, and its
+    /// message in the form of an InvalidParameter naming the field.
+    #[test]
+    fn balls_apart_are_not_touching() {
+        let scene = LabScene {
+            a: at([0.0; 3]),
+            b: at([0.07, 0.0, 0.0]),
+            up: Vector3::z(),
+        };
+        let e = Frame::new(&scene, 0.03).unwrap_err();
+        let Error::NotTouching {
+            gap,
+            distance,
+            contact_distance,
+            ..
+        } = e
+        else {
+            panic!("{e:?}");
+        };
+        assert!((distance - 0.07).abs() < 1e-15);
+        assert_eq!(contact_distance, 0.06);
+        assert!((gap - 0.01).abs() < 1e-15);
+        let old = Error::invalid(
+            "incoming.lab.b.position",
+            format!("[0.07, 0, 0] (|p_B - p_A| = {distance} m)"),
+            format!(
+                "the balls must touch: |p_B - p_A| = 2r = 0.06 m within a relative \
+                 {TOUCH_TOLERANCE:e}"
+            ),
+        );
+        assert_eq!(e.to_string(), old.to_string());
+        assert!(e.is_bad_input());
+    }
 
     #[test]
     fn horizontal_part_by_hand() {

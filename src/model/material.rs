@@ -25,15 +25,14 @@
 //! With a restitution below 1 the pulse keeps this elastic shape and duration and is scaled
 //! to the collision's impulse.
 
-use crate::error::{finite, Error};
-use crate::model::params::{positive, Ball, BallPair};
-use crate::profile::beta::beta;
+use crate::base::beta::beta;
+use crate::base::error::Error;
+use crate::base::validate::finite;
+use crate::base::validate::positive;
+use crate::model::params::{Ball, BallPair};
 use serde::Serialize;
 
-/// The field the material's Young's modulus is named by (as in the scene file).
-pub const YOUNGS_MODULUS_FIELD: &str = "balls.youngs_modulus";
-/// The field the material's Poisson ratio is named by (as in the scene file).
-pub const POISSON_RATIO_FIELD: &str = "balls.poisson_ratio";
+use crate::base::fields::{POISSON_RATIO_FIELD, YOUNGS_MODULUS_FIELD};
 
 /// An isotropic elastic material: Young's modulus and Poisson ratio.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -153,7 +152,7 @@ impl HertzContact {
         ];
         if !values.iter().all(|x| x.is_normal() && *x > 0.0) {
             return Err(Error::invalid(
-                crate::profile::DURATION_FIELD,
+                crate::base::fields::DURATION_FIELD,
                 format!(
                     "{duration} s from the material at {approach_speed} m/s (compression \
                      {max_compression} m)"
@@ -214,7 +213,7 @@ pub fn hertz_stiffness(a: (&Ball, &Material), b: (&Ball, &Material)) -> (f64, f6
 
 /// The reduced mass m* = m_a m_b / (m_a + m_b) (kg) of balls `a` and `b`: the mass of
 /// their relative motion along the line of centres.
-pub fn reduced_mass(a: &Ball, b: &Ball) -> f64 {
+pub(crate) fn reduced_mass(a: &Ball, b: &Ball) -> f64 {
     a.mass() * b.mass() / (a.mass() + b.mass())
 }
 

@@ -8,4 +8,6 @@ pub(crate) mod effects;
 pub(crate) mod frame;
 pub(crate) mod material;
 pub(crate) mod params;
+pub(crate) mod result;
 pub(crate) mod state;
+pub(crate) mod trace;

@@ -1,19 +1,20 @@
 //! Ball and contact parameters, validated on construction.
 
-use crate::error::{finite, Error};
+use crate::base::error::Error;
+use crate::base::validate::{finite, positive};
 use serde::{Deserialize, Serialize};
 
 /// Largest `alpha` of a sphere: a thin spherical shell has I = (2/3) m r^2, and no
 /// radial mass distribution puts more of the mass farther out.
 pub const ALPHA_MAX: f64 = 2.0 / 3.0;
 
-/// Smallest `alpha` accepted: the spin equations scale with 1/alpha, and alpha = 5e-324 (a
-/// subnormal the fuzz harness tried) made 1/alpha infinite and the closed form NaN.
+/// Smallest `alpha` accepted: the spin equations scale with 1/alpha, and a subnormal alpha
+/// such as 5e-324 makes 1/alpha infinite and the closed form NaN.
 pub const ALPHA_MIN: f64 = 1e-12;
 
 /// Largest friction coefficient accepted (constant mu, and a, b of mu(S)): far beyond any
-/// physical value, while the time stepping's intermediate slips and heat stay finite (the
-/// fuzz harness found mu = 1e300 overflowing the rk4 state to -inf).
+/// physical value, while the time stepping's intermediate slips and heat stay finite
+/// (mu = 1e300 overflows the rk4 state to -inf).
 pub const MU_MAX: f64 = 1e6;
 
 /// Moment-of-inertia factor of a solid uniform ball, I = (2/5) m r^2.
@@ -67,7 +68,7 @@ impl Ball {
             ));
         }
         // The equations divide by m and by alpha m r (eqs 25-33): both, and I, must be
-        // normal numbers (the fuzz harness found mass = 5e-324 and radius = 1e308 giving NaN).
+        // normal numbers (mass = 5e-324 or radius = 1e308 would give NaN).
         let inertia = alpha * mass * radius * radius;
         if !(inertia.is_normal()
             && (1.0 / mass).is_normal()
@@ -558,14 +559,6 @@ pub struct Contact {
     pub friction: Friction,
     /// How the impulse P is fixed.
     pub impulse: ImpulseRule,
-}
-
-pub(crate) fn positive(field: &str, value: f64, unit: &str) -> Result<f64, Error> {
-    finite(field, value)?;
-    if value <= 0.0 {
-        return Err(Error::invalid(field, value, format!("> 0 {unit}")));
-    }
-    Ok(value)
 }
 
 #[cfg(test)]

@@ -123,7 +123,7 @@ impl CmState {
 /// that a tiny S(0) keeps its full relative precision (there is no threshold on S(0):
 /// docs/model.md#no-initial-sliding).
 #[inline]
-pub fn planar_length(v: Vector2<f64>) -> f64 {
+pub(crate) fn planar_length(v: Vector2<f64>) -> f64 {
     let m = v.x.abs().max(v.y.abs());
     if (1e-150..=1e150).contains(&m) {
         (v.x * v.x + v.y * v.y).sqrt()
@@ -136,7 +136,7 @@ pub fn planar_length(v: Vector2<f64>) -> f64 {
 /// portable `libm` port (FreeBSD msun, error below 1 ulp), about 60 instructions cheaper
 /// than the system's correctly rounded one, which matters to the closed form in batches.
 #[inline]
-pub fn slip_angle(v: Vector2<f64>) -> f64 {
+pub(crate) fn slip_angle(v: Vector2<f64>) -> f64 {
     let t = libm::atan2(v.y, v.x);
     // atan2 returns -pi for a slip along -y whose second component is -0.0 or a negative
     // round-off remainder; both are the direction +pi, and the interval is open at -pi.

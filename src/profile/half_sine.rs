@@ -1,7 +1,8 @@
 //! Half-sine pulse f(t) = (pi P / (2 tau)) sin(pi t / tau).
 
-use super::{valid_duration, ForceProfile};
-use crate::error::Error;
+use crate::base::error::Error;
+use crate::profile::force::valid_duration;
+use crate::profile::force::ForceProfile;
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 
 /// Half-sine pulse: phi(s) = (pi/2) sin(pi s), Phi(s) = sin^2(pi s / 2).
@@ -92,7 +93,7 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&HalfSine::new(1e-3).unwrap(), 1e-13);
+        crate::profile::force::tests::check_profile(&HalfSine::new(1e-3).unwrap(), 1e-13);
     }
 
     /// Both at once agree with the separate formulas to round-off.

@@ -15,9 +15,10 @@
 //! (4/5) B(2/5, 1/2) delta_max / v0 = 2.9432752... delta_max / v0 (docs/model.md#force-profiles). The curve's
 //! shape is universal: c and v0 only set the duration and the impulse, both given.
 
-use super::beta::{beta, inc_beta};
-use super::{valid_duration, ForceProfile};
-use crate::error::Error;
+use crate::base::beta::{beta, inc_beta};
+use crate::base::error::Error;
+use crate::profile::force::valid_duration;
+use crate::profile::force::ForceProfile;
 
 /// a = 2/5 in I_u(a, b).
 const A: f64 = 0.4;
@@ -47,8 +48,8 @@ impl Hertz {
     /// ```
     /// use billiard_contact::profile::{ForceProfile, Hertz};
     /// let p = Hertz::new(1.0)?;
-    /// // peak of phi: B(2/5, 1/2) / 2
-    /// let b = billiard_contact::profile::beta::beta(0.4, 0.5);
+    /// // peak of phi: B(2/5, 1/2) / 2, B(2/5, 1/2) = Gamma(2/5) Gamma(1/2) / Gamma(9/10)
+    /// let b = 3.679093980405881;
     /// assert!((p.shape(0.5) - b / 2.0).abs() < 1e-12);
     /// # Ok::<(), billiard_contact::Error>(())
     /// ```
@@ -317,7 +318,7 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&Hertz::new(1.0).unwrap(), 1e-9);
+        crate::profile::force::tests::check_profile(&Hertz::new(1.0).unwrap(), 1e-9);
     }
 
     /// The interpolants against the Newton solution they replace, densely over the rising

@@ -1,7 +1,8 @@
 //! Rectangular pulse: constant force P / tau over the contact.
 
-use super::{valid_duration, ForceProfile};
-use crate::error::Error;
+use crate::base::error::Error;
+use crate::profile::force::valid_duration;
+use crate::profile::force::ForceProfile;
 
 /// Constant force: phi(s) = 1, Phi(s) = s. The force jumps at both ends of the contact,
 /// which lie on the integration interval's ends, so steppers never straddle them.
@@ -57,6 +58,6 @@ mod tests {
 
     #[test]
     fn contract() {
-        crate::profile::tests::check_profile(&Rectangle::new(2.0).unwrap(), 1e-13);
+        crate::profile::force::tests::check_profile(&Rectangle::new(2.0).unwrap(), 1e-13);
     }
 }

@@ -1,8 +1,10 @@
 //! Sine-power pulse f(t) = c sin^n(pi t / tau).
 
-use super::beta::{beta, inc_beta};
-use super::{valid_duration, ForceProfile};
-use crate::error::{finite, Error};
+use crate::base::beta::{beta, inc_beta};
+use crate::base::error::Error;
+use crate::base::validate::finite;
+use crate::profile::force::valid_duration;
+use crate::profile::force::ForceProfile;
 use std::f64::consts::PI;
 
 /// Sine-power pulse, phi(s) = sin^n(pi s) pi / B((n+1)/2, 1/2).
@@ -147,14 +149,14 @@ mod tests {
     #[test]
     fn contract_for_several_exponents() {
         for (n, tol) in [(1.0, 1e-13), (1.5, 1e-10), (0.5, 1e-6), (4.0, 1e-13)] {
-            crate::profile::tests::check_profile(&SinePower::new(1.0, n).unwrap(), tol);
+            crate::profile::force::tests::check_profile(&SinePower::new(1.0, n).unwrap(), tol);
         }
     }
 
     #[test]
     fn exponent_one_is_the_half_sine() {
         let p = SinePower::new(1.0, 1.0).unwrap();
-        let h = super::super::HalfSine::new(1.0).unwrap();
+        let h = crate::profile::half_sine::HalfSine::new(1.0).unwrap();
         for i in 0..=100 {
             let s = i as f64 / 100.0;
             assert!((p.shape(s) - h.shape(s)).abs() < 1e-15);

@@ -1,7 +1,8 @@
 //! A force profile read from a (time, force) table, linearly interpolated.
 
-use super::{valid_duration, ForceProfile};
-use crate::error::Error;
+use crate::base::error::Error;
+use crate::profile::force::valid_duration;
+use crate::profile::force::ForceProfile;
 use std::path::{Path, PathBuf};
 
 /// Linear interpolation of (time, force) points, normalised to unit impulse.
@@ -79,8 +80,8 @@ impl Tabulated {
         }
         let s: Vec<f64> = points.iter().map(|p| p.0 / span).collect();
         // phi = f * span / area, so that integral_0^1 phi ds = 1.
-        // Divided first: f * span overflows for forces near f64::MAX (found by the fuzz
-        // harness: a force of 1.8e308 N gave phi = inf and NaN after normalisation).
+        // Divided first: f * span overflows for forces near f64::MAX (a force of 1.8e308 N
+        // would give phi = inf, and NaN after normalisation).
         let phi: Vec<f64> = points.iter().map(|p| p.1 / area * span).collect();
         if let Some(k) = phi.iter().position(|x| !x.is_finite()) {
             return Err(whole(format!(
@@ -147,9 +148,9 @@ impl Tabulated {
 }
 
 /// Smallest step between consecutive times, relative to the table's span. Closer knots
-/// (the fuzz harness tried times 0, 2e-5, .., 1e300) put breakpoints below the integrators'
-/// resolution and made the adaptive methods stop with a step-size underflow.
-pub const MIN_TIME_STEP: f64 = 1e-9;
+/// (times 0, 2e-5, .., 1e300, say) put breakpoints below the integrators' resolution and
+/// make the adaptive methods stop with a step-size underflow.
+pub(crate) const MIN_TIME_STEP: f64 = 1e-9;
 
 /// The index of the first point closer than [`MIN_TIME_STEP`] of the span to its
 /// predecessor.
@@ -332,7 +333,7 @@ mod tests {
             (3.2, 0.0),
             (4.0, 1.0),
         ]);
-        crate::profile::tests::check_profile(&p, 1e-14);
+        crate::profile::force::tests::check_profile(&p, 1e-14);
         assert_eq!(p.breakpoints().len(), 6);
         // Eight knots as given: the accessors count them.
         assert_eq!((p.len(), p.is_empty()), (8, false));

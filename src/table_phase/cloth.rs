@@ -10,7 +10,7 @@
 //! ```
 
 use super::params::TableParams;
-use crate::error::Error;
+use crate::base::error::Error;
 use crate::model::params::Ball;
 use nalgebra::Vector3;
 
@@ -130,6 +130,17 @@ pub fn cloth_slip(
     spin: &Vector3<f64>,
 ) -> Vector3<f64> {
     horizontal(velocity, up) - ball.radius() * spin.cross(up)
+}
+
+/// The spin (rad/s) that rolls with `velocity` (m/s): horizontal part n x v_h / r, vertical
+/// part that of `spin`.
+pub(super) fn roll_spin(
+    ball: &Ball,
+    up: &Vector3<f64>,
+    velocity: &Vector3<f64>,
+    spin: &Vector3<f64>,
+) -> Vector3<f64> {
+    up.cross(&horizontal(velocity, up)) / ball.radius() + up * spin.dot(up)
 }
 
 #[cfg(test)]

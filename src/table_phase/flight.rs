@@ -7,9 +7,9 @@
 //! falls below [`SETTLE_SPEED`]; the cloth absorbs the rest and the ball is settled.
 
 use super::impact::cloth_impact;
-use super::roll_out::Track;
 use super::segment::{BallMotion, Segment};
-use crate::error::Error;
+use super::track::Track;
+use crate::base::error::Error;
 use nalgebra::Vector3;
 
 /// Vertical speed (m/s) below which a bouncing ball counts as settled on the cloth.

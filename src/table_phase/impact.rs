@@ -15,8 +15,8 @@
 //! the factor (1 + 1/alpha) where the ball-ball rule has 2 (1 + 1/alpha).
 
 use super::cloth::cloth_slip;
+use super::cloth::roll_spin;
 use super::params::TableParams;
-use super::rolling::roll_spin;
 use crate::model::params::Ball;
 use nalgebra::Vector3;
 

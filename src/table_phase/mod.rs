@@ -27,20 +27,23 @@
 //! the balls' later paths are independent (a second collision between them is not
 //! modelled).
 
-mod cloth;
-mod flight;
-mod impact;
-mod outcome;
-mod params;
-mod roll_out;
-mod rolling;
-mod segment;
+pub(crate) mod cloth;
+pub(crate) mod flight;
+pub(crate) mod impact;
+pub(crate) mod outcome;
+pub(crate) mod params;
+pub(crate) mod path;
+pub(crate) mod roll_out;
+pub(crate) mod rolling;
+pub(crate) mod segment;
+mod track;
 
 pub use cloth::{cloth_slip, Table, LEVEL_TOLERANCE};
 pub use flight::{MAX_BOUNCES, SETTLE_SPEED};
 pub use impact::{cloth_impact, ClothImpact};
-pub use outcome::{kinetic_energy, TableChecks, TableOutcome};
+pub use outcome::{TableChecks, TableOutcome};
 pub use params::{TableParams, TableSettings, TableSize};
+pub use path::{ball_path_rows, BallPathRow};
 pub use roll_out::{roll_out, RollOut};
 pub use rolling::rolling_velocity;
 pub use segment::{BallMotion, Segment};

@@ -3,7 +3,7 @@
 
 use super::cloth::{horizontal, Table};
 use super::roll_out::{roll_out, RollOut};
-use crate::error::Error;
+use crate::base::error::Error;
 use crate::model::params::{Ball, BallPair};
 use crate::model::state::LabBall;
 use nalgebra::Vector3;
@@ -14,7 +14,7 @@ const ENERGY_POINTS: u32 = 16;
 
 /// Kinetic energy (J) of one ball with `velocity` (m/s) and `spin` (rad/s):
 /// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2.
-pub fn kinetic_energy(ball: &Ball, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> f64 {
+pub(crate) fn kinetic_energy(ball: &Ball, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> f64 {
     0.5 * ball.mass() * velocity.norm_squared() + 0.5 * ball.inertia() * spin.norm_squared()
 }
 

@@ -4,7 +4,8 @@
 //! [`TableParams::new`] checks them and returns the validated, read-only parameters. The
 //! `with_*` setters change one value of valid parameters and check it again.
 
-use crate::error::{finite, Error};
+use crate::base::error::Error;
+use crate::base::validate::finite;
 use serde::Serialize;
 
 /// The `[table]` values by name, not yet validated: pass them to [`TableParams::new`].

@@ -1,5 +1,5 @@
 //! One ball from separation until it rolls (and, with rolling resistance, until it
-//! rests): [`roll_out`] runs the stages in order on a [`Track`], the motion built so far.
+//! rests): [`roll_out`] runs the stages in order on a [`Track`](super::track::Track), the motion built so far.
 //!
 //! 1. The hop ([`Track::hop`], flight.rs), when the ball leaves the cloth moving up.
 //! 2. Impacts with the cloth, bouncing until settled ([`Track::bounce_until_settled`],
@@ -11,7 +11,8 @@
 use super::cloth::Table;
 use super::impact::ClothImpact;
 use super::segment::{BallMotion, Segment};
-use crate::error::Error;
+use super::track::Track;
+use crate::base::error::Error;
 use crate::model::params::Ball;
 use crate::model::state::LabBall;
 use nalgebra::Vector3;
@@ -115,90 +116,10 @@ pub fn roll_out(ball: &Ball, table: &Table, start: &LabBall) -> Result<RollOut, 
     })
 }
 
-/// One ball's motion under construction: where the stages have brought it so far. Each
-/// stage appends its segments and impacts, adds the cloth's impulse and moves `state` and
-/// `t` to its end.
-pub(super) struct Track<'a> {
-    /// The ball.
-    pub(super) ball: &'a Ball,
-    /// The cloth.
-    pub(super) table: &'a Table,
-    /// Unit vertical n (= `table.up`).
-    pub(super) n: Vector3<f64>,
-    /// Gravitational acceleration g (m/s^2).
-    pub(super) g: f64,
-    /// Rate (rad/s^2) at which |w.n| falls on the cloth: mu_sp g / (alpha r).
-    pub(super) decay_rate: f64,
-    /// State at `t` (lab).
-    pub(super) state: LabBall,
-    /// Time reached (s after separation).
-    pub(super) t: f64,
-    /// Segments so far.
-    pub(super) segments: Vec<Segment>,
-    /// Impacts with the cloth so far.
-    pub(super) impacts: Vec<ClothImpact>,
-    /// Impulse of the cloth so far (N s, lab), without the normal support (see `finish`).
-    pub(super) impulse: Vector3<f64>,
-}
-
-impl<'a> Track<'a> {
-    /// The ball at separation, at t = 0.
-    fn new(ball: &'a Ball, table: &'a Table, start: &LabBall) -> Self {
-        let g = table.params.g();
-        Track {
-            ball,
-            table,
-            n: table.up,
-            g,
-            decay_rate: table.params.spin_decay() * g / (ball.alpha() * ball.radius()),
-            state: *start,
-            t: 0.0,
-            segments: Vec::new(),
-            impacts: Vec::new(),
-            impulse: Vector3::zeros(),
-        }
-    }
-
-    /// Appends `seg` (which starts at `t`) and moves `t` to its end; returns the state
-    /// there.
-    pub(super) fn run(&mut self, seg: Segment) -> LabBall {
-        self.segments.push(seg);
-        self.t = seg.t1;
-        seg.at(&self.n, self.t)
-    }
-
-    /// The last, open-ended segment (rolling on, or at rest) and the cloth's normal
-    /// support m g n over the time spent on the cloth.
-    fn finish(&mut self) {
-        let (n, m, g) = (self.n, self.ball.mass(), self.g);
-        let end_time = self.t;
-        self.segments.push(Segment {
-            phase: if self.state.velocity == Vector3::zeros() {
-                BallMotion::Rest
-            } else {
-                BallMotion::Rolling
-            },
-            t0: end_time,
-            t1: f64::INFINITY,
-            start: self.state,
-            accel: Vector3::zeros(),
-            spin_accel: Vector3::zeros(),
-            spin_decay_rate: self.decay_rate,
-        });
-        let airborne: f64 = self
-            .segments
-            .iter()
-            .filter(|s| s.phase == BallMotion::Flight)
-            .map(|s| s.t1 - s.t0)
-            .sum();
-        self.impulse += n * (m * g * (end_time - airborne));
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table_phase::TableParams;
+    use crate::table_phase::params::TableParams;
 
     /// A pool ball (0.17 kg, 28.575 mm, solid) and a level cloth at height 0, up = z.
     fn pool_ball_on_level_cloth(params: TableParams) -> (Ball, Table) {

@@ -28,9 +28,9 @@
 //! |w.n| falls at mu_sp g / (alpha r) until 0). Neither acts in flight; rolling
 //! resistance does not act while sliding (sliding friction dominates).
 
-use super::cloth::{cloth_slip, horizontal};
-use super::roll_out::Track;
+use super::cloth::{cloth_slip, horizontal, roll_spin};
 use super::segment::{BallMotion, Segment};
+use super::track::Track;
 use crate::model::params::Ball;
 use nalgebra::Vector3;
 
@@ -54,17 +54,6 @@ pub fn rolling_velocity(
 ) -> Vector3<f64> {
     let a = ball.alpha();
     (horizontal(velocity, up) + a * ball.radius() * spin.cross(up)) / (1.0 + a)
-}
-
-/// The spin (rad/s) that rolls with `velocity` (m/s): horizontal part n x v_h / r, vertical
-/// part that of `spin`.
-pub(super) fn roll_spin(
-    ball: &Ball,
-    up: &Vector3<f64>,
-    velocity: &Vector3<f64>,
-    spin: &Vector3<f64>,
-) -> Vector3<f64> {
-    up.cross(&horizontal(velocity, up)) / ball.radius() + up * spin.dot(up)
 }
 
 impl Track<'_> {

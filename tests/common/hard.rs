@@ -3,9 +3,10 @@
 //! `ClosedForm`), exact profile integrals, and scene builders.
 #![allow(dead_code)]
 
+use billiard_contact::profile::ForceProfile;
 use billiard_contact::Effects;
 use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, ForceProfile, Friction, ImpulseRule, Method, Outcome,
+    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Outcome,
     SolverSettings,
 };
 use nalgebra::Vector3;

@@ -1,14 +1,14 @@
 //! Figures (SVG and PNG) drawn with `plotters` without system fonts: the DejaVu Sans font is
 //! embedded and registered once under the family name `sans-serif`.
 
-pub mod paths;
-pub mod style;
-pub mod sweep;
-pub mod trace;
-pub mod work_precision;
+pub(crate) mod paths;
+pub(crate) mod style;
+pub(crate) mod sweep;
+pub(crate) mod trace;
+pub(crate) mod work_precision;
 
-use crate::error::Error;
-use crate::formats::atomic_file::AtomicFile;
+use crate::base::error::Error;
+use crate::outputs::atomic_file::AtomicFile;
 use plotters::coord::Shift;
 use plotters::prelude::{BitMapBackend, DrawingArea, IntoDrawingArea, SVGBackend};
 use std::io::Write;
@@ -33,7 +33,7 @@ pub fn register_fonts() {
 
 /// The formats a figure is written in, told by its file name's extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FigureFormat {
+pub(crate) enum FigureFormat {
     /// Scalable vector graphics (`.svg`).
     Svg,
     /// A bitmap (`.png`).
@@ -44,15 +44,7 @@ impl FigureFormat {
     /// The format of the figure file `path` given to the option `option` (e.g. `--plot`):
     /// `.svg` or `.png` (any case); any other name is refused naming the option, the file
     /// and the accepted extensions.
-    ///
-    /// ```
-    /// use billiard_contact::plot::FigureFormat;
-    /// use std::path::Path;
-    /// assert_eq!(FigureFormat::of("--plot", Path::new("a/top.PNG")).unwrap(), FigureFormat::Png);
-    /// let e = FigureFormat::of("--plot", Path::new("p.pdf")).unwrap_err().to_string();
-    /// assert_eq!(e, "--plot = p.pdf: a file name ending in .svg or .png");
-    /// ```
-    pub fn of(option: &str, path: &Path) -> Result<Self, Error> {
+    pub(crate) fn of(option: &str, path: &Path) -> Result<Self, Error> {
         let ext = path.extension().and_then(|e| e.to_str());
         match ext.map(str::to_ascii_lowercase).as_deref() {
             Some("svg") => Ok(FigureFormat::Svg),
@@ -69,7 +61,7 @@ impl FigureFormat {
 /// A figure of `dims` (px) written to `path` as SVG or PNG by its extension (checked by
 /// [`FigureFormat::of`] for the option `option`), drawn by `draw_svg` or `draw_png` (the
 /// same drawing on the two backends); the file is replaced only once complete.
-pub fn write_figure(
+pub(crate) fn write_figure(
     option: &str,
     path: &Path,
     dims: (u32, u32),
@@ -180,5 +172,20 @@ mod tests {
         assert!(svg.contains("theta"));
         assert!(std::fs::metadata(&png).unwrap().len() > 100);
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// The examples of the documentation of `FigureFormat::of`.
+    #[test]
+    fn figure_format_of_examples() {
+        use super::FigureFormat;
+        use std::path::Path;
+        assert_eq!(
+            FigureFormat::of("--plot", Path::new("a/top.PNG")).unwrap(),
+            FigureFormat::Png
+        );
+        let e = FigureFormat::of("--plot", Path::new("p.pdf"))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "--plot = p.pdf: a file name ending in .svg or .png");
     }
 }

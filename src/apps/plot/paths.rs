@@ -16,11 +16,14 @@ use super::style::{
     Mark, Swatch,
 };
 use super::FONT;
-use crate::apps::runner::SceneOutcome;
-use crate::error::Error;
-use crate::formats::scene::Scene;
+use crate::base::error::Error;
 use crate::model::frame::horizontal;
-use crate::table_phase::{BallMotion, RollOut, TableOutcome, TableSize};
+use crate::scene::run::SceneOutcome;
+use crate::scene::types::Scene;
+use crate::table_phase::outcome::TableOutcome;
+use crate::table_phase::params::TableSize;
+use crate::table_phase::roll_out::RollOut;
+use crate::table_phase::segment::BallMotion;
 use nalgebra::Vector3;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -28,7 +31,7 @@ use plotters::prelude::*;
 use std::ops::Range;
 
 /// Figure width (px); the height follows the paths' extent.
-pub const WIDTH: u32 = 1100;
+pub(crate) const WIDTH: u32 = 1100;
 
 /// A point on the figure (m, m).
 type Point = (f64, f64);
@@ -278,7 +281,7 @@ fn larger(radii: [f64; 2]) -> f64 {
 }
 
 /// The top view of a run's table phase, laid out and ready to draw.
-pub struct TopView<'a> {
+pub(crate) struct TopView<'a> {
     t: &'a TableOutcome,
     /// Radii of balls A and B (m).
     radii: [f64; 2],
@@ -298,7 +301,7 @@ pub struct TopView<'a> {
 
 impl<'a> TopView<'a> {
     /// The top view of `t`, the table phase of `run` (a run of `scene`).
-    pub fn new(scene: &Scene, run: &SceneOutcome, t: &'a TableOutcome) -> Self {
+    pub(crate) fn new(scene: &Scene, run: &SceneOutcome, t: &'a TableOutcome) -> Self {
         let radii = scene.balls.radii();
         let radius = larger(radii);
         let proj = Projection::new(&t.table.up);
@@ -323,7 +326,7 @@ impl<'a> TopView<'a> {
     }
 
     /// The figure's size (px).
-    pub fn dims(&self) -> (u32, u32) {
+    pub(crate) fn dims(&self) -> (u32, u32) {
         (
             WIDTH,
             HEADER + self.plot_height + 2 * MARGIN + LABEL_X + STRIP,
@@ -331,7 +334,10 @@ impl<'a> TopView<'a> {
     }
 
     /// Draws the figure on `root`; an error carries the backend's message.
-    pub fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    pub(crate) fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), String>
     where
         DB::ErrorType: 'static,
     {
@@ -341,7 +347,7 @@ impl<'a> TopView<'a> {
 
     /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
     /// command-line option in the error for another extension).
-    pub fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
+    pub(crate) fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
         super::write_figure(
             option,
             path,
@@ -871,7 +877,7 @@ fn draw_arrow<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>, arrow: &Ar
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::apps::runner::run_scene;
+    use crate::scene::run::run_scene;
     use std::path::Path;
 
     /// The draw shot of data/scenes, with `extra` added under its `[table]`.

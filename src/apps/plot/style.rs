@@ -6,7 +6,7 @@ use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 
 /// What a drawing step returns.
-pub type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+pub(crate) type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// Dash and gap lengths (px) of a dashed line.
 const DASH: (u32, u32) = (8, 5);
@@ -17,7 +17,7 @@ const SWATCH_LEN: i32 = 40;
 
 /// How a series' line is stroked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Line {
+pub(crate) enum Line {
     /// Markers only.
     None,
     /// A solid line.
@@ -30,7 +30,7 @@ pub enum Line {
 
 /// The marker at a series' points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Mark {
+pub(crate) enum Mark {
     /// No marker.
     None,
     /// A circle.
@@ -45,7 +45,7 @@ pub enum Mark {
 
 /// The look of one series: the same on the chart and in the legend.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Swatch {
+pub(crate) struct Swatch {
     /// Colour of the line and the markers.
     pub color: RGBColor,
     /// Line width (px).
@@ -60,7 +60,7 @@ pub struct Swatch {
 
 impl Swatch {
     /// A solid line of `width` px without markers.
-    pub fn line(color: RGBColor, width: u32) -> Self {
+    pub(crate) fn line(color: RGBColor, width: u32) -> Self {
         Swatch {
             color,
             width,
@@ -71,12 +71,12 @@ impl Swatch {
     }
 
     /// This swatch with line `line`.
-    pub fn with_line(self, line: Line) -> Self {
+    pub(crate) fn with_line(self, line: Line) -> Self {
         Swatch { line, ..self }
     }
 
     /// This swatch with marker `mark` of `size` px.
-    pub fn with_mark(self, mark: Mark, size: i32) -> Self {
+    pub(crate) fn with_mark(self, mark: Mark, size: i32) -> Self {
         Swatch {
             mark,
             mark_size: size,
@@ -85,7 +85,7 @@ impl Swatch {
     }
 
     /// The line's stroke.
-    pub fn stroke(&self) -> ShapeStyle {
+    pub(crate) fn stroke(&self) -> ShapeStyle {
         self.color.stroke_width(self.width)
     }
 
@@ -102,7 +102,11 @@ impl Swatch {
     /// along the whole line (not restarted at each point), and the line is drawn segment by
     /// segment in pixels: the bitmap backend joins wide polylines with unlimited miters,
     /// which spike where a line doubles back.
-    pub fn draw_line<DB, CT>(&self, area: &DrawingArea<DB, CT>, pts: &[CT::From]) -> Drawn<DB>
+    pub(crate) fn draw_line<DB, CT>(
+        &self,
+        area: &DrawingArea<DB, CT>,
+        pts: &[CT::From],
+    ) -> Drawn<DB>
     where
         DB: DrawingBackend,
         CT: CoordTranslate,
@@ -140,7 +144,7 @@ impl Swatch {
 
     /// The markers at `pts` on `area` (a chart's plotting area, or pixels), hollow where
     /// the flag says so.
-    pub fn draw_marks<DB, CT>(
+    pub(crate) fn draw_marks<DB, CT>(
         &self,
         area: &DrawingArea<DB, CT>,
         pts: impl IntoIterator<Item = (CT::From, bool)>,
@@ -237,14 +241,14 @@ fn dashes(pts: &[(f64, f64)], (on, off): (u32, u32)) -> Vec<Vec<(f64, f64)>> {
 }
 
 /// `c` blended half-way to white.
-pub fn light(c: RGBColor) -> RGBColor {
+pub(crate) fn light(c: RGBColor) -> RGBColor {
     let f = |v: u8| ((u16::from(v) + 255) / 2) as u8;
     RGBColor(f(c.0), f(c.1), f(c.2))
 }
 
 /// One legend line: a swatch and its text.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LegendEntry {
+pub(crate) struct LegendEntry {
     /// How the series is drawn.
     pub swatch: Swatch,
     /// What it is.
@@ -253,7 +257,7 @@ pub struct LegendEntry {
 
 impl LegendEntry {
     /// The entry `label` for `swatch`.
-    pub fn new(swatch: Swatch, label: impl Into<String>) -> Self {
+    pub(crate) fn new(swatch: Swatch, label: impl Into<String>) -> Self {
         LegendEntry {
             swatch,
             label: label.into(),
@@ -262,13 +266,13 @@ impl LegendEntry {
 }
 
 /// Height (px) of one legend line in a font of `font` px.
-pub fn legend_row(font: u32) -> i32 {
+pub(crate) fn legend_row(font: u32) -> i32 {
     (font as i32 * 3) / 2
 }
 
 /// Draws `entries` on `area` from its top left corner `at` (px), in `columns` columns
 /// `column_width` px apart (filled row by row), text `font` px high.
-pub fn draw_legend<DB: DrawingBackend>(
+pub(crate) fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     entries: &[LegendEntry],
     at: (i32, i32),
@@ -297,7 +301,7 @@ pub fn draw_legend<DB: DrawingBackend>(
 
 /// A tick label with `decimals` decimals, without the sign of a value that rounds to zero
 /// ("0.0", never "-0.0").
-pub fn tick_label(v: f64, decimals: usize) -> String {
+pub(crate) fn tick_label(v: f64, decimals: usize) -> String {
     let s = format!("{v:.decimals$}");
     if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
         s[1..].to_string()
@@ -307,7 +311,7 @@ pub fn tick_label(v: f64, decimals: usize) -> String {
 }
 
 /// The decimals that tell apart ticks about `step` apart (0 for steps of 1 and more).
-pub fn decimals_for(step: f64) -> usize {
+pub(crate) fn decimals_for(step: f64) -> usize {
     if !(step.is_finite() && step > 0.0) || step >= 1.0 {
         0
     } else {
@@ -317,7 +321,7 @@ pub fn decimals_for(step: f64) -> usize {
 
 /// A number in 4 significant digits without trailing zeros (plain between 1e-3 and 1e4,
 /// in exponent form otherwise).
-pub fn short(v: f64) -> String {
+pub(crate) fn short(v: f64) -> String {
     if v == 0.0 {
         return "0".into();
     }

@@ -4,9 +4,9 @@
 
 use super::FONT;
 use crate::apps::sweep::{curves, SweepRow};
-use crate::error::Error;
-use crate::formats::scene::Scene;
+use crate::base::error::Error;
 use crate::model::params::FrictionLaw;
+use crate::scene::types::Scene;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -23,7 +23,7 @@ type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorTy
 
 /// The figure's title for `scene`: its friction model with how it is evaluated, and its
 /// restitution rule.
-pub fn title(scene: &Scene) -> String {
+pub(crate) fn title(scene: &Scene) -> String {
     let friction = match scene.contact.friction.law() {
         FrictionLaw::Constant(mu) => format!("constant mu = {mu}"),
         FrictionLaw::SpeedDependent { a, b, c, evaluate } => format!(
@@ -52,7 +52,7 @@ fn spin_kinds(rows: &[SweepRow]) -> Vec<String> {
 }
 
 /// The figure's size (px).
-pub fn size(rows: &[SweepRow]) -> (u32, u32) {
+pub(crate) fn size(rows: &[SweepRow]) -> (u32, u32) {
     let columns = spin_kinds(rows).len().max(1) as u32;
     ((PANEL.0 * columns).max(MIN_WIDTH), HEADER + 2 * PANEL.1)
 }
@@ -91,7 +91,7 @@ const SPIN: Quantity = Quantity {
 };
 
 /// Draws the chart on `root`.
-pub fn draw<DB: DrawingBackend>(
+pub(crate) fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     rows: &[SweepRow],
     title: &str,
@@ -207,7 +207,7 @@ fn draw_panel<DB: DrawingBackend>(
 
 /// Writes the chart as SVG to `svg` and as PNG to `png`, each replacing its file only once
 /// it is complete.
-pub fn write(rows: &[SweepRow], title: &str, svg: &Path, png: &Path) -> Result<(), Error> {
+pub(crate) fn write(rows: &[SweepRow], title: &str, svg: &Path, png: &Path) -> Result<(), Error> {
     super::write_svg_and_png(
         size(rows),
         svg,

@@ -15,18 +15,19 @@ use super::style::{
     Mark, Swatch,
 };
 use super::FONT;
-use crate::apps::runner::SceneOutcome;
-use crate::error::Error;
-use crate::formats::scene::Scene;
-use crate::formats::trace::{TraceRow, HEADER};
-use crate::integrator::Method;
-use crate::profile::ForceProfile;
+use crate::base::error::Error;
+use crate::base::method::Method;
+use crate::model::trace::TraceRow;
+use crate::outputs::trace_csv::HEADER;
+use crate::profile::force::ForceProfile;
+use crate::scene::run::SceneOutcome;
+use crate::scene::types::Scene;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Figure size (px): two columns of three panels, readable at page width.
-pub const SIZE: (u32, u32) = (1400, 1280);
+pub(crate) const SIZE: (u32, u32) = (1400, 1280);
 /// Height (px) of the title strip.
 const HEADER_PX: u32 = 96;
 /// Text sizes (px): title, subtitle, panel titles, axis descriptions, tick labels, legends.
@@ -50,7 +51,7 @@ const STOP: RGBColor = RGBColor(110, 110, 110);
 
 /// The figure's time axis: its unit and how many of them make a second.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TimeAxis {
+pub(crate) struct TimeAxis {
     /// The unit's symbol (`s`, `ms`, `µs`, `ns`).
     pub unit: &'static str,
     /// Units per second.
@@ -59,7 +60,7 @@ pub struct TimeAxis {
 
 impl TimeAxis {
     /// The unit in which a contact of `duration` (s) reads between 1 and 1000.
-    pub fn for_duration(duration: f64) -> Self {
+    pub(crate) fn for_duration(duration: f64) -> Self {
         let (unit, per_second) = if duration >= 1.0 {
             ("s", 1.0)
         } else if duration >= 1e-3 {
@@ -75,7 +76,7 @@ impl TimeAxis {
 
 /// One curve: a column of the trace CSV against t, in the figure's units.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Curve {
+pub(crate) struct Curve {
     /// The trace CSV's header cell of the column drawn ([`HEADER`]).
     pub column: &'static str,
     /// The legend's text.
@@ -91,7 +92,7 @@ pub struct Curve {
 
 /// One panel: its curves against t.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Panel {
+pub(crate) struct Panel {
     /// Title above the panel.
     pub title: String,
     /// The left axis' description, with its unit.
@@ -109,7 +110,7 @@ pub struct Panel {
 
 /// The figure of one run, built from its trace rows.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TraceFigure {
+pub(crate) struct TraceFigure {
     /// The title: the scene, the profile and the method.
     pub title: String,
     /// How to read the figure.
@@ -247,7 +248,7 @@ impl Columns<'_> {
 
 impl TraceFigure {
     /// The figure of `run` (a run of `scene`) from its trace `rows`.
-    pub fn new(scene: &Scene, run: &SceneOutcome, rows: &[TraceRow]) -> Self {
+    pub(crate) fn new(scene: &Scene, run: &SceneOutcome, rows: &[TraceRow]) -> Self {
         let duration = scene.profile.duration();
         let time = TimeAxis::for_duration(duration);
         let columns = Columns {
@@ -298,7 +299,10 @@ impl TraceFigure {
     }
 
     /// Draws the figure on `root`; an error carries the backend's message.
-    pub fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+    pub(crate) fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), String>
     where
         DB::ErrorType: 'static,
     {
@@ -434,7 +438,7 @@ impl TraceFigure {
 
     /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
     /// command-line option in the error for another extension).
-    pub fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
+    pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
         super::write_figure(
             option,
             path,
@@ -482,6 +486,132 @@ fn method_text(scene: &Scene, run: &SceneOutcome, rows: usize, time: &TimeAxis) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::apps::work_precision::plan::study_profile;
+    use crate::base::method::Method;
+    use crate::base::settings::Sampling;
+    use crate::model::trace::Tee;
+    use crate::outputs::trace_csv::{CsvTrace, HEADER};
+    use crate::profile::spec::ProfileKind;
+    use crate::scene::overrides::SolverOverrides;
+    use crate::scene::run::run_scene;
+    use std::path::PathBuf;
+
+    fn scene_path(name: &str) -> PathBuf {
+        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("data/scenes")
+            .join(name)
+    }
+
+    /// The CSV's header and its columns, an empty cell as `None` (read with the csv crate,
+    /// independently of the figure).
+    fn parse(bytes: &[u8]) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
+        let mut r = csv::Reader::from_reader(bytes);
+        let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+        let mut cols = vec![Vec::new(); header.len()];
+        for rec in r.records() {
+            for (j, cell) in rec.unwrap().iter().enumerate() {
+                cols[j].push((!cell.is_empty()).then(|| cell.parse::<f64>().unwrap()));
+            }
+        }
+        (header, cols)
+    }
+
+    /// Every curve of the figure is its CSV column against t: t in µs (these contacts last
+    /// 200-250 µs), theta in degrees, the rest in the CSV's units; every column but t is drawn;
+    /// the stop of sliding is where the CSV's S reaches 0.
+    #[test]
+    fn the_figure_draws_the_trace_csv_columns() {
+        for name in [
+            "stun_cut_slides.toml",
+            "stun_cut_sticks.toml",
+            "head_on_stun.toml",
+        ] {
+            for kind in ProfileKind::ALL {
+                for method in Method::ALL {
+                    let mut scene = Scene::load(&scene_path(name)).unwrap();
+                    scene.profile = study_profile(kind, &scene).unwrap();
+                    let over = SolverOverrides {
+                        method: Some(method),
+                        ..Default::default()
+                    };
+                    let settings = over.apply(&scene.solver).unwrap();
+                    let mut csv = CsvTrace::new(Vec::new()).unwrap();
+                    let mut rows = Vec::new();
+                    let run = {
+                        let mut both = Tee(&mut csv, &mut rows);
+                        run_scene(&scene, &settings, Some((&mut both, Sampling::Steps))).unwrap()
+                    };
+                    let (header, cols) = parse(&csv.finish().unwrap());
+                    let fig = TraceFigure::new(&scene, &run, &rows);
+                    let case = format!("{name} {} {}", kind.name(), method.name());
+                    check_curves(&fig, &header, &cols, &case);
+                    check_stop(&fig, &header, &cols, name, &case);
+                }
+            }
+        }
+    }
+
+    fn check_curves(fig: &TraceFigure, header: &[String], cols: &[Vec<Option<f64>>], case: &str) {
+        assert_eq!(fig.time.unit, "µs", "{case}");
+        let t = &cols[0];
+        let mut drawn: Vec<&str> = Vec::new();
+        for c in fig.panels.iter().flat_map(|p| &p.curves) {
+            let j = header.iter().position(|h| h == c.column).unwrap();
+            let factor = if c.column == "theta (rad)" {
+                180.0 / std::f64::consts::PI
+            } else {
+                1.0
+            };
+            let expected: Vec<(f64, f64)> = t
+                .iter()
+                .zip(&cols[j])
+                .filter_map(|(t, v)| Some((t.unwrap() * 1e6, (*v)? * factor)))
+                .collect();
+            assert_eq!(c.points, expected, "{case}: {}", c.column);
+            drawn.push(c.column);
+        }
+        drawn.sort_unstable();
+        let mut columns: Vec<&str> = HEADER[1..].to_vec();
+        columns.sort_unstable();
+        assert_eq!(drawn, columns, "{case}: every column but t, once");
+    }
+
+    fn check_stop(
+        fig: &TraceFigure,
+        header: &[String],
+        cols: &[Vec<Option<f64>>],
+        name: &str,
+        case: &str,
+    ) {
+        let s = header.iter().position(|h| h == "S (m/s)").unwrap();
+        let slip = &fig.panels[1];
+        let note = slip.note.as_deref().unwrap_or_default();
+        match name {
+            "stun_cut_sticks.toml" => {
+                let stop = fig.stick_time.unwrap_or_else(|| panic!("{case}: no stop"));
+                let at = cols[0]
+                    .iter()
+                    .position(|t| t.unwrap() * 1e6 == stop)
+                    .unwrap_or_else(|| panic!("{case}: a row at the stop"));
+                assert_eq!(cols[s][at], Some(0.0), "{case}");
+                assert!(cols[s][..at].iter().all(|v| v.unwrap() > 0.0), "{case}");
+                assert!(note.starts_with("sliding stops at t = "), "{case}: {note}");
+            }
+            "stun_cut_slides.toml" => {
+                assert_eq!(fig.stick_time, None, "{case}");
+                assert!(cols[s].iter().all(|v| v.unwrap() > 0.0), "{case}");
+                assert_eq!(note, "slides throughout the contact", "{case}");
+            }
+            _ => {
+                assert_eq!(fig.stick_time, None, "{case}: nothing to stop");
+                assert_eq!(note, "no sliding: S(0) = 0", "{case}");
+                assert!(
+                    fig.panels[2].curves[0].points.is_empty(),
+                    "{case}: no theta"
+                );
+            }
+        }
+    }
 
     #[test]
     fn time_axis_reads_the_duration_between_1_and_1000() {

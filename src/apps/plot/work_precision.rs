@@ -9,15 +9,16 @@
 
 use super::style::{draw_legend, legend_row, Drawn, LegendEntry, Line, Mark, Swatch};
 use super::FONT;
-use crate::apps::work_precision::{series, NoOrder, Series, StudyRow};
-use crate::error::Error;
+use crate::apps::work_precision::order::{series, NoOrder, Series};
+use crate::apps::work_precision::plan::StudyRow;
+use crate::base::error::Error;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Where errors of exactly 0 are drawn (dimensionless, scaled error;
 /// docs/formats.md#work-precision-csv).
-pub const ZERO_ERROR_AT: f64 = 1e-17;
+pub(crate) const ZERO_ERROR_AT: f64 = 1e-17;
 
 /// Width and height (px) of one panel: the chart and, at its right, the orders.
 const PANEL: (u32, u32) = (700, 400);
@@ -76,7 +77,7 @@ fn header_height(entries: usize) -> u32 {
 }
 
 /// The figure's size (px) for these rows.
-pub fn size(rows: &[StudyRow]) -> (u32, u32) {
+pub(crate) fn size(rows: &[StudyRow]) -> (u32, u32) {
     let (scenes, profiles) = layout(rows);
     let entries = legend(&series(rows)).len();
     (
@@ -141,7 +142,10 @@ fn swatch(line: &Series<'_>) -> Swatch {
 
 /// Draws the diagram on `root`: the title strip with the legend, then one panel per
 /// profile and scene.
-pub fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, rows: &[StudyRow]) -> Drawn<DB> {
+pub(crate) fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    rows: &[StudyRow],
+) -> Drawn<DB> {
     super::register_fonts();
     root.fill(&WHITE)?;
     let lines = series(rows);
@@ -308,7 +312,7 @@ fn points(line: &Series) -> Vec<(f64, f64, bool)> {
 
 /// Writes the diagram as SVG to `svg` and as PNG to `png`, each replacing its file only
 /// once it is complete.
-pub fn write(rows: &[StudyRow], svg: &Path, png: &Path) -> Result<(), Error> {
+pub(crate) fn write(rows: &[StudyRow], svg: &Path, png: &Path) -> Result<(), Error> {
     super::write_svg_and_png(
         size(rows),
         svg,

@@ -1,0 +1,233 @@
+//! The arrays `resolve_lab` reads: any memory order, alignment and broadcast of (3,) or
+//! (N, 3), read in place; their errors name the argument.
+
+use billiard_contact::batch::LabRows;
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::{Error, LabBall, LabScene};
+use numpy::npyffi::NPY_TYPES;
+use numpy::{
+    PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use std::os::raw::c_int;
+
+/// One input, read through its own byte strides (any memory order and alignment; a (3,)
+/// input has row stride 0, so it is broadcast over the rows).
+#[derive(Clone, Copy)]
+pub(crate) struct Strided {
+    ptr: *const u8,
+    /// Strides in bytes.
+    row: isize,
+    col: isize,
+}
+
+// SAFETY: the pointer reads a numpy buffer that `resolve_lab` keeps alive (and, when it
+// releases the GIL, holds a read-only borrow of) for the whole computation, or a static;
+// nothing writes through it.
+unsafe impl Send for Strided {}
+unsafe impl Sync for Strided {}
+
+/// The seven inputs, each of n rows.
+pub(crate) struct Inputs {
+    views: [Strided; 7],
+    n: usize,
+}
+
+pub(crate) const NAMES: [&str; 7] = ["pa", "va", "wa", "pb", "vb", "wb", "up"];
+pub(crate) static UP_DEFAULT: [f64; 3] = [0.0, 0.0, 1.0];
+
+impl Inputs {
+    #[inline(always)]
+    pub(crate) fn vec(&self, k: usize, i: usize) -> Vector3<f64> {
+        let v = self.views[k];
+        let base = i as isize * v.row;
+        // SAFETY: i < n, and each view addresses an (n, 3) (or broadcast (3,)) float64 array
+        // that outlives the call (checked in `shaped`).
+        unsafe {
+            let at = |off: isize| v.ptr.offset(off).cast::<f64>().read_unaligned();
+            Vector3::new(at(base), at(base + v.col), at(base + 2 * v.col))
+        }
+    }
+}
+
+impl LabRows for Inputs {
+    fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Row i, every component checked finite (the library's lab rows from a file are
+    /// checked as they are parsed; these come as numbers).
+    #[inline(always)]
+    fn row(&self, i: usize) -> Result<LabScene, Error> {
+        let (pa, va, wa) = (self.vec(0, i), self.vec(1, i), self.vec(2, i));
+        let (pb, vb, wb, up) = (
+            self.vec(3, i),
+            self.vec(4, i),
+            self.vec(5, i),
+            self.vec(6, i),
+        );
+        // x * 0 is 0 for finite x, NaN otherwise: one comparison for the 21 numbers.
+        let z = |v: &Vector3<f64>| v.x * 0.0 + v.y * 0.0 + v.z * 0.0;
+        if z(&pa) + z(&va) + z(&wa) + z(&pb) + z(&vb) + z(&wb) + z(&up) != 0.0 {
+            return Err(non_finite(&[pa, va, wa, pb, vb, wb, up]));
+        }
+        Ok(LabScene {
+            a: LabBall {
+                position: pa,
+                velocity: va,
+                spin: wa,
+            },
+            b: LabBall {
+                position: pb,
+                velocity: vb,
+                spin: wb,
+            },
+            up,
+        })
+    }
+}
+
+#[cold]
+#[inline(never)]
+pub(crate) fn non_finite(all: &[Vector3<f64>; 7]) -> Error {
+    for (name, v) in NAMES.iter().zip(all) {
+        for k in 0..3 {
+            if !v[k].is_finite() {
+                return Error::invalid(format!("{name}[{k}]"), v[k], "a finite number");
+            }
+        }
+    }
+    Error::invalid("input", "a non-finite number", "finite numbers")
+}
+
+/// The library's error for a lab scene, with the arguments' names: `pb` and `pa` for the
+/// balls' positions, `up`.
+#[cold]
+#[inline(never)]
+pub(crate) fn with_argument_names(e: Error) -> Error {
+    match e {
+        Error::NotTouching {
+            position_b: [x, y, z],
+            distance,
+            contact_distance,
+            contact_term,
+            tolerance,
+            ..
+        } => Error::invalid(
+            "pb",
+            format!("[{x}, {y}, {z}] (|pb - pa| = {distance} m)"),
+            format!(
+                "the balls must touch: |pb - pa| = {contact_term} = {contact_distance} m within a \
+                 relative {tolerance:e}"
+            ),
+        ),
+        Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } if field == "incoming.lab.up" => Error::InvalidParameter {
+            field: "up".into(),
+            value,
+            expected,
+        },
+        other => other,
+    }
+}
+
+/// An input as a float64 numpy array: itself when it is one (no copy, any strides), else
+/// numpy's conversion (lists, tuples, other dtypes).
+pub(crate) fn float_array<'py>(ob: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    if let Ok(a) = ob.cast::<PyUntypedArray>() {
+        let dtype = a.dtype();
+        if dtype.num() == NPY_TYPES::NPY_DOUBLE as c_int
+            && dtype.is_native_byteorder() != Some(false)
+        {
+            // SAFETY: a numpy array of native float64.
+            return Ok(unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() }.clone());
+        }
+    }
+    let py = ob.py();
+    // SAFETY: PyArray_FromAny with a new reference to the float64 descriptor (stolen), the
+    // standard conversion of any array-like; the result is a new reference or NULL.
+    let array = unsafe {
+        let ptr = numpy::PY_ARRAY_API.PyArray_FromAny(
+            py,
+            ob.as_ptr(),
+            numpy::dtype::<f64>(py).into_ptr().cast(),
+            0,
+            0,
+            numpy::npyffi::NPY_ARRAY_FORCECAST,
+            std::ptr::null_mut(),
+        );
+        Bound::from_owned_ptr_or_err(py, ptr)?
+    };
+    Ok(array.cast_into::<PyArrayDyn<f64>>()?)
+}
+
+/// The inputs and the number of rows n; `single` when every input has shape (3,).
+pub(crate) fn shaped(
+    arrays: &[Option<Bound<'_, PyArrayDyn<f64>>>; 7],
+) -> PyResult<(Inputs, usize, bool)> {
+    let mut n: Option<(usize, &str)> = None;
+    let mut views = [Strided {
+        ptr: UP_DEFAULT.as_ptr().cast(),
+        row: 0,
+        col: 8,
+    }; 7];
+    for (k, a) in arrays.iter().enumerate() {
+        let Some(a) = a else { continue };
+        let shape = a.shape();
+        let strides = a.strides();
+        match *shape {
+            [3] => {
+                views[k] = Strided {
+                    ptr: a.data() as *const u8,
+                    row: 0,
+                    col: strides[0],
+                }
+            }
+            [rows, 3] => {
+                match n {
+                    None => n = Some((rows, NAMES[k])),
+                    Some((m, first)) if m != rows => {
+                        return Err(PyValueError::new_err(format!(
+                            "{} has {rows} rows but {first} has {m}: arrays of shape (N, 3) \
+                             must have the same N",
+                            NAMES[k]
+                        )))
+                    }
+                    _ => {}
+                }
+                views[k] = Strided {
+                    ptr: a.data() as *const u8,
+                    row: strides[0],
+                    col: strides[1],
+                }
+            }
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "{} has shape {}: expected (3,) or (N, 3)",
+                    NAMES[k],
+                    shape_str(shape)
+                )))
+            }
+        }
+    }
+    let rows = n.map_or(1, |(m, _)| m);
+    Ok((Inputs { views, n: rows }, rows, n.is_none()))
+}
+
+pub(crate) fn shape_str(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}

@@ -1,0 +1,321 @@
+//! `BallBall`: two balls and their contact, built with the library's scene builder, and
+//! `BallBall.resolve_lab`: many lab-frame collisions from numpy arrays, in Rust, without the
+//! GIL. The numpy arrays are read in place and the results written straight into the
+//! output arrays by the library's `batch::resolve_lab_into` (the change of frame, the
+//! method and the throw angle are the library's, as for the command line's lab-frame
+//! batch rows).
+
+use crate::ball::Ball;
+use crate::errors::to_py;
+use crate::friction::Mu;
+use crate::inputs::{float_array, shaped, with_argument_names};
+use crate::outputs::{single_collision, Outputs};
+use crate::settings;
+use billiard_contact::batch::{resolve_lab_into, BatchSetup, PARALLEL_LAB_ROWS};
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::{BallPair, Error, Friction, Method, Scene};
+use numpy::PyArrayMethods;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use billiard_contact::profile::{ProfileKind, ProfileSpec};
+use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
+
+/// Two balls and their contact: two identical balls of mass (kg), radius (m) and alpha
+/// (I = alpha m r^2, default 0.4), or balls of their own, a=Ball(...) and b=Ball(...)
+/// (different mass, size or inertia); ball-ball friction mu (a number, or
+/// SpeedDependentFriction), restitution e (P = (1 + e) m* v_n with the reduced mass
+/// m* = m_A m_B / (m_A + m_B) and the relative approach speed v_n; (1 + e) m U(0) for
+/// identical balls), the normal-force profile and its duration (s; used by the
+/// time-stepping methods and for stick times; the closed form does not depend on them),
+/// and the effects `friction` and `stick`.
+///
+/// Bad values raise ValueError with the command line's message, e.g.
+/// "balls.mass = -1: > 0 kg".
+#[pyclass(frozen, module = "billiard_contact._core", name = "BallBall")]
+pub struct BallBall {
+    scene: Scene,
+    /// The closed form over this model (resolve_lab's default).
+    closed_form: BatchSetup,
+    /// Given as a=Ball(...), b=Ball(...) (else mass, radius, alpha).
+    by_ball: bool,
+    mu: Mu,
+    restitution: f64,
+    profile: String,
+    duration: f64,
+    friction: bool,
+    stick: bool,
+}
+
+impl BallBall {
+    /// The ball both A and B are, when they are identical.
+    fn shared(&self) -> Option<billiard_contact::Ball> {
+        let BallPair { a, b } = self.scene.balls;
+        (a == b).then_some(a)
+    }
+}
+
+#[pymethods]
+impl BallBall {
+    #[new]
+    #[pyo3(signature = (*, mass = None, radius = None, alpha = None, a = None, b = None, mu,
+                        restitution = 1.0, profile = "half-sine", duration = 2.5e-4,
+                        friction = true, stick = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        mass: Option<f64>,
+        radius: Option<f64>,
+        alpha: Option<f64>,
+        a: Option<&Bound<'_, Ball>>,
+        b: Option<&Bound<'_, Ball>>,
+        mu: Mu,
+        restitution: f64,
+        profile: &str,
+        duration: f64,
+        friction: bool,
+        stick: bool,
+    ) -> PyResult<Self> {
+        // The model is a scene (with a placeholder incoming state): the library's scene
+        // builder validates every parameter and names it as a scene file does.
+        let (a, b) = (a.map(|x| *x.get()), b.map(|x| *x.get()));
+        let balls = SceneBuilder::balls(
+            [mass, radius, alpha],
+            a.map(|x| Ok(x.ball)),
+            b.map(|x| Ok(x.ball)),
+        )
+        .map_err(to_py)?;
+        let friction_law = match mu {
+            Mu::Constant(x) => Friction::constant(x).map_err(to_py)?,
+            Mu::Speed(s) => s.friction,
+        };
+        let force = profile_spec(profile, duration).map_err(to_py)?;
+        let placeholder = CmState::new(Vector3::x(), Vector3::zeros(), Vector3::zeros());
+        let scene = SceneBuilder::new(balls, friction_law, Incoming::Cm(placeholder))
+            .name("BallBall")
+            .restitution(restitution)
+            .force(ForceSpec::Profile(force))
+            .effects(Effects {
+                friction,
+                stick,
+                ..Effects::default()
+            })
+            .build()
+            .map_err(to_py)?;
+        let closed_form = BatchSetup::from_scene(
+            &scene,
+            settings::for_batch(None, None, None).map_err(to_py)?,
+        );
+        Ok(BallBall {
+            scene,
+            closed_form,
+            by_ball: a.is_some() || b.is_some(),
+            mu,
+            restitution,
+            profile: profile.to_string(),
+            duration,
+            friction,
+            stick,
+        })
+    }
+
+    /// Resolves collisions given in the lab frame.
+    ///
+    /// pa, va, wa, pb, vb, wb: positions (m), velocities (m/s) and spins (rad/s) of
+    /// balls A and B, each of shape (3,) or (N, 3) (any memory order; lists work too; a
+    /// (3,) array is used for every row). up: the direction away from the table (need
+    /// not be unit), (3,) or (N, 3), default (0, 0, 1). The centres must touch:
+    /// |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
+    ///
+    /// method: None (the closed form), "closed-form", "rk4", "dopri5" or "dop853";
+    /// rtol: relative tolerance of the adaptive methods (atol = rtol), default 1e-10;
+    /// time_transform: whether the time-stepping methods integrate in the smoothing
+    /// change of time variable (the library's default, True; it acts on the "hertz" and
+    /// "sine-power" profiles).
+    ///
+    /// Returns a dict of numpy arrays: "va", "wa", "vb", "wb" (outgoing velocities, m/s,
+    /// and spins, rad/s; the input's shape), "impulse" (normal impulse P, N s),
+    /// "tangential_impulse" (J, N s), "sticks" (bool: sliding stopped during contact),
+    /// "throw_angle_deg" (degrees, counter-clockwise about up, from the line of centres
+    /// to B's horizontal velocity change; NaN where the library has none: B's horizontal
+    /// velocity change vanishes, or the line of centres is vertical), each of shape (N,),
+    /// or for one collision a numpy scalar
+    /// (np.float64, np.bool_: shape (), as numpy's own reductions return).
+    ///
+    /// Bad input raises ValueError naming the row and the field, with the command
+    /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.
+    #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None,
+                        time_transform = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn resolve_lab<'py>(
+        &self,
+        py: Python<'py>,
+        pa: &Bound<'py, PyAny>,
+        va: &Bound<'py, PyAny>,
+        wa: &Bound<'py, PyAny>,
+        pb: &Bound<'py, PyAny>,
+        vb: &Bound<'py, PyAny>,
+        wb: &Bound<'py, PyAny>,
+        up: Option<&Bound<'py, PyAny>>,
+        method: Option<&str>,
+        rtol: Option<f64>,
+        time_transform: Option<bool>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let arrays = [
+            Some(float_array(pa)?),
+            Some(float_array(va)?),
+            Some(float_array(wa)?),
+            Some(float_array(pb)?),
+            Some(float_array(vb)?),
+            Some(float_array(wb)?),
+            up.map(float_array).transpose()?,
+        ];
+        let (inputs, n, single) = shaped(&arrays)?;
+        let own_setup;
+        let setup = if method.is_none() && rtol.is_none() && time_transform.is_none() {
+            &self.closed_form
+        } else {
+            own_setup = BatchSetup::from_scene(
+                &self.scene,
+                settings::for_batch(method, rtol, time_transform).map_err(to_py)?,
+            );
+            &own_setup
+        };
+        if single && setup.settings.method() == Method::ClosedForm {
+            return single_collision(py, setup, &inputs, arrays);
+        }
+        let out = Outputs::new(py, n, single);
+        // SAFETY: fresh C-contiguous arrays, written only here (see `Outputs`).
+        let columns = unsafe { out.columns() };
+        let result = if n >= PARALLEL_LAB_ROWS || setup.settings.method() != Method::ClosedForm {
+            // Without the GIL (the library spreads the rows over its threads from
+            // PARALLEL_LAB_ROWS on; time stepping takes long even for one row): hold
+            // read-only borrows, so no Rust code writes the inputs meanwhile (numpy's
+            // borrow tracking).
+            let borrows = arrays
+                .iter()
+                .flatten()
+                .map(|a| a.try_readonly())
+                .collect::<Result<Vec<_>, _>>()?;
+            let r = py.detach(|| resolve_lab_into(setup, &inputs, columns));
+            drop(borrows);
+            r
+        } else {
+            // A few rows with the GIL held: read straight from the buffers.
+            resolve_lab_into(setup, &inputs, columns)
+        };
+        drop(arrays);
+        if let Err((i, e)) = result {
+            let e = with_argument_names(e);
+            let msg = if single {
+                e.to_string()
+            } else {
+                format!("row {i}: {e}")
+            };
+            return Err(if e.is_bad_input() {
+                PyValueError::new_err(msg)
+            } else {
+                pyo3::exceptions::PyRuntimeError::new_err(msg)
+            });
+        }
+        out.into_dict(py)
+    }
+
+    /// Mass m (kg) of both balls; None when A and B differ.
+    #[getter]
+    fn mass(&self) -> Option<f64> {
+        self.shared().map(|b| b.mass())
+    }
+
+    /// Radius r (m) of both balls; None when A and B differ.
+    #[getter]
+    fn radius(&self) -> Option<f64> {
+        self.shared().map(|b| b.radius())
+    }
+
+    /// I = alpha m r^2, alpha of both balls; None when A and B differ.
+    #[getter]
+    fn alpha(&self) -> Option<f64> {
+        self.shared().map(|b| b.alpha())
+    }
+
+    /// Ball A.
+    #[getter]
+    fn a(&self) -> Ball {
+        Ball {
+            ball: self.scene.balls.a,
+        }
+    }
+
+    /// Ball B.
+    #[getter]
+    fn b(&self) -> Ball {
+        Ball {
+            ball: self.scene.balls.b,
+        }
+    }
+
+    /// Ball-ball friction: a number or SpeedDependentFriction.
+    #[getter]
+    fn mu(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        Ok(match self.mu {
+            Mu::Constant(x) => x.into_pyobject(py)?.into_any().unbind(),
+            Mu::Speed(s) => Bound::new(py, s)?.into_any().unbind(),
+        })
+    }
+
+    /// Restitution e: P = (1 + e) m U(0).
+    #[getter]
+    fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    fn __repr__(&self) -> String {
+        let mu = match self.mu {
+            Mu::Constant(x) => format!("{x:?}"),
+            Mu::Speed(s) => s.__repr__(),
+        };
+        let balls = match self.shared() {
+            Some(ball) if !self.by_ball => format!(
+                "mass={:?}, radius={:?}, alpha={:?}",
+                ball.mass(),
+                ball.radius(),
+                ball.alpha()
+            ),
+            _ => format!("a={}, b={}", self.a().__repr__(), self.b().__repr__()),
+        };
+        format!(
+            "BallBall({balls}, mu={mu}, restitution={:?}, \
+             profile=\"{}\", duration={:?}, friction={}, stick={})",
+            self.restitution,
+            self.profile,
+            self.duration,
+            if self.friction { "True" } else { "False" },
+            if self.stick { "True" } else { "False" },
+        )
+    }
+}
+
+/// The profile `profile=` names, with the contact duration `duration` (s): the scene
+/// file's shapes but `tabulated`, whose points come from a file (`run_toml` reads it).
+fn profile_spec(profile: &str, duration: f64) -> Result<ProfileSpec, Error> {
+    Ok(match profile.parse::<ProfileKind>()? {
+        ProfileKind::HalfSine => ProfileSpec::HalfSine { duration },
+        ProfileKind::Hertz => ProfileSpec::Hertz {
+            duration: Some(duration),
+        },
+        ProfileKind::SinePower => ProfileSpec::SinePower {
+            duration: Some(duration),
+            exponent: None,
+        },
+        ProfileKind::Rectangle => ProfileSpec::Rectangle { duration },
+        ProfileKind::Tabulated => {
+            return Err(Error::invalid(
+                "profile",
+                "\"tabulated\"",
+                "half-sine, hertz, sine-power or rectangle (a tabulated profile takes its \
+                 points from a file: give it in a scene to run or run_toml)",
+            ))
+        }
+    })
+}

@@ -1,0 +1,8 @@
+//! What a run writes: the JSON report and the text summary, the trace CSV, the ball path
+//! CSV, and files written whole or not at all.
+
+pub(crate) mod atomic_file;
+pub(crate) mod ball_paths;
+pub(crate) mod report;
+pub(crate) mod summary;
+pub(crate) mod trace_csv;

@@ -1,0 +1,150 @@
+//! The trace CSV (docs/formats.md#trace-csv): one row per [`TraceRow`], streaming.
+
+use crate::base::error::Error;
+use crate::base::number::shortest;
+use crate::base::validate::finite_output;
+use crate::model::trace::{TraceRow, TraceSink};
+use std::io::Write;
+
+/// The header cells of the trace CSV.
+pub(crate) const HEADER: [&str; 15] = [
+    "t (s)",
+    "f (N)",
+    "p (N s)",
+    "U (m/s)",
+    "V (m/s)",
+    "W (m/s)",
+    "omega_a_x (rad/s)",
+    "omega_a_y (rad/s)",
+    "omega_a_z (rad/s)",
+    "omega_b_x (rad/s)",
+    "omega_b_y (rad/s)",
+    "omega_b_z (rad/s)",
+    "S (m/s)",
+    "theta (rad)",
+    "H_sfr (J)",
+];
+
+/// The header cell of the compression column, written after [`HEADER`] with a contact law.
+pub(crate) const COMPRESSION_HEADER: &str = "delta (m)";
+
+/// Writes trace rows as CSV, streaming.
+pub struct CsvTrace<W: Write> {
+    out: csv::Writer<W>,
+    rows: u64,
+    /// Whether rows carry the compression column.
+    compression: bool,
+}
+
+impl<W: Write> CsvTrace<W> {
+    /// A writer that starts with the header line.
+    pub fn new(out: W) -> Result<Self, Error> {
+        CsvTrace::with_columns(out, false)
+    }
+
+    /// A writer that starts with the header line, with the column `delta (m)` of a
+    /// contact law when `compression` is true.
+    pub fn with_columns(out: W, compression: bool) -> Result<Self, Error> {
+        let mut out = csv::Writer::from_writer(out);
+        for cell in HEADER {
+            out.write_field(cell)?;
+        }
+        if compression {
+            out.write_field(COMPRESSION_HEADER)?;
+        }
+        out.write_record(None::<&[u8]>)?;
+        Ok(CsvTrace {
+            out,
+            rows: 0,
+            compression,
+        })
+    }
+
+    /// Rows written so far.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Flushes and returns the underlying writer.
+    pub fn finish(self) -> Result<W, Error> {
+        self.out
+            .into_inner()
+            .map_err(|e| Error::io("trace", e.into_error()))
+    }
+}
+
+impl<W: Write> TraceSink for CsvTrace<W> {
+    fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
+        for (name, v) in HEADER.iter().zip(r.values()) {
+            match v {
+                Some(v) => {
+                    let v = finite_output(v, || format!("trace column {name} at t = {}", r.t))?;
+                    // + 0.0: a zero is written 0.0, never -0.0 (a contact law's p(0) and
+                    // H_sfr(0) come out as -0.0).
+                    self.out.write_field(shortest(v + 0.0))?;
+                }
+                None => self.out.write_field("")?,
+            }
+        }
+        if self.compression {
+            let delta = r.compression.unwrap_or(0.0);
+            let delta = finite_output(delta, || format!("trace column delta at t = {}", r.t))?;
+            self.out.write_field(shortest(delta + 0.0))?;
+        }
+        self.out.write_record(None::<&[u8]>)?;
+        self.rows += 1;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::state::CmState;
+    use nalgebra::Vector3;
+
+    /// `rows()` counts the rows written, one line each after the header.
+    #[test]
+    fn counts_the_rows_written() {
+        let mut trace = CsvTrace::new(Vec::new()).unwrap();
+        assert_eq!(trace.rows(), 0);
+        let zero = Vector3::zeros();
+        for k in 0..3 {
+            let row = TraceRow {
+                t: k as f64 * 1e-4,
+                force: 10.0,
+                impulse: k as f64 * 1e-3,
+                state: CmState::new(Vector3::x(), zero, zero),
+                slip_speed: 0.5,
+                theta: Some(0.25),
+                heat_sliding: 0.0,
+                compression: None,
+            };
+            trace.row(&row).unwrap();
+        }
+        assert_eq!(trace.rows(), 3);
+        let text = String::from_utf8(trace.finish().unwrap()).unwrap();
+        assert_eq!(text.lines().count(), 4);
+    }
+
+    /// Zeros are written 0.0 whatever their sign: -0.0 in a CSV reads as a value below 0.
+    #[test]
+    fn negative_zero_is_written_as_zero() {
+        let mut trace = CsvTrace::with_columns(Vec::new(), true).unwrap();
+        let z = Vector3::new(-0.0, -0.0, -0.0);
+        let row = TraceRow {
+            t: 0.0,
+            force: -0.0,
+            impulse: -0.0,
+            state: CmState::new(z, z, z),
+            slip_speed: -0.0,
+            theta: Some(-0.0),
+            heat_sliding: -0.0,
+            compression: Some(-0.0),
+        };
+        trace.row(&row).unwrap();
+        let text = String::from_utf8(trace.finish().unwrap()).unwrap();
+        let cells: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+        assert_eq!(cells, vec!["0.0"; 16], "{text}");
+    }
+}

@@ -1,0 +1,144 @@
+//! A validated scene and its incoming state: what the scene file, the builder and the
+//! command line's options make, and what a run reads.
+
+use crate::base::error::Error;
+use crate::base::settings::SolverSettings;
+use crate::model::collision::Collision;
+use crate::model::contact_law::ContactLaw;
+use crate::model::effects::Effects;
+use crate::model::frame::{Frame, LabScene};
+use crate::model::material::{HertzContact, Material};
+use crate::model::params::{BallPair, Contact};
+use crate::model::state::CmState;
+use crate::profile::spec::Profile;
+use crate::scene::overrides::SolverOverrides;
+use crate::table_phase::cloth::Table;
+use crate::table_phase::params::{TableParams, TableSize};
+use std::path::PathBuf;
+
+/// The incoming state as a scene gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Incoming {
+    /// Directly in the paper's centre-of-mass frame.
+    Cm(CmState),
+    /// Both balls in the lab frame.
+    Lab(LabScene),
+}
+
+/// A lab scene with the frame between it and the paper's centre-of-mass frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LabFrame<'a> {
+    /// The change of frame.
+    pub frame: Frame,
+    /// The lab scene.
+    pub lab: &'a LabScene,
+}
+
+impl Incoming {
+    /// The paper's centre-of-mass state of the balls `balls`; for lab input also the lab
+    /// scene with its frame (the balls must touch, see [`Frame::of_pair`]).
+    pub fn to_cm(&self, balls: &BallPair) -> Result<(CmState, Option<LabFrame<'_>>), Error> {
+        Ok(match self {
+            Incoming::Cm(cm) => (*cm, None),
+            Incoming::Lab(lab) => {
+                let frame = Frame::of_pair(lab, balls)?;
+                (frame.to_cm(lab), Some(LabFrame { frame, lab }))
+            }
+        })
+    }
+}
+
+/// A validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name shown in reports.
+    pub name: String,
+    /// The balls: `[balls]` (identical; `Ball::into()` makes the pair) or `[balls.a]` and
+    /// `[balls.b]`.
+    pub balls: BallPair,
+    /// The balls' material (`balls.youngs_modulus`, `balls.poisson_ratio`, the same for
+    /// both balls), when given: the profile's duration then follows from it
+    /// ([`Scene::hertz`]).
+    pub material: Option<Material>,
+    /// Friction and impulse rule.
+    pub contact: Contact,
+    /// Normal-force profile. With a contact law, the elastic Hertz pulse of the law's
+    /// stiffness at the approach speed (the law's time unit; the law decides the force).
+    pub profile: Profile,
+    /// The contact law (`[contact.law]`), when the force comes from the compression.
+    pub law: Option<ContactLaw>,
+    /// Incoming state.
+    pub incoming: Incoming,
+    /// Solver settings (`[solver]`, defaults when absent).
+    pub solver: SolverSettings,
+    /// The `[solver]` section as written (what it overrides; empty when absent), for the
+    /// warnings about keys the scene does not use.
+    pub solver_given: SolverOverrides,
+    /// Effects (`[effects]`).
+    pub effects: Effects,
+    /// The file it was read from (`None` for the built-in scene).
+    pub source: Option<PathBuf>,
+    /// The cloth (`[table]`) as given; `None` when the section is absent (defaults apply
+    /// when the effect `table` is on).
+    pub table: Option<TableParams>,
+    /// The playing area between the cushions (`[table] length, width`), drawn on the top
+    /// view; `None` when not given.
+    pub table_size: Option<TableSize>,
+}
+
+impl Scene {
+    /// The cloth under the balls when the effect `table` is on (`None` when off): needs a
+    /// lab scene whose line of centres is horizontal, both centres r above the cloth.
+    pub fn cloth(&self) -> Result<Option<Table>, Error> {
+        match &self.incoming {
+            Incoming::Lab(lab) => self.cloth_under(lab),
+            Incoming::Cm(_) if self.effects.table => Err(table_needs_lab_scene()),
+            Incoming::Cm(_) => Ok(None),
+        }
+    }
+
+    /// The cloth under the balls of the lab scene `lab` when the effect `table` is on
+    /// (`None` when off).
+    pub fn cloth_under(&self, lab: &LabScene) -> Result<Option<Table>, Error> {
+        if !self.effects.table {
+            return Ok(None);
+        }
+        Table::new(
+            self.table.unwrap_or_default(),
+            lab.up,
+            [lab.a.position, lab.b.position],
+            [self.balls.a.radius(), self.balls.b.radius()],
+        )
+        .map(Some)
+    }
+
+    /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
+    /// lab scene.
+    pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
+        let (cm, lab) = self.incoming.to_cm(&self.balls)?;
+        Ok((
+            Collision::new(self.balls, self.contact, self.effects, cm)?,
+            lab,
+        ))
+    }
+
+    /// Hertz's contact of the balls' material at the scene's approach speed, when the scene
+    /// gives the material for a profile (`None` otherwise, and with a contact law): the profile's duration is its contact time.
+    pub fn hertz(&self) -> Result<Option<HertzContact>, Error> {
+        let (Some(material), None) = (&self.material, &self.law) else {
+            return Ok(None);
+        };
+        let (c, _) = self.collision()?;
+        HertzContact::of_pair(&self.balls, material, c.incoming.u_cm.x).map(Some)
+    }
+}
+
+/// The effect `table` in a centre-of-mass scene.
+pub(crate) fn table_needs_lab_scene() -> Error {
+    Error::invalid(
+        "effects.table",
+        true,
+        "a scene with [incoming.lab]: the table needs the balls' positions and `up` \
+         (the centre-of-mass frame has no cloth)",
+    )
+}

@@ -1,0 +1,6 @@
+//! One collision solved: the outcome of a run under a force profile or a contact law, with
+//! the checks against the closed form.
+
+pub(crate) mod check;
+pub(crate) mod law_outcome;
+pub(crate) mod outcome;
