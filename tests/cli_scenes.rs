@@ -10,6 +10,7 @@ use crate::cli_common;
 use crate::common;
 
 use cli_common::fresh_dir;
+use cli_common::json_contract::{check_contract, number, vector3};
 use common::amax;
 use common::scene_file::{read_scene, SceneRef};
 use common::table::{Cloth, RollOut};
@@ -217,130 +218,11 @@ fn profile_scenes() -> Vec<PathBuf> {
         .collect()
 }
 
-fn arr(v: &Value) -> Vector3<f64> {
-    let a = v.as_array().expect("array");
-    assert_eq!(a.len(), 3);
-    Vector3::new(
-        a[0].as_f64().unwrap(),
-        a[1].as_f64().unwrap(),
-        a[2].as_f64().unwrap(),
-    )
-}
-
-fn f(v: &Value, key: &str) -> f64 {
-    v[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
-}
-
-// ---------------------------------------------------------------------------------------
-// The JSON contract
-// ---------------------------------------------------------------------------------------
-
-/// Fields that may be null (docs/formats.md): nothing else.
-const NULLABLE: [&str; 4] = ["theta", "stick_time", "stick_impulse", "throw_angle_deg"];
-
-/// Walks the report: no null outside the nullable fields, every number finite.
-fn walk(v: &Value, path: &str, nulls: &mut Vec<String>) {
-    match v {
-        Value::Null => nulls.push(path.to_string()),
-        Value::Number(n) => {
-            if let Some(x) = n.as_f64() {
-                assert!(x.is_finite(), "{path} = {x}");
-            }
-        }
-        Value::Array(a) => a
-            .iter()
-            .enumerate()
-            .for_each(|(i, x)| walk(x, &format!("{path}[{i}]"), nulls)),
-        Value::Object(o) => o.iter().for_each(|(k, x)| {
-            let p = if path.is_empty() {
-                k.clone()
-            } else {
-                format!("{path}.{k}")
-            };
-            walk(x, &p, nulls)
-        }),
-        _ => {}
-    }
-}
-
-fn check_contract(j: &Value, lab: bool, method: &str, what: &str) {
-    for key in [
-        "collision",
-        "impulse",
-        "s0",
-        "theta",
-        "s_out",
-        "sticks",
-        "stick_time",
-        "stick_impulse",
-        "tangential_impulse",
-        "heat",
-        "heat_sliding",
-        "cm_out",
-        "throw_angle_deg",
-        "check",
-        "solver",
-        "effects",
-        "warnings",
-    ] {
-        assert!(j.get(key).is_some(), "{what}: key {key} missing");
-    }
-    for key in ["u", "omega_a", "omega_b"] {
-        arr(&j["cm_out"][key]);
-    }
-    if lab {
-        for ball in ["a", "b"] {
-            for key in ["velocity", "spin"] {
-                arr(&j["lab_out"][ball][key]);
-            }
-        }
-    }
-    for key in [
-        "theta_drift",
-        "closed_form_error",
-        "momentum_error",
-        "angular_momentum_error",
-        "energy_balance_error",
-    ] {
-        let x = f(&j["check"], key);
-        assert!(x >= 0.0, "{what}: check.{key} = {x}");
-    }
-    assert_eq!(j["solver"]["method"], method, "{what}");
-    for key in ["rhs_evaluations", "accepted_steps", "rejected_steps"] {
-        assert!(j["solver"][key].is_u64(), "{what}: solver.{key}");
-    }
-    // Every step tried, accepted or rejected, evaluates the equations at least once.
-    let count = |key: &str| u128::from(j["solver"][key].as_u64().unwrap());
-    assert!(
-        count("accepted_steps") + count("rejected_steps") <= count("rhs_evaluations"),
-        "{what}: {}",
-        j["solver"]
-    );
-    assert!(j["collision"].is_boolean() && j["sticks"].is_boolean());
-    assert!(j["effects"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(Value::is_string));
-    assert!(j["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(Value::is_string));
-    let mut nulls = Vec::new();
-    walk(j, "", &mut nulls);
-    for n in nulls {
-        assert!(NULLABLE.contains(&n.as_str()), "{what}: {n} is null");
-    }
-}
-
 /// The duration, and the `hertz` object exactly when the material sets the duration.
 fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
     let rel = |got: f64, want: f64| ((got - want) / want).abs();
     assert!(
-        rel(f(j, "duration"), sc.duration) <= 1e-12,
+        rel(number(j, "duration"), sc.duration) <= 1e-12,
         "{what}: duration"
     );
     match &sc.hertz {
@@ -348,12 +230,15 @@ fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
         Some(h) => {
             let got = &j["hertz"];
             assert!(
-                rel(f(got, "max_compression"), h.max_compression) <= 1e-12,
+                rel(number(got, "max_compression"), h.max_compression) <= 1e-12,
                 "{what}"
             );
-            assert!(rel(f(got, "peak_force"), h.peak_force) <= 1e-12, "{what}");
             assert!(
-                rel(f(got, "contact_radius"), h.contact_radius) <= 1e-12,
+                rel(number(got, "peak_force"), h.peak_force) <= 1e-12,
+                "{what}"
+            );
+            assert!(
+                rel(number(got, "contact_radius"), h.contact_radius) <= 1e-12,
                 "{what}"
             );
         }
@@ -371,23 +256,23 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
     let (u, wa, wb) = sc.to_cm(&want.out);
     let cm = &j["cm_out"];
     let mut errs = vec![
-        amax(&(arr(&cm["u"]) - u)) / v,
-        amax(&(arr(&cm["omega_a"]) - wa)) / spin,
-        amax(&(arr(&cm["omega_b"]) - wb)) / spin,
-        (f(j, "impulse") - want.impulse).abs() / imp,
-        (f(j, "s0") - want.s0).abs() / v,
-        (f(j, "s_out") - want.s_out).abs() / v,
-        (f(j, "tangential_impulse") - want.tangential).abs() / imp,
-        (f(j, "heat") - want.heat).abs() / energy,
-        (f(j, "heat_sliding") - want.heat_sliding).abs() / energy,
+        amax(&(vector3(&cm["u"]) - u)) / v,
+        amax(&(vector3(&cm["omega_a"]) - wa)) / spin,
+        amax(&(vector3(&cm["omega_b"]) - wb)) / spin,
+        (number(j, "impulse") - want.impulse).abs() / imp,
+        (number(j, "s0") - want.s0).abs() / v,
+        (number(j, "s_out") - want.s_out).abs() / v,
+        (number(j, "tangential_impulse") - want.tangential).abs() / imp,
+        (number(j, "heat") - want.heat).abs() / energy,
+        (number(j, "heat_sliding") - want.heat_sliding).abs() / energy,
     ];
     if sc.lab {
         let lab = &j["lab_out"];
         errs.extend([
-            amax(&(arr(&lab["a"]["velocity"]) - want.out.va)) / v,
-            amax(&(arr(&lab["b"]["velocity"]) - want.out.vb)) / v,
-            amax(&(arr(&lab["a"]["spin"]) - want.out.wa)) / spin,
-            amax(&(arr(&lab["b"]["spin"]) - want.out.wb)) / spin,
+            amax(&(vector3(&lab["a"]["velocity"]) - want.out.va)) / v,
+            amax(&(vector3(&lab["b"]["velocity"]) - want.out.vb)) / v,
+            amax(&(vector3(&lab["a"]["spin"]) - want.out.wa)) / spin,
+            amax(&(vector3(&lab["b"]["spin"]) - want.out.wb)) / spin,
         ]);
     } else {
         assert!(
@@ -403,7 +288,8 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
         tol.state
     );
     assert!(
-        (f(&j["check"], "closed_form_error") - errs[..3].iter().cloned().fold(0.0, f64::max)).abs()
+        (number(&j["check"], "closed_form_error") - errs[..3].iter().cloned().fold(0.0, f64::max))
+            .abs()
             <= 1e-13,
         "{what}: check.closed_form_error differs from the independent one"
     );
@@ -413,7 +299,7 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
     if want.s0 == 0.0 {
         assert!(j["theta"].is_null(), "{what}: theta with S0 = 0");
     } else {
-        let th = f(j, "theta");
+        let th = number(j, "theta");
         assert!(th > -PI && th <= PI);
         let d = (want.s0 * th.cos() - slip.y)
             .abs()
@@ -435,7 +321,7 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
             .dot(&sc.up)
             .atan2(line.dot(&dvh))
             .to_degrees();
-        let got = f(j, "throw_angle_deg");
+        let got = number(j, "throw_angle_deg");
         note(worst, format!("{method} throw_deg"), (got - want_deg).abs());
         assert!(
             (got - want_deg).abs() <= tol.throw_deg,
@@ -458,7 +344,7 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
         match want.p_stick {
             Some(p) => {
                 // The impulse at which sliding would stop, past P: measured worst 1.83e-16.
-                let d = (f(j, "stick_impulse") - p).abs() / p;
+                let d = (number(j, "stick_impulse") - p).abs() / p;
                 note(worst, format!("{method} p_stick past P"), d);
                 assert!(d <= 2e-15, "{what}: stick_impulse {d:e} off p_stick");
             }
@@ -467,17 +353,17 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
         return;
     }
     let p_stick = want.p_stick.unwrap();
-    let t = f(j, "stick_time");
+    let t = number(j, "stick_time");
     if want.s0 == 0.0 {
         assert_eq!(t, 0.0, "{what}");
-        assert_eq!(f(j, "stick_impulse"), 0.0, "{what}");
+        assert_eq!(number(j, "stick_impulse"), 0.0, "{what}");
         return;
     }
     let exact = sc.duration * sc.profile.time(p_stick / want.impulse);
     let dt = (t - exact).abs() / sc.duration;
     note(worst, format!("{method} stick_time"), dt);
     assert!(dt <= tol.stick_time, "{what}: stick time {t} vs {exact}");
-    let dp = (f(j, "stick_impulse") - p_stick).abs() / want.impulse;
+    let dp = (number(j, "stick_impulse") - p_stick).abs() / want.impulse;
     note(worst, format!("{method} stick_impulse"), dp);
     assert!(
         dp <= tol.stick_impulse,
@@ -508,31 +394,31 @@ fn check_table(
     let v = sc.pair.v_ref(b.r);
     let (time, speed, spin, length) = (end, v, v / b.r, v * end);
     let impulse = b.m * v + b.m * cloth.g * end;
-    let mut errs = vec![(f(table, "end_time") - end).abs() / time];
+    let mut errs = vec![(number(table, "end_time") - end).abs() / time];
     let (mut angles, mut heights) = (Vec::new(), Vec::new());
     let line = sc.pair.n;
     for (k, (key, x)) in ["a", "b"].iter().zip(&outs).enumerate() {
         let got = &table[key];
         let imp = &got["impact"];
-        let d = |v: &Value, w: Vector3<f64>, scale: f64| amax(&(arr(v) - w)) / scale;
-        let t = |key: &str, w: f64| (f(got, key) - w).abs() / time;
+        let d = |v: &Value, w: Vector3<f64>, scale: f64| amax(&(vector3(v) - w)) / scale;
+        let t = |key: &str, w: f64| (number(got, key) - w).abs() / time;
         errs.extend([
             t("hop_time", x.hop_time),
             t("settle_time", x.settle_time),
             t("slide_time", x.slide_time),
             t("roll_time", x.roll_time),
-            (f(imp, "time") - x.impact.time).abs() / time,
+            (number(imp, "time") - x.impact.time).abs() / time,
             d(&imp["velocity"], x.impact.velocity, speed),
             d(&imp["spin"], x.impact.spin, spin),
-            (f(imp, "normal_impulse") - x.impact.normal_impulse).abs() / impulse,
-            (f(imp, "tangential_impulse") - x.impact.tangential_impulse).abs() / impulse,
+            (number(imp, "normal_impulse") - x.impact.normal_impulse).abs() / impulse,
+            (number(imp, "tangential_impulse") - x.impact.tangential_impulse).abs() / impulse,
             d(&got["slide_displacement"], x.slide_displacement, length),
             d(&got["rolling"]["velocity"], x.rolling_velocity, speed),
             d(&got["rolling"]["spin"], x.rolling_spin, spin),
             d(&got["rolling"]["position"], x.rolling_position, length),
             d(&got["table_impulse"], x.table_impulse, impulse),
         ]);
-        heights.push((f(got, "hop_height") - x.hop_height).abs() / (v * v / cloth.g));
+        heights.push((number(got, "hop_height") - x.hop_height).abs() / (v * v / cloth.g));
         assert_eq!(
             got["bounces"].as_u64(),
             Some(x.bounces),
@@ -544,18 +430,20 @@ fn check_table(
         );
         match x.rest {
             Some((t_rest, at)) => {
-                errs.push((f(&got["rest"], "time") - t_rest).abs() / time);
+                errs.push((number(&got["rest"], "time") - t_rest).abs() / time);
                 errs.push(d(&got["rest"]["position"], at, length));
             }
             None => assert!(got.get("rest").is_none(), "{what}: {key} rest"),
         }
         // Directions: from the line of centres; the deflection from the incoming direction
         // of a ball that moved (B comes in at rest in every scene).
-        angles.push((f(got, "direction_deg") - cloth.angle_deg(&line, &x.rolling_velocity)).abs());
+        angles.push(
+            (number(got, "direction_deg") - cloth.angle_deg(&line, &x.rolling_velocity)).abs(),
+        );
         let incoming = [sc.pair.va, sc.pair.vb][k];
         if incoming.cross(&cloth.up).norm() > 0.0 {
             let deflection = cloth.angle_deg(&incoming, &x.rolling_velocity);
-            angles.push((f(got, "deflection_deg") - deflection).abs());
+            angles.push((number(got, "deflection_deg") - deflection).abs());
         } else {
             assert!(got.get("deflection_deg").is_none(), "{what}: {key}");
         }
@@ -567,7 +455,7 @@ fn check_table(
         ("rolling_resistance", cloth.rolling_resistance),
         ("spin_decay", cloth.spin_decay),
     ] {
-        assert_eq!(f(table, key), x, "{what}: table.{key}");
+        assert_eq!(number(table, key), x, "{what}: table.{key}");
     }
     let tol = tol(method, sc.speed_law.is_some());
     let largest = errs.iter().chain(&heights).cloned().fold(0.0, f64::max);
@@ -774,7 +662,7 @@ fn trace_csv_follows_the_contract() {
                 }
                 // The final row is the outgoing state of the report.
                 let last = rows.last().unwrap();
-                let u = arr(&j["cm_out"]["u"]);
+                let u = vector3(&j["cm_out"]["u"]);
                 assert_eq!(
                     [last[3], last[4], last[5]],
                     [Some(u.x), Some(u.y), Some(u.z)],
