@@ -21,13 +21,11 @@
 //! 1000 steps, and to 1e-5 and 1e-3 P at 200 steps, where they carry the error of the
 //! coarse steps of the nonlinear S(p) before the stop (observed 1.2e-6 and 4.6e-4 P).
 
+use crate::common::collision::CollisionSpec;
+use crate::common::Rule;
 use billiard_contact::profile::Tabulated;
-use billiard_contact::Effects;
 use billiard_contact::TraceRow;
-use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Profile, Sampling,
-    SolverSettings,
-};
+use billiard_contact::{solve, CmState, Method, Profile, Sampling, SolverSettings};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -129,29 +127,20 @@ const CASES: [Case; 4] = [
 /// The properties' tolerance for rk4 with a speed-dependent mu (scaled).
 const TOL: f64 = 1e-6;
 
-fn collision(k: &Case) -> Collision {
-    let (a, b, c) = k.abc;
-    let incoming = CmState::new(Vector3::from(k.u), Vector3::from(k.wa), Vector3::from(k.wb));
-    let impulse = match k.rule {
-        Ok(e) => ImpulseRule::restitution(e).unwrap(),
-        Err(f) => ImpulseRule::explicit(f * k.u[0]).unwrap(),
-    };
-    let contact = Contact {
-        friction: Friction::speed_dependent(a, b, c).unwrap(),
-        impulse,
-    };
-    Collision::new(
-        Ball::new(1.0, 1.0, k.alpha).unwrap(),
-        contact,
-        Effects::default(),
-        incoming,
-    )
-    .unwrap()
-}
-
 /// `heat_tol`: eq 50 (scaled); `stick_tol`: |p_stick error| / P.
 fn check(k: &Case, steps: u32, heat_tol: f64, stick_tol: f64) {
-    let c = collision(k);
+    let c = CollisionSpec::ball(1.0, 1.0, k.alpha)
+        .speed_dependent(k.abc.0, k.abc.1, k.abc.2)
+        .rule(match k.rule {
+            Ok(e) => Rule::Restitution(e),
+            Err(f) => Rule::Explicit(f * k.u[0]),
+        })
+        .incoming(CmState::new(
+            Vector3::from(k.u),
+            Vector3::from(k.wa),
+            Vector3::from(k.wb),
+        ))
+        .build();
     let profile =
         Profile::Tabulated(Tabulated::new(k.table, Some(1.0), Path::new("coarse.csv")).unwrap());
     let settings = SolverSettings::default()
@@ -231,7 +220,18 @@ fn rk4_1000_steps_crossing_the_stop() {
 #[test]
 fn adaptive_methods_agree() {
     for k in &CASES {
-        let c = collision(k);
+        let c = CollisionSpec::ball(1.0, 1.0, k.alpha)
+            .speed_dependent(k.abc.0, k.abc.1, k.abc.2)
+            .rule(match k.rule {
+                Ok(e) => Rule::Restitution(e),
+                Err(f) => Rule::Explicit(f * k.u[0]),
+            })
+            .incoming(CmState::new(
+                Vector3::from(k.u),
+                Vector3::from(k.wa),
+                Vector3::from(k.wb),
+            ))
+            .build();
         let profile = Profile::Tabulated(
             Tabulated::new(k.table, Some(1.0), Path::new("coarse.csv")).unwrap(),
         );

@@ -17,6 +17,7 @@
 //! now check against independent quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
 //! proptest-regressions/.
 
+use crate::common::collision::CollisionSpec;
 use crate::hard as common;
 
 use billiard_contact::formats::trace::TraceRow;
@@ -25,8 +26,8 @@ use billiard_contact::run_scene;
 use billiard_contact::Effects;
 use billiard_contact::LabScene;
 use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, LabBall, Method, Profile,
-    Sampling, SolverSettings,
+    solve, Ball, CmState, Contact, Friction, ImpulseRule, LabBall, Method, Profile, Sampling,
+    SolverSettings,
 };
 use billiard_contact::{Incoming, Scene};
 use common::Exact;
@@ -238,15 +239,6 @@ impl Case {
         }
     }
 
-    fn collision(&self) -> Collision {
-        let ball = Ball::new(self.m, self.r, self.alpha).unwrap();
-        let contact = Contact {
-            friction: self.friction(),
-            impulse: self.rule(),
-        };
-        Collision::new(ball, contact, Effects::default(), self.incoming()).unwrap()
-    }
-
     fn profile(&self) -> Profile {
         match &self.profile {
             ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau).unwrap()),
@@ -392,7 +384,11 @@ const ADAPTIVE: &[Method] = &[Method::Dopri5, Method::Dop853];
 
 /// Conservation laws, signs of the heats and of S_out, eq 50 and the closed form.
 fn check_invariants(case: &Case) -> Result<(), TestCaseError> {
-    let c = case.collision();
+    let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+        .friction(case.friction())
+        .impulse(case.rule())
+        .incoming(case.incoming())
+        .build();
     let profile = case.profile();
     let o = solve(&c, &profile, &case.settings(), None).unwrap();
     let tol = case.tolerance();
@@ -531,7 +527,11 @@ proptest! {
     #[test]
     fn trace_equals_closed_form_at_p_of_t(case in case_strategy(ADAPTIVE)) {
         let ex = case.exact();
-        let c = case.collision();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
         let profile = case.profile();
         let mut rows: Vec<TraceRow> = Vec::new();
         solve(&c, &profile, &case.settings(), Some((&mut rows, Sampling::Uniform(16)))).unwrap();
@@ -548,7 +548,12 @@ proptest! {
     #[test]
     fn unit_scaling(case in case_strategy(&[Method::ClosedForm, Method::Rk4, Method::Dopri5, Method::Dop853]),
                     a in log_uniform(1e-3, 1e3), l in log_uniform(1e-3, 1e3), t in log_uniform(1e-3, 1e3)) {
-        let base = solve(&case.collision(), &case.profile(), &case.settings(), None).unwrap();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
+        let base = solve(&c, &case.profile(), &case.settings(), None).unwrap();
         let mut scaled = case.clone();
         scaled.m *= a;
         scaled.r *= l;
@@ -558,7 +563,12 @@ proptest! {
             // mu(S) = a + b exp(-c S / v): c carries 1/speed, Case::friction divides by v.
             scaled.mu = Err((aa, b, cc));
         }
-        let o = solve(&scaled.collision(), &scaled.profile(), &scaled.settings(), None).unwrap();
+        let c = CollisionSpec::ball(scaled.m, scaled.r, scaled.alpha)
+            .friction(scaled.friction())
+            .impulse(scaled.rule())
+            .incoming(scaled.incoming())
+            .build();
+        let o = solve(&c, &scaled.profile(), &scaled.settings(), None).unwrap();
         let (v0, v1) = (case.v, scaled.v);
         let (w0, w1) = (case.v / case.r, scaled.v / scaled.r);
         let pairs = [
@@ -679,7 +689,11 @@ proptest! {
 /// trace's theta, the angle of the carried slip, agrees with e0 to what that slip's error
 /// across e0 allows.
 fn check_theta_constant(case: &Case) -> Result<(), TestCaseError> {
-    let c = case.collision();
+    let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+        .friction(case.friction())
+        .impulse(case.rule())
+        .incoming(case.incoming())
+        .build();
     let profile = case.profile();
     let mut rows: Vec<TraceRow> = Vec::new();
     let o = solve(
@@ -812,7 +826,12 @@ fn rk4_unresolved_stop_converges() {
     let ex = case.exact();
     let off = |steps: u32| {
         let settings = case.settings().with_steps(steps).unwrap();
-        let o = solve(&case.collision(), &case.profile(), &settings, None).unwrap();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
+        let o = solve(&c, &case.profile(), &settings, None).unwrap();
         assert!(o.result.sticks);
         (o.result.stick_impulse.unwrap() - ex.p_stick).abs() / ex.p
     };
