@@ -2,15 +2,11 @@
 //! speed-dependent mu(S) = a + b exp(-c S), small alpha and a tabulated profile.
 //!
 //! With alpha ~ 1e-3 the slip falls k = 2 (1 + 1/alpha) / m times faster than the velocities,
-//! and in the rk4 step that crosses the stop the stages overshoot it. The right-hand side
-//! continued mu past the stop analytically, as a + b exp(c |S|): the overshoot fed back
-//! through the exponential from stage to stage (c |S| = 1.3, 8.2, 1.6e4) and the step
-//! returned -inf (`Error::NonFinite`), or, where it stayed finite (1e62 v_ref), the stop was
-//! located at the step's start and the slip left there was zeroed (scaled error 0.15, stop
-//! 25% early). The cases below are the property test's shrunk failure
-//! (`theta_constant_while_sliding`, rk4 at 200 steps) and three found by a scan of the same
-//! distribution, one of them wrong at the default 1000 steps; dopri5, dop853 and the
-//! closed form solve them all.
+//! and in the rk4 step that crosses the stop the stages overshoot it, where the exponential
+//! of mu(S) taken past the stop grows from stage to stage. The cases below, from the
+//! properties' distribution, overshoot far enough to overflow it or to leave a huge finite
+//! slip, at 200 steps and at the default 1000; dopri5, dop853 and the closed form solve them
+//! all.
 //!
 //! Each runs rk4 at 200 and 1000 steps and must succeed with the checks of the properties
 //! (tests/properties_invariants.rs): the closed form and the angular momentum to the rk4
@@ -44,7 +40,7 @@ struct Case {
 }
 
 const CASES: [Case; 4] = [
-    // proptest-regressions/properties_invariants.txt, cc fa07bb0a: -inf at 200 steps.
+    // At 200 steps the stages overshoot the stop far enough to overflow exp(c |S|).
     Case {
         label: "property shrink",
         alpha: 0.002486152814618681,
@@ -59,7 +55,7 @@ const CASES: [Case; 4] = [
             (0.42393777546040745, 1.2704679712475544),
         ],
     },
-    // -inf at 200 steps.
+    // At 200 steps the stages overshoot the stop far enough to overflow exp(c |S|).
     Case {
         label: "scan 1315",
         alpha: 0.0015158299564082482,
@@ -77,8 +73,7 @@ const CASES: [Case; 4] = [
             (3.3345620082794794, 9.97813751744708),
         ],
     },
-    // Finite overshoot (1e62 v_ref): closed-form error 0.15 and the stop 25% early at 200
-    // steps.
+    // At 200 steps a finite overshoot: the stop must still be located at p_stick.
     Case {
         label: "scan 1360",
         alpha: 0.0023151728694572184,
@@ -100,8 +95,7 @@ const CASES: [Case; 4] = [
             (2.3142570445240325, 2.9616189183900277),
         ],
     },
-    // Finite overshoot (9e67 v_ref) at 1000 steps, the properties' default: closed-form
-    // error 7.1e-4, the stop located at the crossing step's start.
+    // A finite overshoot at the default 1000 steps, with an explicit impulse.
     Case {
         label: "scan 19642",
         alpha: 0.0011521690497064002,
@@ -216,7 +210,7 @@ fn rk4_1000_steps_crossing_the_stop() {
     }
 }
 
-/// The adaptive methods were never affected: the same cases to their usual accuracy.
+/// The adaptive methods on the same cases, to their usual accuracy.
 #[test]
 fn adaptive_methods_agree() {
     for k in &CASES {

@@ -12,9 +12,9 @@
 //! scaling, and a global rotation of a lab scene.
 //!
 //! Cases per property: `BILLIARD_PROPTEST_CASES` (default 1,200, and 12,000 for
-//! `theta_constant_while_sliding`: that many cases found a coarse rk4 step that overflowed
-//! past the stop of sliding (tests/hard_cases_rk4_coarse.rs), which 1,200 missed; the others
-//! now check against independent quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
+//! `theta_constant_while_sliding`, enough to reach coarse rk4 steps that cross the stop of
+//! sliding (tests/hard_cases_rk4_coarse.rs); the others check against independent
+//! quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
 //! proptest-regressions/.
 
 use crate::common::collision::CollisionSpec;
@@ -259,7 +259,7 @@ impl Case {
     /// drift, the trace) at the default settings (rtol = atol = 1e-10, rk4 1000 steps):
     /// ten times the worst measured over 50,000 cases of each property (`reached` prints
     /// them). With the time transform every pulse is stepped like the half-sine, so the
-    /// profile no longer matters; speed-dependent mu makes the slip nonlinear in p.
+    /// profile does not matter; speed-dependent mu makes the slip nonlinear in p.
     fn tolerance(&self) -> f64 {
         match (self.method, self.mu.is_ok()) {
             // Measured worst 7.7e-16 (eq 50), 1.3e-15 (closed form, mu(S)).
@@ -272,9 +272,7 @@ impl Case {
             (Method::Rk4, false) => 2e-10 + 0.25 * self.rk4_sigma().powi(4),
             // The adaptive methods: most cases within 6.6e-10 (dop853) and 2.2e-9 (dopri5)
             // over 50,000 cases, but small alpha with large mu (alpha 0.02, mu 6.4, an
-            // explicit impulse of 1.75 m U(0)) reached 5.7e-9 with dop853: held to 1e-8
-            // (1e-6 before for sin^n with n < 1, which the time transform now steps like the
-            // half-sine).
+            // explicit impulse of 1.75 m U(0)) reached 5.7e-9 with dop853: held to 1e-8.
             (Method::Dop853 | Method::Dopri5, _) => 1e-8,
         }
     }
@@ -753,7 +751,7 @@ fn check_theta_constant(case: &Case) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    // The property that found the rk4 overflow past the stop of sliding at 12,000 cases.
+    // 12,000 cases: enough to reach coarse rk4 steps that cross the stop of sliding.
     #![proptest_config(cases(12_000))]
 
     /// theta is constant while sliding ([`check_theta_constant`]).
@@ -763,10 +761,7 @@ proptest! {
     }
 }
 
-/// Found at 50,000 cases of `theta_constant_while_sliding`: one dop853 step takes the slip
-/// from S(0) to 4.7e-5 S(0), and the trace's angle there is 4.8e-6 rad off e0, which the
-/// old bound of 1e-6 rad refused; the slip's error across e0 is 1.3e-9 of the speed, within
-/// the physical bound.
+/// One dop853 step from S(0) to 4.7e-5 S(0): the trace's angle held through the slip across e0.
 #[test]
 fn trace_theta_near_the_stop() {
     let case = Case {
@@ -793,12 +788,7 @@ fn trace_theta_near_the_stop() {
     check_theta_constant(&case).unwrap();
 }
 
-/// Found at 50,000 cases of `invariants`: rk4 at 1000 steps with mu(S) = b e^(-c S),
-/// alpha 1e-3 and a table whose whole impulse sits in its last 15% (sigma = 7: the slip
-/// collapses within about two steps). The stop of sliding is 2e-5 P off p_stick, which the
-/// old bound of 1e-5 P refused, while the outgoing state is exact (it sticks). The error is
-/// the fixed step's, not a defect: it falls to 1.3e-6 P at 2000 steps and 1.6e-9 P at 16000
-/// (measured), and `check_invariants` holds it to what sigma allows.
+/// rk4 at sigma = 7 (the slip collapses in two steps): within the sigma bound, and it converges.
 #[test]
 fn rk4_unresolved_stop_converges() {
     let case = Case {

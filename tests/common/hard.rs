@@ -304,7 +304,7 @@ pub fn default_cost(settings: &SolverSettings) -> u64 {
     o.stats.rhs_evaluations
 }
 
-/// Cost bound of the issue: 20 times the default scene's evaluations.
+/// Cost bound of the hard cases: 20 times the default scene's evaluations.
 pub const COST_FACTOR: u64 = 20;
 
 /// Runs `c` with `settings` and checks the cost bound, returning the outcome.
