@@ -298,9 +298,8 @@ fn lab_rows_match_first_principles() {
 const DOP853_TOL: f64 = 1.5e-11;
 
 /// dop853 rows (rtol 1e-11) agree with the closed form through the in-memory path, sticking
-/// and sliding rows alike within [`DOP853_TOL`] (sticking rows once reached a few 1e-9: a
-/// stage of the crossing step took the friction direction from a round-off slip; fixed by
-/// the round-off floor `SLIP_ROUND_OFF` of src/integrator/rhs.rs).
+/// and sliding rows alike within [`DOP853_TOL`] (a sticking row's crossing step has stages at
+/// round-off slips, whose direction must not steer the friction).
 #[test]
 fn dop853_slice_agrees_with_closed_form() {
     let st = states(60);
@@ -502,8 +501,8 @@ fn ids_with_line_breaks_keep_the_line_numbers() {
 }
 
 /// Balls that move apart do not collide, and without a collision there is no throw: the
-/// lab row's `throw_angle_deg` is empty (B's velocity change is the round-off of the change
-/// of frame: these velocities once gave a throw of 0.0). The state comes back unchanged.
+/// lab row's `throw_angle_deg` is empty (B's velocity change is only the round-off of the
+/// change of frame, which must not make a throw). The state comes back unchanged.
 #[test]
 fn no_throw_without_a_collision() {
     let r = 0.028575;

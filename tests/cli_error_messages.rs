@@ -11,8 +11,7 @@ fn dir(tag: &str) -> PathBuf {
     fresh_dir(&format!("error_messages_{tag}"))
 }
 
-/// `batch in.csv` without `--out` named no argument (only clap's first line was kept):
-/// the whole message, the missing option and the usage, in one line.
+/// `batch in.csv` without `--out`: the whole message, missing option and usage, in one line.
 #[test]
 fn a_missing_option_is_named() {
     let line = refused(
@@ -38,8 +37,7 @@ fn a_missing_option_is_named() {
     );
 }
 
-/// `--rtol -1e-6` was "unexpected argument '-1' found": the value now reaches the option,
-/// which names its range; a negative whole number is refused as such.
+/// Negative numbers reach their option, which names its range, or for a count a whole number.
 #[test]
 fn negative_numbers_reach_their_option() {
     refused(
@@ -92,9 +90,7 @@ fn misspelt_names_get_a_suggestion() {
     );
 }
 
-/// A CSV given as the scene got "line 1, column 6: expected `.`, `=`": it now says that
-/// the file looks like CSV, not a scene, and what a scene is. A scene with a TOML slip
-/// keeps the parser's words.
+/// A CSV given as the scene is refused as CSV, saying what a scene is; a TOML slip is not.
 #[test]
 fn a_file_that_is_not_a_scene_says_so() {
     let d = dir("not_a_scene");

@@ -159,7 +159,7 @@ fn batch_refuses_unknown_columns() {
     assert!(!Path::new(&out).exists());
 }
 
-/// The unit slips, each in a scene that still runs: mass 170 (grams), radius
+/// Unit slips, each in a scene that still runs: mass 170 (grams), radius
 /// 28.575 (millimetres), duration 200 (microseconds); each warns, naming the field, and the
 /// run goes on (the model holds for any positive values). The same scene through batch
 /// warns too.

@@ -1,20 +1,21 @@
 //! The command as a user runs it: every scene in `data/scenes/` with every method, the JSON
 //! contract (docs/formats.md), agreement with the independent first-principles
-//! resolution (`common::resolve`, computed from the scene file read here with `toml`, not
-//! through the crate's scene code; speed-dependent mu: the closed form of
-//! tests/common/hard.rs), the table phase against its physics written out in
+//! resolution (`common::resolve`, computed from the scene file as tests/common/scene_file.rs
+//! reads it with `toml`, not through the crate's scene code; speed-dependent mu: the closed
+//! form of tests/common/hard.rs), the table phase against its physics written out in
 //! tests/common/table.rs, the trace CSV with its force and sliding-heat columns, and
 //! failures that leave no file behind.
 
 use crate::cli_common;
 use crate::common;
-use crate::hard;
 
-use billiard_contact::CmState;
 use cli_common::fresh_dir;
+use cli_common::json_contract::{check_contract, number, vector3};
+use common::amax;
+use common::scene_file::{read_scene, SceneRef};
 use common::table::{Cloth, RollOut};
-use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
-use nalgebra::{Matrix3, Vector3};
+use common::Expected;
+use nalgebra::Vector3;
 use serde_json::Value;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -204,95 +205,6 @@ fn json(args: &[&str]) -> Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {text}"))
 }
 
-// ---------------------------------------------------------------------------------------
-// The scene file, read independently
-// ---------------------------------------------------------------------------------------
-
-/// A profile's reference p(t)/P inverse: scaled time at which p = q P.
-enum ProfileRef {
-    HalfSine,
-    Hertz,
-    SinePower(f64),
-    Rectangle,
-    Table(Table),
-}
-
-impl ProfileRef {
-    /// p(t)/P at s = t / duration.
-    fn fraction(&self, s: f64) -> f64 {
-        match self {
-            ProfileRef::HalfSine => common::half_sine_fraction(s),
-            ProfileRef::Hertz => hard::hertz_phi(s),
-            ProfileRef::SinePower(n) => common::sine_power_fraction(*n, s),
-            ProfileRef::Rectangle => s.clamp(0.0, 1.0),
-            ProfileRef::Table(t) => t.fraction(s),
-        }
-    }
-
-    /// p(t)/P and the force in units of P / duration at s = t / duration, the force by each
-    /// profile's formula:
-    /// half-sine (pi/2) sin(pi s); sin^n(pi s) pi / B((n+1)/2, 1/2); rectangle 1; the table's
-    /// interpolant over its area; Hertz from the energy integral of delta'' = -delta^(3/2)
-    /// (tests/common/mod.rs, `hertz_f`): with q = p/P, delta' = 1 - 2q and
-    /// delta^(5/2) = (5/4) (1 - delta'^2) = (5/4) 4 q (1 - q), the force delta^(3/2) over the
-    /// impulse 2 in the scaled time T = 2 delta_max F(1) of the whole contact gives
-    /// dq/ds = (T/2) delta^(3/2) = F(1) (5/4) (4 q (1 - q))^(3/5).
-    fn fraction_and_shape(&self, s: f64) -> (f64, f64) {
-        let q = self.fraction(s);
-        let shape = match self {
-            ProfileRef::HalfSine => PI / 2.0 * (PI * s).sin(),
-            ProfileRef::Hertz => common::hertz_half() * 1.25 * (4.0 * q * (1.0 - q)).powf(0.6),
-            ProfileRef::SinePower(n) => {
-                PI * (PI * s).sin().max(0.0).powf(*n) / common::beta_fn(0.5 * (n + 1.0), 0.5)
-            }
-            ProfileRef::Rectangle => 1.0,
-            ProfileRef::Table(t) => t.shape(s),
-        };
-        (q, shape)
-    }
-
-    fn time(&self, q: f64) -> f64 {
-        match self {
-            ProfileRef::HalfSine => 2.0 / PI * q.sqrt().asin(),
-            ProfileRef::Hertz => common::hertz_time(q),
-            ProfileRef::SinePower(n) => common::invert(|s| common::sine_power_fraction(*n, s), q),
-            ProfileRef::Rectangle => q,
-            ProfileRef::Table(t) => t.time(q),
-        }
-    }
-}
-
-struct SceneRef {
-    /// The file's name.
-    name: String,
-    balls: Balls,
-    law: Law,
-    /// (a, b, c) of mu(S) = a + b exp(-c S) (`law.mu` is then 0).
-    speed_law: Option<(f64, f64, f64)>,
-    /// The cloth, with the table effect.
-    cloth: Option<Cloth>,
-    pair: Pair,
-    /// Lab positions of A and B (zero for centre-of-mass scenes).
-    positions: [Vector3<f64>; 2],
-    lab: bool,
-    up: Vector3<f64>,
-    duration: f64,
-    profile: ProfileRef,
-    /// Hertz's contact of the balls' material, when the scene gives it (the duration is then
-    /// its contact time).
-    hertz: Option<common::HertzRef>,
-}
-
-fn vec3(v: &toml::Value) -> Vector3<f64> {
-    let a = v.as_array().expect("an array of 3 numbers");
-    let num = |x: &toml::Value| x.as_float().or(x.as_integer().map(|i| i as f64)).unwrap();
-    Vector3::new(num(&a[0]), num(&a[1]), num(&a[2]))
-}
-
-fn num(v: Option<&toml::Value>) -> Option<f64> {
-    v.and_then(|x| x.as_float().or(x.as_integer().map(|i| i as f64)))
-}
-
 /// The scenes with a prescribed profile: a contact law's scene (`[contact.law]`) realises its
 /// own impulse, which the reference here does not model; tests/contact_law_*.rs check them.
 fn profile_scenes() -> Vec<PathBuf> {
@@ -306,346 +218,11 @@ fn profile_scenes() -> Vec<PathBuf> {
         .collect()
 }
 
-fn read_scene(path: &Path) -> SceneRef {
-    let text = std::fs::read_to_string(path).unwrap();
-    let t: toml::Table = text.parse().unwrap();
-    let balls = &t["balls"];
-    let balls = Balls {
-        m: num(balls.get("mass")).unwrap(),
-        r: num(balls.get("radius")).unwrap(),
-        alpha: num(balls.get("alpha")).unwrap_or(0.4),
-    };
-    let contact = &t["contact"];
-    let mu = num(contact.get("mu"));
-    let speed_law = contact.get("mu").and_then(|m| m.as_table()).map(|m| {
-        assert_eq!(m["model"].as_str(), Some("speed-dependent"));
-        assert!(m.get("evaluate").is_none(), "mu held at the initial slip");
-        let k = |key: &str| num(m.get(key)).unwrap();
-        (k("a"), k("b"), k("c"))
-    });
-    let rule = match (num(contact.get("restitution")), num(contact.get("impulse"))) {
-        (Some(e), None) => Rule::Restitution(e),
-        (None, Some(p)) => Rule::Explicit(p),
-        (None, None) => Rule::Restitution(1.0),
-        _ => panic!("both restitution and impulse"),
-    };
-    let effects = t.get("effects");
-    let flag = |k: &str| effects.and_then(|e| e.get(k)).and_then(|v| v.as_bool());
-    let mut law = Law::new(mu.unwrap_or(0.0), rule);
-    law.friction = flag("friction").unwrap_or(true);
-    law.stick = flag("stick").unwrap_or(true);
-    let prof = &contact["profile"];
-    let shape = prof["shape"].as_str().unwrap();
-    let mut duration = num(prof.get("duration"));
-    let profile = match shape {
-        "half-sine" => ProfileRef::HalfSine,
-        "hertz" => ProfileRef::Hertz,
-        "sine-power" => ProfileRef::SinePower(num(prof.get("exponent")).unwrap_or(1.5)),
-        "rectangle" => ProfileRef::Rectangle,
-        "tabulated" => {
-            let file = path.parent().unwrap().join(prof["file"].as_str().unwrap());
-            if duration.is_none() {
-                // The table's own span: its last time.
-                let text = std::fs::read_to_string(&file).unwrap();
-                let last = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap();
-                duration = Some(last.split(',').next().unwrap().trim().parse().unwrap());
-            }
-            ProfileRef::Table(Table::read(&file))
-        }
-        other => panic!("unknown shape {other}"),
-    };
-    let inc = &t["incoming"];
-    let (pair, lab, up, positions) = if let Some(cm) = inc.get("cm") {
-        let z = toml::Value::Array(vec![0.0.into(), 0.0.into(), 0.0.into()]);
-        (
-            Pair::cm(
-                vec3(&cm["u"]),
-                vec3(cm.get("omega_a").unwrap_or(&z)),
-                vec3(cm.get("omega_b").unwrap_or(&z)),
-            ),
-            false,
-            Vector3::z(),
-            [Vector3::zeros(); 2],
-        )
-    } else {
-        let lab = &inc["lab"];
-        let ball = |k: &str| {
-            let b = &lab[k];
-            let spin = b.get("spin").map(vec3).unwrap_or_else(Vector3::zeros);
-            (vec3(&b["position"]), vec3(&b["velocity"]), spin)
-        };
-        let (pa, va, wa) = ball("a");
-        let (pb, vb, wb) = ball("b");
-        let up = lab.get("up").map(vec3).unwrap_or_else(Vector3::z);
-        (
-            Pair {
-                n: (pb - pa).normalize(),
-                va,
-                wa,
-                vb,
-                wb,
-            },
-            true,
-            up.normalize(),
-            [pa, pb],
-        )
-    };
-    // The balls' material instead of a duration: Hertz's contact time at v = 2 U(0).
-    let material = (
-        num(t["balls"].get("youngs_modulus")),
-        num(t["balls"].get("poisson_ratio")),
-    );
-    let hertz = match material {
-        (Some(e), Some(nu)) => Some(common::hertz_identical(
-            balls.m,
-            balls.r,
-            e,
-            nu,
-            2.0 * pair.u0(),
-        )),
-        _ => None,
-    };
-    // The cloth's parameters with the defaults of docs/formats.md#cloth-parameters.
-    let cloth = flag("table").unwrap_or(false).then(|| {
-        let c = t.get("table");
-        let get = |k: &str, default: f64| num(c.and_then(|c| c.get(k))).unwrap_or(default);
-        assert!(
-            c.and_then(|c| c.get("height")).is_none(),
-            "the cloth r below"
-        );
-        Cloth {
-            mu: get("mu", 0.2),
-            restitution: get("restitution", 0.0),
-            g: get("g", 9.81),
-            rolling_resistance: get("rolling_resistance", 0.0),
-            spin_decay: get("spin_decay", 0.0),
-            up,
-        }
-    });
-    SceneRef {
-        name: path.file_name().unwrap().to_string_lossy().into_owned(),
-        balls,
-        law,
-        speed_law,
-        cloth,
-        pair,
-        positions,
-        lab,
-        up,
-        duration: duration.or(hertz.map(|h| h.duration)).unwrap(),
-        profile,
-        hertz,
-    }
-}
-
-impl SceneRef {
-    /// The centre-of-mass basis (docs/model.md#the-lab-frame): e_x the line of centres, e_z = `up` without its
-    /// e_x part, e_y = e_z x e_x (columns, lab coordinates).
-    fn basis(&self) -> Matrix3<f64> {
-        let ex = self.pair.n;
-        let ez = (self.up - ex * self.up.dot(&ex)).normalize();
-        Matrix3::from_columns(&[ex, ez.cross(&ex), ez])
-    }
-
-    /// Ball A's velocity and both spins in the centre-of-mass frame.
-    fn to_cm(&self, p: &Pair) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        let rt = self.basis().transpose();
-        (rt * (0.5 * (p.va - p.vb)), rt * p.wa, rt * p.wb)
-    }
-
-    /// The closed form of speed-dependent friction (tests/common/hard.rs: eqs 24-35 with
-    /// dS/dp = -k mu(S)) for this scene's incoming state, when it has such friction.
-    fn speed_dependent(&self) -> Option<hard::Exact> {
-        let abc = self.speed_law?;
-        let b = &self.balls;
-        let (u, wa, wb) = self.to_cm(&self.pair);
-        let (e, impulse) = match self.law.rule {
-            Rule::Restitution(e) => (e, None),
-            Rule::Explicit(p) => (0.0, Some(p)),
-        };
-        assert!(self.law.friction && self.law.stick);
-        let incoming = CmState::new(u, wa, wb);
-        Some(hard::Exact::speed_dependent(
-            b.m, b.r, b.alpha, abc, e, impulse, incoming,
-        ))
-    }
-
-    /// The expected outcome: the first-principles resolution, or for speed-dependent mu the
-    /// closed form taken back to the scene's frame (A moves with V + u, B with V - u, V the
-    /// centre of mass's velocity; spins rotate as vectors).
-    fn expected(&self) -> Expected {
-        let Some(x) = self.speed_dependent() else {
-            return resolve(&self.balls, &self.law, &self.pair);
-        };
-        let out = x.out();
-        let basis = self.basis();
-        let centre = 0.5 * (self.pair.va + self.pair.vb);
-        let s = out.state;
-        Expected {
-            collision: x.p > 0.0,
-            impulse: x.p,
-            s0: x.s0,
-            tangential: out.j,
-            s_out: out.slip,
-            sticks: x.sticks(),
-            p_stick: (x.p > 0.0 && x.s0 > 0.0).then_some(x.p_stick),
-            heat: out.heat,
-            heat_sliding: out.heat_sliding,
-            out: Pair {
-                n: self.pair.n,
-                va: centre + basis * s.u_cm,
-                vb: centre - basis * s.u_cm,
-                wa: basis * s.omega_a,
-                wb: basis * s.omega_b,
-            },
-        }
-    }
-
-    /// The slip S(p) after a normal impulse p: S(0) - k mu p for constant mu (k =
-    /// 2 (1 + 1/alpha) / m, eqs 25-33 along the slip), stopped at 0 by the stick rule; the
-    /// closed form's S(p) for mu(S).
-    fn slip_at(&self, want: &Expected, p: f64) -> f64 {
-        if let Some(x) = self.speed_dependent() {
-            return x.at(p).slip;
-        }
-        if !self.law.friction {
-            return want.s0;
-        }
-        let b = &self.balls;
-        let k = 2.0 * (1.0 + 1.0 / b.alpha) / b.m;
-        let s = want.s0 - k * self.law.mu * p;
-        if self.law.stick {
-            s.max(0.0)
-        } else {
-            s
-        }
-    }
-}
-
-fn arr(v: &Value) -> Vector3<f64> {
-    let a = v.as_array().expect("array");
-    assert_eq!(a.len(), 3);
-    Vector3::new(
-        a[0].as_f64().unwrap(),
-        a[1].as_f64().unwrap(),
-        a[2].as_f64().unwrap(),
-    )
-}
-
-fn f(v: &Value, key: &str) -> f64 {
-    v[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} is not a number: {v}"))
-}
-
-// ---------------------------------------------------------------------------------------
-// The JSON contract
-// ---------------------------------------------------------------------------------------
-
-/// Fields that may be null (docs/formats.md): nothing else.
-const NULLABLE: [&str; 4] = ["theta", "stick_time", "stick_impulse", "throw_angle_deg"];
-
-/// Walks the report: no null outside the nullable fields, every number finite.
-fn walk(v: &Value, path: &str, nulls: &mut Vec<String>) {
-    match v {
-        Value::Null => nulls.push(path.to_string()),
-        Value::Number(n) => {
-            if let Some(x) = n.as_f64() {
-                assert!(x.is_finite(), "{path} = {x}");
-            }
-        }
-        Value::Array(a) => a
-            .iter()
-            .enumerate()
-            .for_each(|(i, x)| walk(x, &format!("{path}[{i}]"), nulls)),
-        Value::Object(o) => o.iter().for_each(|(k, x)| {
-            let p = if path.is_empty() {
-                k.clone()
-            } else {
-                format!("{path}.{k}")
-            };
-            walk(x, &p, nulls)
-        }),
-        _ => {}
-    }
-}
-
-fn check_contract(j: &Value, lab: bool, method: &str, what: &str) {
-    for key in [
-        "collision",
-        "impulse",
-        "s0",
-        "theta",
-        "s_out",
-        "sticks",
-        "stick_time",
-        "stick_impulse",
-        "tangential_impulse",
-        "heat",
-        "heat_sliding",
-        "cm_out",
-        "throw_angle_deg",
-        "check",
-        "solver",
-        "effects",
-        "warnings",
-    ] {
-        assert!(j.get(key).is_some(), "{what}: key {key} missing");
-    }
-    for key in ["u", "omega_a", "omega_b"] {
-        arr(&j["cm_out"][key]);
-    }
-    if lab {
-        for ball in ["a", "b"] {
-            for key in ["velocity", "spin"] {
-                arr(&j["lab_out"][ball][key]);
-            }
-        }
-    }
-    for key in [
-        "theta_drift",
-        "closed_form_error",
-        "momentum_error",
-        "angular_momentum_error",
-        "energy_balance_error",
-    ] {
-        let x = f(&j["check"], key);
-        assert!(x >= 0.0, "{what}: check.{key} = {x}");
-    }
-    assert_eq!(j["solver"]["method"], method, "{what}");
-    for key in ["rhs_evaluations", "accepted_steps", "rejected_steps"] {
-        assert!(j["solver"][key].is_u64(), "{what}: solver.{key}");
-    }
-    // Every step tried, accepted or rejected, evaluates the equations at least once.
-    let count = |key: &str| u128::from(j["solver"][key].as_u64().unwrap());
-    assert!(
-        count("accepted_steps") + count("rejected_steps") <= count("rhs_evaluations"),
-        "{what}: {}",
-        j["solver"]
-    );
-    assert!(j["collision"].is_boolean() && j["sticks"].is_boolean());
-    assert!(j["effects"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(Value::is_string));
-    assert!(j["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(Value::is_string));
-    let mut nulls = Vec::new();
-    walk(j, "", &mut nulls);
-    for n in nulls {
-        assert!(NULLABLE.contains(&n.as_str()), "{what}: {n} is null");
-    }
-}
-
 /// The duration, and the `hertz` object exactly when the material sets the duration.
 fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
     let rel = |got: f64, want: f64| ((got - want) / want).abs();
     assert!(
-        rel(f(j, "duration"), sc.duration) <= 1e-12,
+        rel(number(j, "duration"), sc.duration) <= 1e-12,
         "{what}: duration"
     );
     match &sc.hertz {
@@ -653,12 +230,15 @@ fn check_duration(sc: &SceneRef, j: &Value, what: &str) {
         Some(h) => {
             let got = &j["hertz"];
             assert!(
-                rel(f(got, "max_compression"), h.max_compression) <= 1e-12,
+                rel(number(got, "max_compression"), h.max_compression) <= 1e-12,
                 "{what}"
             );
-            assert!(rel(f(got, "peak_force"), h.peak_force) <= 1e-12, "{what}");
             assert!(
-                rel(f(got, "contact_radius"), h.contact_radius) <= 1e-12,
+                rel(number(got, "peak_force"), h.peak_force) <= 1e-12,
+                "{what}"
+            );
+            assert!(
+                rel(number(got, "contact_radius"), h.contact_radius) <= 1e-12,
                 "{what}"
             );
         }
@@ -676,23 +256,23 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
     let (u, wa, wb) = sc.to_cm(&want.out);
     let cm = &j["cm_out"];
     let mut errs = vec![
-        amax(&(arr(&cm["u"]) - u)) / v,
-        amax(&(arr(&cm["omega_a"]) - wa)) / spin,
-        amax(&(arr(&cm["omega_b"]) - wb)) / spin,
-        (f(j, "impulse") - want.impulse).abs() / imp,
-        (f(j, "s0") - want.s0).abs() / v,
-        (f(j, "s_out") - want.s_out).abs() / v,
-        (f(j, "tangential_impulse") - want.tangential).abs() / imp,
-        (f(j, "heat") - want.heat).abs() / energy,
-        (f(j, "heat_sliding") - want.heat_sliding).abs() / energy,
+        amax(&(vector3(&cm["u"]) - u)) / v,
+        amax(&(vector3(&cm["omega_a"]) - wa)) / spin,
+        amax(&(vector3(&cm["omega_b"]) - wb)) / spin,
+        (number(j, "impulse") - want.impulse).abs() / imp,
+        (number(j, "s0") - want.s0).abs() / v,
+        (number(j, "s_out") - want.s_out).abs() / v,
+        (number(j, "tangential_impulse") - want.tangential).abs() / imp,
+        (number(j, "heat") - want.heat).abs() / energy,
+        (number(j, "heat_sliding") - want.heat_sliding).abs() / energy,
     ];
     if sc.lab {
         let lab = &j["lab_out"];
         errs.extend([
-            amax(&(arr(&lab["a"]["velocity"]) - want.out.va)) / v,
-            amax(&(arr(&lab["b"]["velocity"]) - want.out.vb)) / v,
-            amax(&(arr(&lab["a"]["spin"]) - want.out.wa)) / spin,
-            amax(&(arr(&lab["b"]["spin"]) - want.out.wb)) / spin,
+            amax(&(vector3(&lab["a"]["velocity"]) - want.out.va)) / v,
+            amax(&(vector3(&lab["b"]["velocity"]) - want.out.vb)) / v,
+            amax(&(vector3(&lab["a"]["spin"]) - want.out.wa)) / spin,
+            amax(&(vector3(&lab["b"]["spin"]) - want.out.wb)) / spin,
         ]);
     } else {
         assert!(
@@ -708,7 +288,8 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
         tol.state
     );
     assert!(
-        (f(&j["check"], "closed_form_error") - errs[..3].iter().cloned().fold(0.0, f64::max)).abs()
+        (number(&j["check"], "closed_form_error") - errs[..3].iter().cloned().fold(0.0, f64::max))
+            .abs()
             <= 1e-13,
         "{what}: check.closed_form_error differs from the independent one"
     );
@@ -718,7 +299,7 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
     if want.s0 == 0.0 {
         assert!(j["theta"].is_null(), "{what}: theta with S0 = 0");
     } else {
-        let th = f(j, "theta");
+        let th = number(j, "theta");
         assert!(th > -PI && th <= PI);
         let d = (want.s0 * th.cos() - slip.y)
             .abs()
@@ -740,7 +321,7 @@ fn compare(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &mut 
             .dot(&sc.up)
             .atan2(line.dot(&dvh))
             .to_degrees();
-        let got = f(j, "throw_angle_deg");
+        let got = number(j, "throw_angle_deg");
         note(worst, format!("{method} throw_deg"), (got - want_deg).abs());
         assert!(
             (got - want_deg).abs() <= tol.throw_deg,
@@ -763,7 +344,7 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
         match want.p_stick {
             Some(p) => {
                 // The impulse at which sliding would stop, past P: measured worst 1.83e-16.
-                let d = (f(j, "stick_impulse") - p).abs() / p;
+                let d = (number(j, "stick_impulse") - p).abs() / p;
                 note(worst, format!("{method} p_stick past P"), d);
                 assert!(d <= 2e-15, "{what}: stick_impulse {d:e} off p_stick");
             }
@@ -772,17 +353,17 @@ fn check_stick(sc: &SceneRef, want: &Expected, j: &Value, method: &str, worst: &
         return;
     }
     let p_stick = want.p_stick.unwrap();
-    let t = f(j, "stick_time");
+    let t = number(j, "stick_time");
     if want.s0 == 0.0 {
         assert_eq!(t, 0.0, "{what}");
-        assert_eq!(f(j, "stick_impulse"), 0.0, "{what}");
+        assert_eq!(number(j, "stick_impulse"), 0.0, "{what}");
         return;
     }
     let exact = sc.duration * sc.profile.time(p_stick / want.impulse);
     let dt = (t - exact).abs() / sc.duration;
     note(worst, format!("{method} stick_time"), dt);
     assert!(dt <= tol.stick_time, "{what}: stick time {t} vs {exact}");
-    let dp = (f(j, "stick_impulse") - p_stick).abs() / want.impulse;
+    let dp = (number(j, "stick_impulse") - p_stick).abs() / want.impulse;
     note(worst, format!("{method} stick_impulse"), dp);
     assert!(
         dp <= tol.stick_impulse,
@@ -813,31 +394,31 @@ fn check_table(
     let v = sc.pair.v_ref(b.r);
     let (time, speed, spin, length) = (end, v, v / b.r, v * end);
     let impulse = b.m * v + b.m * cloth.g * end;
-    let mut errs = vec![(f(table, "end_time") - end).abs() / time];
+    let mut errs = vec![(number(table, "end_time") - end).abs() / time];
     let (mut angles, mut heights) = (Vec::new(), Vec::new());
     let line = sc.pair.n;
     for (k, (key, x)) in ["a", "b"].iter().zip(&outs).enumerate() {
         let got = &table[key];
         let imp = &got["impact"];
-        let d = |v: &Value, w: Vector3<f64>, scale: f64| amax(&(arr(v) - w)) / scale;
-        let t = |key: &str, w: f64| (f(got, key) - w).abs() / time;
+        let d = |v: &Value, w: Vector3<f64>, scale: f64| amax(&(vector3(v) - w)) / scale;
+        let t = |key: &str, w: f64| (number(got, key) - w).abs() / time;
         errs.extend([
             t("hop_time", x.hop_time),
             t("settle_time", x.settle_time),
             t("slide_time", x.slide_time),
             t("roll_time", x.roll_time),
-            (f(imp, "time") - x.impact.time).abs() / time,
+            (number(imp, "time") - x.impact.time).abs() / time,
             d(&imp["velocity"], x.impact.velocity, speed),
             d(&imp["spin"], x.impact.spin, spin),
-            (f(imp, "normal_impulse") - x.impact.normal_impulse).abs() / impulse,
-            (f(imp, "tangential_impulse") - x.impact.tangential_impulse).abs() / impulse,
+            (number(imp, "normal_impulse") - x.impact.normal_impulse).abs() / impulse,
+            (number(imp, "tangential_impulse") - x.impact.tangential_impulse).abs() / impulse,
             d(&got["slide_displacement"], x.slide_displacement, length),
             d(&got["rolling"]["velocity"], x.rolling_velocity, speed),
             d(&got["rolling"]["spin"], x.rolling_spin, spin),
             d(&got["rolling"]["position"], x.rolling_position, length),
             d(&got["table_impulse"], x.table_impulse, impulse),
         ]);
-        heights.push((f(got, "hop_height") - x.hop_height).abs() / (v * v / cloth.g));
+        heights.push((number(got, "hop_height") - x.hop_height).abs() / (v * v / cloth.g));
         assert_eq!(
             got["bounces"].as_u64(),
             Some(x.bounces),
@@ -849,18 +430,20 @@ fn check_table(
         );
         match x.rest {
             Some((t_rest, at)) => {
-                errs.push((f(&got["rest"], "time") - t_rest).abs() / time);
+                errs.push((number(&got["rest"], "time") - t_rest).abs() / time);
                 errs.push(d(&got["rest"]["position"], at, length));
             }
             None => assert!(got.get("rest").is_none(), "{what}: {key} rest"),
         }
         // Directions: from the line of centres; the deflection from the incoming direction
         // of a ball that moved (B comes in at rest in every scene).
-        angles.push((f(got, "direction_deg") - cloth.angle_deg(&line, &x.rolling_velocity)).abs());
+        angles.push(
+            (number(got, "direction_deg") - cloth.angle_deg(&line, &x.rolling_velocity)).abs(),
+        );
         let incoming = [sc.pair.va, sc.pair.vb][k];
         if incoming.cross(&cloth.up).norm() > 0.0 {
             let deflection = cloth.angle_deg(&incoming, &x.rolling_velocity);
-            angles.push((f(got, "deflection_deg") - deflection).abs());
+            angles.push((number(got, "deflection_deg") - deflection).abs());
         } else {
             assert!(got.get("deflection_deg").is_none(), "{what}: {key}");
         }
@@ -872,7 +455,7 @@ fn check_table(
         ("rolling_resistance", cloth.rolling_resistance),
         ("spin_decay", cloth.spin_decay),
     ] {
-        assert_eq!(f(table, key), x, "{what}: table.{key}");
+        assert_eq!(number(table, key), x, "{what}: table.{key}");
     }
     let tol = tol(method, sc.speed_law.is_some());
     let largest = errs.iter().chain(&heights).cloned().fold(0.0, f64::max);
@@ -1078,7 +661,7 @@ fn trace_csv_follows_the_contract() {
                 }
                 // The final row is the outgoing state of the report.
                 let last = rows.last().unwrap();
-                let u = arr(&j["cm_out"]["u"]);
+                let u = vector3(&j["cm_out"]["u"]);
                 assert_eq!(
                     [last[3], last[4], last[5]],
                     [Some(u.x), Some(u.y), Some(u.z)],

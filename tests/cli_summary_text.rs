@@ -33,9 +33,9 @@ fn line<'a>(summary: &'a str, key: &str) -> &'a str {
 }
 
 /// Head-on stun (S(0) = 0, e = 1, no spin): no sliding and no heat (eq 50: H = H_sfr +
-/// P (2 U(0) - P/m) = 0 + 2 m U (2 U - 2 U) = 0). dop853 computes H from the kinetic
-/// energies as a round-off of about -1.6e-12 J, which the summary printed as physics:
-/// now 0 J, while the JSON keeps the computed value and the checks line its size.
+/// P (2 U(0) - P/m) = 0 + 2 m U (2 U - 2 U) = 0). dop853's H from the kinetic energies is a
+/// round-off of about -1.6e-12 J: the summary prints 0 J, the JSON keeps the computed value
+/// and the checks line its size.
 #[test]
 fn no_sliding_and_no_heat_in_a_head_on_stun() {
     for method in ["closed-form", "dop853", "rk4"] {
@@ -159,8 +159,8 @@ fn a_heat_above_round_off_is_printed() {
 
 /// jump_follow: B leaves the contact moving into the cloth (v_z = -0.2277 m/s) on a cloth
 /// of restitution 0.5; it bounces at once with v_z = 0.5 * 0.2277 m/s and rises
-/// (0.5 v_z)^2 / (2 g) = 0.66 mm, as its path shows. The summary said "stays on the cloth
-/// (no hop)": it now says it bounces, and the height it prints is the path's.
+/// (0.5 v_z)^2 / (2 g) = 0.66 mm, as its path shows: the summary says it bounces, with the
+/// path's height.
 /// A leaves moving up and hops: the summary's hop time, height and landing time are those
 /// of a ballistic flight.
 #[test]

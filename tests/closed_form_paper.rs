@@ -10,12 +10,10 @@ use crate::common;
 
 use billiard_contact::profile::HalfSine;
 use billiard_contact::run_scene;
-use billiard_contact::Effects;
 use billiard_contact::Scene;
-use billiard_contact::{
-    solve, Ball, ClosedForm, CmState, Collision, Contact, Friction, ImpulseRule,
-};
+use billiard_contact::{solve, ClosedForm, CmState, Collision};
 use billiard_contact::{Method, SolverSettings};
+use common::collision::CollisionSpec;
 use common::{amax, resolve, theta_cm, Balls, Expected, Law, Pair, Rng, Rule};
 use nalgebra::Vector3;
 use std::path::Path;
@@ -30,30 +28,6 @@ const SCALE_REL_TOL: f64 = 1e-14;
 const STATES: usize = 20_000;
 /// Contact duration of the half-sine used with `solve` (s); any value works.
 const TAU: f64 = 2.5e-4;
-
-fn collision(b: &Balls, law: &Law, pair: &Pair) -> Result<Collision, billiard_contact::Error> {
-    let ball = Ball::new(b.m, b.r, b.alpha)?;
-    let impulse = match law.rule {
-        Rule::Restitution(e) => ImpulseRule::restitution(e)?,
-        Rule::Explicit(p) => ImpulseRule::explicit(p)?,
-    };
-    let contact = Contact {
-        friction: Friction::constant(law.mu)?,
-        impulse,
-    };
-    let effects = Effects {
-        friction: law.friction,
-        stick: law.stick,
-        table: false,
-    };
-    assert_eq!(pair.n, Vector3::x(), "centre-of-mass pairs only");
-    Collision::new(
-        ball,
-        contact,
-        effects,
-        CmState::new(pair.va, pair.wa, pair.wb),
-    )
-}
 
 /// The largest scaled difference between a library state and the reference pair.
 fn state_error(b: &Balls, v_ref: f64, got: &CmState, want: &Pair) -> f64 {
@@ -201,7 +175,7 @@ fn closed_form_matches_first_principles_over_random_states() {
     let mut n_rejected = 0;
     for _ in 0..STATES {
         let case = random_case(&mut rng);
-        let lib = collision(&case.balls, &case.law, &case.pair);
+        let lib = CollisionSpec::reference(&case.balls, &case.law, &case.pair).try_build();
         if let Rule::Explicit(_) = case.law.rule {
             n_explicit += 1;
         }
@@ -228,7 +202,9 @@ fn closed_form_matches_first_principles_over_random_states() {
             n_rejected += 1;
             let mut bad = case.law;
             bad.rule = Rule::Explicit(case.balls.m);
-            assert!(collision(&case.balls, &bad, &case.pair).is_err());
+            assert!(CollisionSpec::reference(&case.balls, &bad, &case.pair)
+                .try_build()
+                .is_err());
         }
     }
     eprintln!(
@@ -257,7 +233,7 @@ fn solve_closed_form_method_matches_first_principles() {
     let mut worst = 0.0_f64;
     for _ in 0..STATES / 4 {
         let case = random_case(&mut rng);
-        let c = collision(&case.balls, &case.law, &case.pair).unwrap();
+        let c = CollisionSpec::reference(&case.balls, &case.law, &case.pair).build();
         let want = resolve(&case.balls, &case.law, &case.pair);
         let o = solve(&c, &profile, &settings, None).unwrap();
         worst = worst.max(compare(&case, &c, &o.exact, &want));
@@ -348,7 +324,7 @@ fn zero_slip_gets_no_friction_and_no_theta() {
     let settings = SolverSettings::default().with_method(Method::ClosedForm);
     for case in &cases {
         assert_eq!(case.pair.slip(b.r), Vector3::zeros());
-        let c = collision(&case.balls, &case.law, &case.pair).unwrap();
+        let c = CollisionSpec::reference(&case.balls, &case.law, &case.pair).build();
         let want = resolve(&case.balls, &case.law, &case.pair);
         let cf = ClosedForm::new(&c);
         compare(case, &c, &cf, &want);
@@ -386,7 +362,7 @@ fn tiny_slip_gives_tiny_correctly_directed_friction() {
             Rule::Restitution(1.0),
             b,
         );
-        let c = collision(&case.balls, &case.law, &case.pair).unwrap();
+        let c = CollisionSpec::reference(&case.balls, &case.law, &case.pair).build();
         let cf = ClosedForm::new(&c);
         let want = resolve(&case.balls, &case.law, &case.pair);
         compare(&case, &c, &cf, &want);
@@ -527,20 +503,15 @@ fn paper_special_case_eqs_66_to_72() {
         let spin_b = d_omega;
 
         // The library's closed form in the centre-of-mass frame (eqs 59, 61-65 inputs).
-        let c = Collision::new(
-            Ball::new(M, R, alpha).unwrap(),
-            Contact {
-                friction: Friction::constant(mu).unwrap(),
-                impulse: ImpulseRule::restitution(1.0).unwrap(),
-            },
-            Effects::default(),
-            CmState::new(
+        let c = CollisionSpec::ball(M, R, alpha)
+            .mu(mu)
+            .restitution(1.0)
+            .incoming(CmState::new(
                 Vector3::new(u / 2.0, v / 2.0, 0.0),
                 Vector3::new(-v / R, u / R, 0.0),
                 Vector3::zeros(),
-            ),
-        )
-        .unwrap();
+            ))
+            .build();
         let cf = ClosedForm::new(&c);
         assert!(
             (cf.result.impulse - M * u).abs() <= CLOSED_FORM_TOL * M * vel,
@@ -639,7 +610,7 @@ fn without_stick_effect_the_paper_formulas_apply_and_eq_57_is_flagged() {
         b,
     );
     case.law.stick = false;
-    let c = collision(&case.balls, &case.law, &case.pair).unwrap();
+    let c = CollisionSpec::reference(&case.balls, &case.law, &case.pair).build();
     let want = resolve(&case.balls, &case.law, &case.pair);
     let cf = ClosedForm::new(&c);
     compare(&case, &c, &cf, &want);

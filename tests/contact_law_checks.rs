@@ -16,6 +16,7 @@
 //! - Every law: the closed form at the realised impulse P (the outgoing state is a function
 //!   of P alone), and the normal dissipation m U(0)^2 (1 - e^2) (eq 50 with that P).
 
+use crate::common::collision::CollisionSpec;
 use crate::common::{bisect, hunt_crossley_e, resolve, Balls, Law, Pair, Rule};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::profile::Hertz;
@@ -39,16 +40,6 @@ const CLOSED_FORM_TOL: f64 = 1e-10;
 fn elastic_hertz(k: f64, v: f64) -> (f64, f64) {
     let d = (5.0 * (M / 2.0) * v * v / (4.0 * k)).powf(0.4);
     (d, 0.8 * BETA_2_5_1_2 * d / v)
-}
-
-fn collision(u: Vector3<f64>, spin_a: Vector3<f64>, mu: f64) -> Collision {
-    let ball = Ball::new(M, R, 0.4).unwrap();
-    let contact = Contact {
-        friction: Friction::constant(mu).unwrap(),
-        impulse: ImpulseRule::ELASTIC,
-    };
-    let s = CmState::new(u, spin_a, Vector3::zeros());
-    Collision::new(ball, contact, Effects::default(), s).unwrap()
 }
 
 /// Tolerances 1e-12; rk4 with 4000 steps per elastic contact time.
@@ -75,7 +66,11 @@ fn elastic_law_is_the_hertz_profile() {
         (Vector3::new(0.5, 0.05, 0.0), Vector3::zeros()), // sticks
         (Vector3::new(0.5, 0.4, 0.1), Vector3::new(0.0, 10.0, -20.0)), // slides throughout
     ] {
-        let c = collision(u, spin, 0.06);
+        let c = CollisionSpec::ball(M, R, 0.4)
+            .mu(0.06)
+            .impulse(ImpulseRule::ELASTIC)
+            .incoming(CmState::new(u, spin, Vector3::zeros()))
+            .build();
         let v = 2.0 * u.x;
         let (d, tau) = elastic_hertz(k, v);
         let profile = Hertz::new(tau).unwrap();
@@ -129,7 +124,11 @@ fn elastic_law_without_stick_slides_on_past_zero() {
     let k = pool_stiffness();
     let law = ContactLaw::elastic(k).unwrap();
     let (u, mu) = (Vector3::new(0.5, 0.05, 0.0), 0.06);
-    let mut c = collision(u, Vector3::zeros(), mu);
+    let mut c = CollisionSpec::ball(M, R, 0.4)
+        .mu(mu)
+        .impulse(ImpulseRule::ELASTIC)
+        .incoming(CmState::new(u, Vector3::zeros(), Vector3::zeros()))
+        .build();
     c.effects.stick = false;
     let pair = Pair::cm(u, Vector3::zeros(), Vector3::zeros());
     let reference = Law {
@@ -212,7 +211,11 @@ fn every_law_meets_the_closed_form_at_its_impulse() {
     let mut worst = [0.0f64; 2];
     for law in &laws {
         for (u, spin) in shots {
-            let c = collision(u, spin, 0.06);
+            let c = CollisionSpec::ball(M, R, 0.4)
+                .mu(0.06)
+                .impulse(ImpulseRule::ELASTIC)
+                .incoming(CmState::new(u, spin, Vector3::zeros()))
+                .build();
             for method in Method::ALL {
                 let o = solve_law(&c, law, &tight(method), None).unwrap();
                 let l = o.law.unwrap();
@@ -374,7 +377,15 @@ fn calibration_reaches_its_restitution() {
     for (e_target, v) in [(0.95, 1.0), (0.3, 0.05)] {
         for damping in [Damping::HuntCrossley, Damping::KuwabaraKono] {
             let law = ContactLaw::calibrated(k, damping, e_target, v, M / 2.0).unwrap();
-            let c = collision(Vector3::new(0.5 * v, 0.0, 0.0), Vector3::zeros(), 0.06);
+            let c = CollisionSpec::ball(M, R, 0.4)
+                .mu(0.06)
+                .impulse(ImpulseRule::ELASTIC)
+                .incoming(CmState::new(
+                    Vector3::new(0.5 * v, 0.0, 0.0),
+                    Vector3::zeros(),
+                    Vector3::zeros(),
+                ))
+                .build();
             let o = solve_law(&c, &law, &tight(Method::Dop853), None).unwrap();
             let e = o.law.unwrap().restitution;
             assert!((e - e_target).abs() < 1e-10, "{damping} at {v} m/s: {e}");
@@ -406,7 +417,15 @@ fn hard_cases_hold() {
                 ContactLaw::new(k, Damping::HuntCrossley, 0.99 / v).unwrap(),
                 ContactLaw::calibrated(k, Damping::KuwabaraKono, 0.9, v, M / 2.0).unwrap(),
             ] {
-                let c = collision(Vector3::new(u0, 0.3 * u0, 0.0), Vector3::zeros(), 0.2);
+                let c = CollisionSpec::ball(M, R, 0.4)
+                    .mu(0.2)
+                    .impulse(ImpulseRule::ELASTIC)
+                    .incoming(CmState::new(
+                        Vector3::new(u0, 0.3 * u0, 0.0),
+                        Vector3::zeros(),
+                        Vector3::zeros(),
+                    ))
+                    .build();
                 for method in Method::ALL {
                     let o = solve_law(&c, &law, &tight(method), None)
                         .unwrap_or_else(|e| panic!("k {k} v {v} {} {method}: {e}", law.damping()));

@@ -9,9 +9,9 @@
 use crate::common;
 
 use billiard_contact::profile::{ForceProfile, HalfSine, Hertz, Rectangle, SinePower, Tabulated};
-use billiard_contact::Effects;
-use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Outcome};
+use billiard_contact::{solve, Outcome};
 use billiard_contact::{Method, SolverSettings};
+use common::collision::CollisionSpec;
 use common::{amax, resolve, Balls, Expected, Law, Pair, Rule, Table};
 use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, OutputType, System};
@@ -175,23 +175,6 @@ fn cases() -> Vec<Case> {
     ]
 }
 
-fn collision(case: &Case) -> Collision {
-    let rule = match case.law.rule {
-        Rule::Restitution(e) => ImpulseRule::restitution(e).unwrap(),
-        Rule::Explicit(p) => ImpulseRule::explicit(p).unwrap(),
-    };
-    Collision::new(
-        Ball::new(BALLS.m, BALLS.r, BALLS.alpha).unwrap(),
-        Contact {
-            friction: Friction::constant(case.law.mu).unwrap(),
-            impulse: rule,
-        },
-        Effects::default(),
-        CmState::new(case.pair.va, case.pair.wa, case.pair.wb),
-    )
-    .unwrap()
-}
-
 /// Scaled distance of an outcome from the reference (docs/model.md#scales-and-scaled-errors).
 fn error(case: &Case, o: &Outcome, want: &Expected) -> f64 {
     let v = case.pair.v_ref(BALLS.r);
@@ -208,7 +191,7 @@ fn settings(method: Method, rtol: f64, steps: u32) -> SolverSettings {
 /// Runs one (profile, case, settings), checks the outgoing state within `tol` and the
 /// stick event against the profile's reference; returns (state error, stick time error / tau).
 fn check_run(sub: &Subject, case: &Case, s: &SolverSettings, tol: f64) -> (f64, f64, f64) {
-    let c = collision(case);
+    let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
     let want = resolve(&BALLS, &case.law, &case.pair);
     let o = solve(&c, sub.profile.as_ref(), s, None).unwrap();
     let err = error(case, &o, &want);
@@ -331,7 +314,7 @@ fn rk4_with_1000_steps_converges_to_the_closed_form() {
         for s in variants(&sub, settings(Method::Rk4, 1e-10, RK4_STEPS)) {
             let mut worst = 0.0_f64;
             for case in cases() {
-                let c = collision(&case);
+                let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
                 let want = resolve(&BALLS, &case.law, &case.pair);
                 let o = solve(&c, sub.profile.as_ref(), &s, None).unwrap();
                 let err = error(&case, &o, &want);
@@ -394,7 +377,7 @@ fn rk4_keeps_its_order_on_algebraic_ends_with_the_time_transform() {
         };
         let name = n.map_or("hertz".to_string(), |n| format!("sine-power {n}"));
         for case in cases() {
-            let c = collision(&case);
+            let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
             let want = resolve(&BALLS, &case.law, &case.pair);
             let run = |transform: bool| -> Vec<(u32, f64)> {
                 steps
@@ -443,7 +426,7 @@ fn algebraic_ends_cost_what_the_half_sine_costs_with_the_transform() {
     ];
     let mut worst = std::collections::BTreeMap::new();
     for case in cases() {
-        let c = collision(&case);
+        let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
         let want = resolve(&BALLS, &case.law, &case.pair);
         for method in [Method::Dopri5, Method::Dop853] {
             for rtol in [1e-6, 1e-10] {
@@ -480,7 +463,7 @@ fn algebraic_ends_cost_what_the_half_sine_costs_with_the_transform() {
 fn rk4_observed_order_is_four_on_the_half_sine() {
     let profile = HalfSine::new(TAU).unwrap();
     for case in cases() {
-        let c = collision(&case);
+        let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
         let want = resolve(&BALLS, &case.law, &case.pair);
         let errs: Vec<f64> = [16, 32, 64, 128]
             .iter()
@@ -507,7 +490,7 @@ fn rk4_is_exact_for_the_rectangle() {
     let profile = Rectangle::new(TAU).unwrap();
     let mut worst = 0.0_f64;
     for case in cases() {
-        let c = collision(&case);
+        let c = CollisionSpec::reference(&BALLS, &case.law, &case.pair).build();
         let want = resolve(&BALLS, &case.law, &case.pair);
         for n in [1, 2, 3, 7, 50] {
             let o = solve(&c, &profile, &settings(Method::Rk4, 1e-10, n), None).unwrap();

@@ -12,12 +12,12 @@
 //! independently by composite 8-point Gauss-Legendre quadrature and inverted by bisection;
 //! the outgoing state then follows from eqs 24-33 with mu P replaced by J.
 
+use crate::common::collision::CollisionSpec;
 use crate::hard as common;
 
 use billiard_contact::profile::HalfSine;
-use billiard_contact::Effects;
 use billiard_contact::TraceRow;
-use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
+use billiard_contact::{solve, CmState, Friction};
 use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;
 
@@ -63,16 +63,6 @@ fn g_quad(s: f64) -> f64 {
 /// S with G(S) = g by bisection on the quadrature.
 fn s_of_g(g: f64, s_max: f64) -> f64 {
     crate::common::bisect(0.0, s_max, |s| g_quad(s) < g)
-}
-
-fn collision(u: [f64; 3], friction: Friction) -> Collision {
-    let ball = Ball::new(M, R, ALPHA).unwrap();
-    let contact = Contact {
-        friction,
-        impulse: ImpulseRule::restitution(1.0).unwrap(),
-    };
-    let s = CmState::new(Vector3::from(u), Vector3::zeros(), Vector3::zeros());
-    Collision::new(ball, contact, Effects::default(), s).unwrap()
 }
 
 fn k() -> f64 {
@@ -149,7 +139,15 @@ fn exact_out(u: [f64; 3], j: f64, p: f64) -> CmState {
 #[test]
 fn time_stepping_converges_to_the_quadrature_answer() {
     let u = [1.0, 1.0, 0.0];
-    let c = collision(u, Friction::speed_dependent(A, B, C).unwrap());
+    let c = CollisionSpec::ball(M, R, ALPHA)
+        .speed_dependent(A, B, C)
+        .restitution(1.0)
+        .incoming(CmState::new(
+            Vector3::from(u),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
+        .build();
     let p = c.impulse;
     let s0 = c.s0;
     let s_out = s_of_g(g_quad(s0) - k() * p, s0);
@@ -208,7 +206,15 @@ fn time_stepping_converges_to_the_quadrature_answer() {
 #[test]
 fn sliding_speed_follows_the_quadrature_along_the_pulse() {
     let u = [1.0, 1.0, 0.0];
-    let c = collision(u, Friction::speed_dependent(A, B, C).unwrap());
+    let c = CollisionSpec::ball(M, R, ALPHA)
+        .speed_dependent(A, B, C)
+        .restitution(1.0)
+        .incoming(CmState::new(
+            Vector3::from(u),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
+        .build();
     let st = SolverSettings::new(Method::Dop853, 1e-12, 1e-12, 1000).unwrap();
     let mut rows: Vec<TraceRow> = Vec::new();
     solve(
@@ -234,7 +240,15 @@ fn sliding_speed_follows_the_quadrature_along_the_pulse() {
 /// Sliding stops (S(0) = 0.2 m/s): at p_stick = G(S(0)) / k, located to 1e-10 P.
 #[test]
 fn sliding_stops_at_the_quadrature_stick_impulse() {
-    let c = collision([1.0, 0.1, 0.0], Friction::speed_dependent(A, B, C).unwrap());
+    let c = CollisionSpec::ball(M, R, ALPHA)
+        .speed_dependent(A, B, C)
+        .restitution(1.0)
+        .incoming(CmState::new(
+            Vector3::from([1.0, 0.1, 0.0]),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
+        .build();
     let p_stick = g_quad(c.s0) / k();
     assert!(p_stick < c.impulse);
     for method in [Method::ClosedForm, Method::Dop853] {
@@ -260,7 +274,15 @@ fn sliding_stops_at_the_quadrature_stick_impulse() {
 #[test]
 fn without_the_stick_rule_the_slip_runs_on_past_zero() {
     let u = [1.0, 0.1, 0.0];
-    let mut c = collision(u, Friction::speed_dependent(A, B, C).unwrap());
+    let mut c = CollisionSpec::ball(M, R, ALPHA)
+        .speed_dependent(A, B, C)
+        .restitution(1.0)
+        .incoming(CmState::new(
+            Vector3::from(u),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
+        .build();
     c.effects.stick = false;
     let (p, s0) = (c.impulse, c.s0);
     let beyond = k() * p - g_quad(s0);
@@ -297,8 +319,24 @@ fn without_the_stick_rule_the_slip_runs_on_past_zero() {
 #[test]
 fn b_zero_reduces_exactly_to_constant_mu() {
     for u in [[1.0, 1.0, 0.0], [1.0, 0.1, 0.0]] {
-        let sd = collision(u, Friction::speed_dependent(0.06, 0.0, C).unwrap());
-        let cm = collision(u, Friction::constant(0.06).unwrap());
+        let sd = CollisionSpec::ball(M, R, ALPHA)
+            .speed_dependent(0.06, 0.0, C)
+            .restitution(1.0)
+            .incoming(CmState::new(
+                Vector3::from(u),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            ))
+            .build();
+        let cm = CollisionSpec::ball(M, R, ALPHA)
+            .mu(0.06)
+            .restitution(1.0)
+            .incoming(CmState::new(
+                Vector3::from(u),
+                Vector3::zeros(),
+                Vector3::zeros(),
+            ))
+            .build();
         let profile = HalfSine::new(2.5e-4).unwrap();
         let st = SolverSettings::default();
         let (a, b) = (

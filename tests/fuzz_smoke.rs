@@ -1,7 +1,8 @@
 //! The fuzz harness (examples/fuzz_inputs.rs) on a few thousand inputs, so that it keeps
-//! building and its guarantees hold in `cargo test`; and the inputs it found failing
-//! (fuzz/regressions/), which must now be refused as bad input in one line. The full run
-//! (1,000,000 inputs) is a documented command, not part of `cargo test`.
+//! building and its guarantees hold in `cargo test`; and the inputs kept in
+//! fuzz/regressions/: those of `refused/` must be refused as bad input in one line, those of
+//! `run/` must run with finite output. The full run (1,000,000 inputs) is a documented
+//! command, not part of `cargo test`.
 
 #[path = "../examples/fuzz_inputs.rs"]
 #[allow(dead_code)]
@@ -83,7 +84,7 @@ fn regressions_run_with_finite_output() {
         // v_ref of the collision (docs/model.md#scales-and-scaled-errors), the scale of the
         // integrator's tolerances: on mu_pure_exp_huge_slip.toml the slip, 3.7e14 m/s, sets
         // it, and dop853 in the smoothed time variable meets rtol 1e-10 in 3 steps with U
-        // 7e-3 m/s off (the graded breakpoints used to force 27 steps).
+        // 7e-3 m/s off.
         let v = scene.collision().unwrap().0.scales.speed;
         let (a, b) = (&cf.result.out, &d.result.out);
         let w = v / scene.balls.a.radius();

@@ -13,8 +13,9 @@ mod common;
 mod hard;
 
 use billiard_contact::profile::HalfSine;
-use billiard_contact::{solve, CmState, Error, ImpulseRule, Method, Sampling, SolverSettings};
+use billiard_contact::{solve, CmState, Error, Method, Sampling, SolverSettings};
 use billiard_contact::{CsvTrace, TraceRow, TraceSink};
+use common::collision::CollisionSpec;
 use hard::*;
 use nalgebra::Vector3;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -97,14 +98,11 @@ fn a_million_samples_in_constant_memory() {
         Vector3::zeros(),
         Vector3::zeros(),
     );
-    let c = collision(
-        0.4,
-        MU,
-        ImpulseRule::restitution(1.0).unwrap(),
-        incoming,
-        M,
-        R,
-    );
+    let c = CollisionSpec::ball(M, R, 0.4)
+        .mu(MU)
+        .restitution(1.0)
+        .incoming(incoming)
+        .build();
     let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::ClosedForm, Method::Rk4, Method::Dop853] {
         // One rk4 step per sample at 1e6 samples.

@@ -2,15 +2,11 @@
 //! speed-dependent mu(S) = a + b exp(-c S), small alpha and a tabulated profile.
 //!
 //! With alpha ~ 1e-3 the slip falls k = 2 (1 + 1/alpha) / m times faster than the velocities,
-//! and in the rk4 step that crosses the stop the stages overshoot it. The right-hand side
-//! continued mu past the stop analytically, as a + b exp(c |S|): the overshoot fed back
-//! through the exponential from stage to stage (c |S| = 1.3, 8.2, 1.6e4) and the step
-//! returned -inf (`Error::NonFinite`), or, where it stayed finite (1e62 v_ref), the stop was
-//! located at the step's start and the slip left there was zeroed (scaled error 0.15, stop
-//! 25% early). The cases below are the property test's shrunk failure
-//! (`theta_constant_while_sliding`, rk4 at 200 steps) and three found by a scan of the same
-//! distribution, one of them wrong at the default 1000 steps; dopri5, dop853 and the
-//! closed form solve them all.
+//! and in the rk4 step that crosses the stop the stages overshoot it, where the exponential
+//! of mu(S) taken past the stop grows from stage to stage. The cases below, from the
+//! properties' distribution, overshoot far enough to overflow it or to leave a huge finite
+//! slip, at 200 steps and at the default 1000; dopri5, dop853 and the closed form solve them
+//! all.
 //!
 //! Each runs rk4 at 200 and 1000 steps and must succeed with the checks of the properties
 //! (tests/properties_invariants.rs): the closed form and the angular momentum to the rk4
@@ -21,14 +17,12 @@
 //! 1000 steps, and to 1e-5 and 1e-3 P at 200 steps, where they carry the error of the
 //! coarse steps of the nonlinear S(p) before the stop (observed 1.2e-6 and 4.6e-4 P).
 
+use crate::common::collision::CollisionSpec;
+use crate::common::Rule;
 use billiard_contact::profile::Profile;
 use billiard_contact::profile::Tabulated;
-use billiard_contact::Effects;
 use billiard_contact::TraceRow;
-use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Sampling,
-    SolverSettings,
-};
+use billiard_contact::{solve, CmState, Method, Sampling, SolverSettings};
 use nalgebra::Vector3;
 use std::path::Path;
 
@@ -47,7 +41,7 @@ struct Case {
 }
 
 const CASES: [Case; 4] = [
-    // proptest-regressions/properties_invariants.txt, cc fa07bb0a: -inf at 200 steps.
+    // At 200 steps the stages overshoot the stop far enough to overflow exp(c |S|).
     Case {
         label: "property shrink",
         alpha: 0.002486152814618681,
@@ -62,7 +56,7 @@ const CASES: [Case; 4] = [
             (0.42393777546040745, 1.2704679712475544),
         ],
     },
-    // -inf at 200 steps.
+    // At 200 steps the stages overshoot the stop far enough to overflow exp(c |S|).
     Case {
         label: "scan 1315",
         alpha: 0.0015158299564082482,
@@ -80,8 +74,7 @@ const CASES: [Case; 4] = [
             (3.3345620082794794, 9.97813751744708),
         ],
     },
-    // Finite overshoot (1e62 v_ref): closed-form error 0.15 and the stop 25% early at 200
-    // steps.
+    // At 200 steps a finite overshoot: the stop must still be located at p_stick.
     Case {
         label: "scan 1360",
         alpha: 0.0023151728694572184,
@@ -103,8 +96,7 @@ const CASES: [Case; 4] = [
             (2.3142570445240325, 2.9616189183900277),
         ],
     },
-    // Finite overshoot (9e67 v_ref) at 1000 steps, the properties' default: closed-form
-    // error 7.1e-4, the stop located at the crossing step's start.
+    // A finite overshoot at the default 1000 steps, with an explicit impulse.
     Case {
         label: "scan 19642",
         alpha: 0.0011521690497064002,
@@ -130,29 +122,20 @@ const CASES: [Case; 4] = [
 /// The properties' tolerance for rk4 with a speed-dependent mu (scaled).
 const TOL: f64 = 1e-6;
 
-fn collision(k: &Case) -> Collision {
-    let (a, b, c) = k.abc;
-    let incoming = CmState::new(Vector3::from(k.u), Vector3::from(k.wa), Vector3::from(k.wb));
-    let impulse = match k.rule {
-        Ok(e) => ImpulseRule::restitution(e).unwrap(),
-        Err(f) => ImpulseRule::explicit(f * k.u[0]).unwrap(),
-    };
-    let contact = Contact {
-        friction: Friction::speed_dependent(a, b, c).unwrap(),
-        impulse,
-    };
-    Collision::new(
-        Ball::new(1.0, 1.0, k.alpha).unwrap(),
-        contact,
-        Effects::default(),
-        incoming,
-    )
-    .unwrap()
-}
-
 /// `heat_tol`: eq 50 (scaled); `stick_tol`: |p_stick error| / P.
 fn check(k: &Case, steps: u32, heat_tol: f64, stick_tol: f64) {
-    let c = collision(k);
+    let c = CollisionSpec::ball(1.0, 1.0, k.alpha)
+        .speed_dependent(k.abc.0, k.abc.1, k.abc.2)
+        .rule(match k.rule {
+            Ok(e) => Rule::Restitution(e),
+            Err(f) => Rule::Explicit(f * k.u[0]),
+        })
+        .incoming(CmState::new(
+            Vector3::from(k.u),
+            Vector3::from(k.wa),
+            Vector3::from(k.wb),
+        ))
+        .build();
     let profile =
         Profile::Tabulated(Tabulated::new(k.table, Some(1.0), Path::new("coarse.csv")).unwrap());
     let settings = SolverSettings::default()
@@ -228,11 +211,22 @@ fn rk4_1000_steps_crossing_the_stop() {
     }
 }
 
-/// The adaptive methods were never affected: the same cases to their usual accuracy.
+/// The adaptive methods on the same cases, to their usual accuracy.
 #[test]
 fn adaptive_methods_agree() {
     for k in &CASES {
-        let c = collision(k);
+        let c = CollisionSpec::ball(1.0, 1.0, k.alpha)
+            .speed_dependent(k.abc.0, k.abc.1, k.abc.2)
+            .rule(match k.rule {
+                Ok(e) => Rule::Restitution(e),
+                Err(f) => Rule::Explicit(f * k.u[0]),
+            })
+            .incoming(CmState::new(
+                Vector3::from(k.u),
+                Vector3::from(k.wa),
+                Vector3::from(k.wb),
+            ))
+            .build();
         let profile = Profile::Tabulated(
             Tabulated::new(k.table, Some(1.0), Path::new("coarse.csv")).unwrap(),
         );

@@ -14,11 +14,12 @@
 //! observed order (stated at the case); the event rule |p(t_stick) - p_stick| <= 1e-10 P
 //! always; cost at most 20 times the default scene's right-hand-side evaluations.
 
+use crate::common::collision::CollisionSpec;
 use crate::hard as common;
 
 use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
-use billiard_contact::{solve, CmState, ImpulseRule, Method, Outcome, SolverSettings};
+use billiard_contact::{solve, CmState, Method, Outcome, SolverSettings};
 use common::*;
 use nalgebra::Vector3;
 use std::path::Path;
@@ -81,14 +82,11 @@ fn far_from_billiards_same_scaled_accuracy_and_work() {
             for (m, r, tau, v) in worlds {
                 let incoming = scaled_incoming(base, v, r);
                 let label = format!("{name}: m {m:e} kg, r {r:e} m, tau {tau:e} s, v {v:e} m/s");
-                let c = collision(
-                    0.4,
-                    MU,
-                    ImpulseRule::restitution(0.9).unwrap(),
-                    incoming,
-                    m,
-                    r,
-                );
+                let c = CollisionSpec::ball(m, r, 0.4)
+                    .mu(MU)
+                    .restitution(0.9)
+                    .incoming(incoming)
+                    .build();
                 let profile = HalfSine::new(tau).unwrap();
                 let o = run_bounded(&label, &c, &profile, &s, cost);
                 let exact = Exact::new(m, r, 0.4, MU, 0.9, None, incoming);
@@ -137,14 +135,11 @@ fn durations_with_the_same_impulse() {
         let s = settings(method);
         let mut first: Option<(CmState, f64, u64)> = None;
         for tau in [1e-9, 1e-6, 1e-3, 1.0] {
-            let c = collision(
-                0.4,
-                MU,
-                ImpulseRule::restitution(1.0).unwrap(),
-                incoming,
-                M,
-                R,
-            );
+            let c = CollisionSpec::ball(M, R, 0.4)
+                .mu(MU)
+                .restitution(1.0)
+                .incoming(incoming)
+                .build();
             let o = solve(&c, &HalfSine::new(tau).unwrap(), &s, None).unwrap();
             let t_rel = o.stick_time.unwrap() / tau;
             // Stick time: p_stick / P = q, t = tau (2/pi) asin(sqrt(q)).
@@ -281,14 +276,11 @@ fn hard_profiles_every_method() {
                 Vector3::zeros(),
                 Vector3::zeros(),
             );
-            let c = collision(
-                0.4,
-                MU,
-                ImpulseRule::restitution(1.0).unwrap(),
-                incoming,
-                M,
-                R,
-            );
+            let c = CollisionSpec::ball(M, R, 0.4)
+                .mu(MU)
+                .restitution(1.0)
+                .incoming(incoming)
+                .build();
             let exact = Exact::new(M, R, 0.4, MU, 1.0, None, incoming);
             for (i, method) in [Method::Rk4, Method::Dopri5, Method::Dop853]
                 .into_iter()

@@ -12,6 +12,7 @@
 //! printed with `--nocapture`). The profile is the half-sine, whose p(t) = P sin^2(pi t / 2 tau)
 //! is exact.
 
+use crate::common::collision::CollisionSpec;
 use crate::hard as common;
 
 use billiard_contact::profile::HalfSine;
@@ -35,7 +36,11 @@ fn case(
         Some(p) => ImpulseRule::explicit(p).unwrap(),
         None => ImpulseRule::restitution(e_rest).unwrap(),
     };
-    let c = collision(alpha, mu, rule, incoming, M, R);
+    let c = CollisionSpec::ball(M, R, alpha)
+        .mu(mu)
+        .impulse(rule)
+        .incoming(incoming)
+        .build();
     let exact = Exact::new(M, R, alpha, mu, e_rest, impulse, incoming);
     let profile = HalfSine::new(TAU).unwrap();
     let x = Expect {
@@ -96,7 +101,11 @@ fn zero_slip_side_spin_gears_the_cut() {
     let incoming = cm([1.0, 0.25, 0.125], [3.0, 5.0, -10.0], [-1.0, 3.0, -6.0]);
     assert_eq!(incoming.sliding_speed(r), 0.0);
     let rule = ImpulseRule::restitution(0.9).unwrap();
-    let c = collision(0.4, MU, rule, incoming, M, r);
+    let c = CollisionSpec::ball(M, r, 0.4)
+        .mu(MU)
+        .impulse(rule)
+        .incoming(incoming)
+        .build();
     let exact = Exact::new(M, r, 0.4, MU, 0.9, None, incoming);
     let profile = HalfSine::new(TAU).unwrap();
     let x = Expect {
@@ -184,14 +193,11 @@ fn sliding_stops_just_after_the_first_step() {
     let profile = HalfSine::new(TAU).unwrap();
     for method in [Method::Rk4, Method::Dopri5, Method::Dop853] {
         // The first accepted step of a slide that does not stop.
-        let c = collision(
-            0.4,
-            MU,
-            ImpulseRule::restitution(1.0).unwrap(),
-            slip_case(u0, 10.0, 0.0),
-            M,
-            R,
-        );
+        let c = CollisionSpec::ball(M, R, 0.4)
+            .mu(MU)
+            .restitution(1.0)
+            .incoming(slip_case(u0, 10.0, 0.0))
+            .build();
         let mut rows: Vec<TraceRow> = Vec::new();
         solve(
             &c,
@@ -206,14 +212,11 @@ fn sliding_stops_just_after_the_first_step() {
             let s0 = k * MU * p * half_sine_phi(h1) * f;
             let label = format!("p_stick = p(first step) ({f})");
             let incoming = slip_case(u0, s0, 0.0);
-            let c = collision(
-                0.4,
-                MU,
-                ImpulseRule::restitution(1.0).unwrap(),
-                incoming,
-                M,
-                R,
-            );
+            let c = CollisionSpec::ball(M, R, 0.4)
+                .mu(MU)
+                .restitution(1.0)
+                .incoming(incoming)
+                .build();
             let s = settings(method);
             let o = run_bounded(&label, &c, &profile, &s, default_cost(&s));
             let x = Expect {

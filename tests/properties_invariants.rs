@@ -12,11 +12,12 @@
 //! scaling, and a global rotation of a lab scene.
 //!
 //! Cases per property: `BILLIARD_PROPTEST_CASES` (default 1,200, and 12,000 for
-//! `theta_constant_while_sliding`: that many cases found a coarse rk4 step that overflowed
-//! past the stop of sliding (tests/hard_cases_rk4_coarse.rs), which 1,200 missed; the others
-//! now check against independent quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
+//! `theta_constant_while_sliding`, enough to reach coarse rk4 steps that cross the stop of
+//! sliding (tests/hard_cases_rk4_coarse.rs); the others check against independent
+//! quadratures of p(t), too slow for 12,000 in CI). Failures are shrunk and saved under
 //! proptest-regressions/.
 
+use crate::common::collision::CollisionSpec;
 use crate::hard as common;
 
 use billiard_contact::profile::Profile;
@@ -26,8 +27,7 @@ use billiard_contact::Effects;
 use billiard_contact::LabScene;
 use billiard_contact::TraceRow;
 use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, LabBall, Method, Sampling,
-    SolverSettings,
+    solve, Ball, CmState, Contact, Friction, ImpulseRule, LabBall, Method, Sampling, SolverSettings,
 };
 use billiard_contact::{Incoming, Scene};
 use common::Exact;
@@ -239,15 +239,6 @@ impl Case {
         }
     }
 
-    fn collision(&self) -> Collision {
-        let ball = Ball::new(self.m, self.r, self.alpha).unwrap();
-        let contact = Contact {
-            friction: self.friction(),
-            impulse: self.rule(),
-        };
-        Collision::new(ball, contact, Effects::default(), self.incoming()).unwrap()
-    }
-
     fn profile(&self) -> Profile {
         match &self.profile {
             ProfileKind::HalfSine => Profile::HalfSine(HalfSine::new(self.tau).unwrap()),
@@ -268,7 +259,7 @@ impl Case {
     /// drift, the trace) at the default settings (rtol = atol = 1e-10, rk4 1000 steps):
     /// ten times the worst measured over 50,000 cases of each property (`reached` prints
     /// them). With the time transform every pulse is stepped like the half-sine, so the
-    /// profile no longer matters; speed-dependent mu makes the slip nonlinear in p.
+    /// profile does not matter; speed-dependent mu makes the slip nonlinear in p.
     fn tolerance(&self) -> f64 {
         match (self.method, self.mu.is_ok()) {
             // Measured worst 7.7e-16 (eq 50), 1.3e-15 (closed form, mu(S)).
@@ -281,9 +272,7 @@ impl Case {
             (Method::Rk4, false) => 2e-10 + 0.25 * self.rk4_sigma().powi(4),
             // The adaptive methods: most cases within 6.6e-10 (dop853) and 2.2e-9 (dopri5)
             // over 50,000 cases, but small alpha with large mu (alpha 0.02, mu 6.4, an
-            // explicit impulse of 1.75 m U(0)) reached 5.7e-9 with dop853: held to 1e-8
-            // (1e-6 before for sin^n with n < 1, which the time transform now steps like the
-            // half-sine).
+            // explicit impulse of 1.75 m U(0)) reached 5.7e-9 with dop853: held to 1e-8.
             (Method::Dop853 | Method::Dopri5, _) => 1e-8,
         }
     }
@@ -393,7 +382,11 @@ const ADAPTIVE: &[Method] = &[Method::Dopri5, Method::Dop853];
 
 /// Conservation laws, signs of the heats and of S_out, eq 50 and the closed form.
 fn check_invariants(case: &Case) -> Result<(), TestCaseError> {
-    let c = case.collision();
+    let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+        .friction(case.friction())
+        .impulse(case.rule())
+        .incoming(case.incoming())
+        .build();
     let profile = case.profile();
     let o = solve(&c, &profile, &case.settings(), None).unwrap();
     let tol = case.tolerance();
@@ -532,7 +525,11 @@ proptest! {
     #[test]
     fn trace_equals_closed_form_at_p_of_t(case in case_strategy(ADAPTIVE)) {
         let ex = case.exact();
-        let c = case.collision();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
         let profile = case.profile();
         let mut rows: Vec<TraceRow> = Vec::new();
         solve(&c, &profile, &case.settings(), Some((&mut rows, Sampling::Uniform(16)))).unwrap();
@@ -549,7 +546,12 @@ proptest! {
     #[test]
     fn unit_scaling(case in case_strategy(&[Method::ClosedForm, Method::Rk4, Method::Dopri5, Method::Dop853]),
                     a in log_uniform(1e-3, 1e3), l in log_uniform(1e-3, 1e3), t in log_uniform(1e-3, 1e3)) {
-        let base = solve(&case.collision(), &case.profile(), &case.settings(), None).unwrap();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
+        let base = solve(&c, &case.profile(), &case.settings(), None).unwrap();
         let mut scaled = case.clone();
         scaled.m *= a;
         scaled.r *= l;
@@ -559,7 +561,12 @@ proptest! {
             // mu(S) = a + b exp(-c S / v): c carries 1/speed, Case::friction divides by v.
             scaled.mu = Err((aa, b, cc));
         }
-        let o = solve(&scaled.collision(), &scaled.profile(), &scaled.settings(), None).unwrap();
+        let c = CollisionSpec::ball(scaled.m, scaled.r, scaled.alpha)
+            .friction(scaled.friction())
+            .impulse(scaled.rule())
+            .incoming(scaled.incoming())
+            .build();
+        let o = solve(&c, &scaled.profile(), &scaled.settings(), None).unwrap();
         let (v0, v1) = (case.v, scaled.v);
         let (w0, w1) = (case.v / case.r, scaled.v / scaled.r);
         let pairs = [
@@ -680,7 +687,11 @@ proptest! {
 /// trace's theta, the angle of the carried slip, agrees with e0 to what that slip's error
 /// across e0 allows.
 fn check_theta_constant(case: &Case) -> Result<(), TestCaseError> {
-    let c = case.collision();
+    let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+        .friction(case.friction())
+        .impulse(case.rule())
+        .incoming(case.incoming())
+        .build();
     let profile = case.profile();
     let mut rows: Vec<TraceRow> = Vec::new();
     let o = solve(
@@ -740,7 +751,7 @@ fn check_theta_constant(case: &Case) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    // The property that found the rk4 overflow past the stop of sliding at 12,000 cases.
+    // 12,000 cases: enough to reach coarse rk4 steps that cross the stop of sliding.
     #![proptest_config(cases(12_000))]
 
     /// theta is constant while sliding ([`check_theta_constant`]).
@@ -750,10 +761,7 @@ proptest! {
     }
 }
 
-/// Found at 50,000 cases of `theta_constant_while_sliding`: one dop853 step takes the slip
-/// from S(0) to 4.7e-5 S(0), and the trace's angle there is 4.8e-6 rad off e0, which the
-/// old bound of 1e-6 rad refused; the slip's error across e0 is 1.3e-9 of the speed, within
-/// the physical bound.
+/// One dop853 step from S(0) to 4.7e-5 S(0): the trace's angle held through the slip across e0.
 #[test]
 fn trace_theta_near_the_stop() {
     let case = Case {
@@ -780,12 +788,7 @@ fn trace_theta_near_the_stop() {
     check_theta_constant(&case).unwrap();
 }
 
-/// Found at 50,000 cases of `invariants`: rk4 at 1000 steps with mu(S) = b e^(-c S),
-/// alpha 1e-3 and a table whose whole impulse sits in its last 15% (sigma = 7: the slip
-/// collapses within about two steps). The stop of sliding is 2e-5 P off p_stick, which the
-/// old bound of 1e-5 P refused, while the outgoing state is exact (it sticks). The error is
-/// the fixed step's, not a defect: it falls to 1.3e-6 P at 2000 steps and 1.6e-9 P at 16000
-/// (measured), and `check_invariants` holds it to what sigma allows.
+/// rk4 at sigma = 7 (the slip collapses in two steps): within the sigma bound, and it converges.
 #[test]
 fn rk4_unresolved_stop_converges() {
     let case = Case {
@@ -813,7 +816,12 @@ fn rk4_unresolved_stop_converges() {
     let ex = case.exact();
     let off = |steps: u32| {
         let settings = case.settings().with_steps(steps).unwrap();
-        let o = solve(&case.collision(), &case.profile(), &settings, None).unwrap();
+        let c = CollisionSpec::ball(case.m, case.r, case.alpha)
+            .friction(case.friction())
+            .impulse(case.rule())
+            .incoming(case.incoming())
+            .build();
+        let o = solve(&c, &case.profile(), &settings, None).unwrap();
         assert!(o.result.sticks);
         (o.result.stick_impulse.unwrap() - ex.p_stick).abs() / ex.p
     };

@@ -7,10 +7,10 @@
 //! |p(t_stick) - p_stick| <= 1e-10 P always; |t - t_stick| <= 1e-10 tau wherever
 //! f(t_stick) >= 1e-3 P / tau.
 
+use crate::common::collision::CollisionSpec;
 use billiard_contact::profile::HalfSine;
-use billiard_contact::Effects;
 use billiard_contact::TraceRow;
-use billiard_contact::{solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule};
+use billiard_contact::{solve, CmState};
 use billiard_contact::{Method, Sampling, SolverSettings};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -51,19 +51,6 @@ struct Shot {
 }
 
 impl Shot {
-    fn collision(&self) -> Collision {
-        Collision::new(
-            Ball::new(M, R, ALPHA).unwrap(),
-            Contact {
-                friction: Friction::constant(self.mu).unwrap(),
-                impulse: ImpulseRule::restitution(self.e).unwrap(),
-            },
-            Effects::default(),
-            self.incoming,
-        )
-        .unwrap()
-    }
-
     /// (S(0), P, p_stick) from the definitions: S(0) = |(2V + r Omega_z, 2W - r Omega_y)|
     /// (eqs 5-6), P = (1 + e) m U(0).
     fn exact(&self) -> (f64, f64, f64) {
@@ -157,7 +144,11 @@ fn dop853() -> SolverSettings {
 /// Runs a shot and checks the stop; returns (time error / tau or 0 where the time
 /// criterion does not apply, impulse error / P).
 fn check(shot: &Shot, settings: &SolverSettings) -> (f64, f64) {
-    let c = shot.collision();
+    let c = CollisionSpec::ball(M, R, ALPHA)
+        .mu(shot.mu)
+        .restitution(shot.e)
+        .incoming(shot.incoming)
+        .build();
     let (_, p, p_stick) = shot.exact();
     assert!(p_stick < p, "{}: must stick", shot.what);
     let q = p_stick / p;
@@ -241,7 +232,11 @@ fn closed_form_method_reports_the_exact_stick_time() {
     {
         let (_, p, p_stick) = shot.exact();
         let o = solve(
-            &shot.collision(),
+            &CollisionSpec::ball(M, R, ALPHA)
+                .mu(shot.mu)
+                .restitution(shot.e)
+                .incoming(shot.incoming)
+                .build(),
             &HalfSine::new(TAU).unwrap(),
             &settings,
             None,
@@ -285,7 +280,11 @@ fn the_stop_is_one_trace_row() {
             for sampling in [Sampling::Steps, Sampling::Uniform(samples)] {
                 let mut rows: Vec<TraceRow> = Vec::new();
                 let o = solve(
-                    &shot.collision(),
+                    &CollisionSpec::ball(M, R, ALPHA)
+                        .mu(shot.mu)
+                        .restitution(shot.e)
+                        .incoming(shot.incoming)
+                        .build(),
                     &HalfSine::new(TAU).unwrap(),
                     settings,
                     Some((&mut rows, sampling)),

@@ -9,11 +9,9 @@ use crate::common;
 
 use billiard_contact::profile::ForceProfile;
 use billiard_contact::profile::{HalfSine, Hertz, Rectangle, SinePower, Tabulated};
-use billiard_contact::{
-    solve, Ball, BallPair, CmState, Collision, Contact, Effects, Friction, ImpulseRule, Method,
-    SolverSettings,
-};
+use billiard_contact::{solve, CmState, Effects, Friction, Method, SolverSettings};
 use common::amax;
+use common::collision::CollisionSpec;
 use nalgebra::Vector3;
 use std::path::PathBuf;
 
@@ -36,13 +34,10 @@ fn profiles() -> Vec<(&'static str, Box<dyn ForceProfile>)> {
     ]
 }
 
-/// The bar-table pair: a heavier, larger cue ball A and an object ball B of another alpha.
-fn balls() -> BallPair {
-    BallPair::new(
-        Ball::new(0.184, 0.030163, 0.4).unwrap(),
-        Ball::new(0.17, 0.028575, 0.35).unwrap(),
-    )
-}
+/// The bar-table pair, each (mass (kg), radius (m), alpha): a heavier, larger cue ball A and
+/// an object ball B of another alpha.
+const BALL_A: (f64, f64, f64) = (0.184, 0.030163, 0.4);
+const BALL_B: (f64, f64, f64) = (0.17, 0.028575, 0.35);
 
 struct Case {
     name: &'static str,
@@ -95,18 +90,6 @@ fn cases() -> Vec<Case> {
     ]
 }
 
-fn collision(case: &Case) -> Collision {
-    let contact = Contact {
-        friction: case.friction,
-        impulse: ImpulseRule::restitution(0.95).unwrap(),
-    };
-    let effects = Effects {
-        stick: case.stick,
-        ..Effects::default()
-    };
-    Collision::new(balls(), contact, effects, case.state).unwrap()
-}
-
 /// Runs every profile and case with `settings`; returns the largest scaled distance from
 /// the closed form and the largest stick-time difference (over tau).
 fn run_all(settings: &SolverSettings, tol: f64, stick_tol: f64) -> (f64, f64) {
@@ -114,7 +97,15 @@ fn run_all(settings: &SolverSettings, tol: f64, stick_tol: f64) -> (f64, f64) {
     let (mut worst, mut worst_t) = (0.0_f64, 0.0_f64);
     for (pname, profile) in profiles() {
         for case in cases() {
-            let c = collision(&case);
+            let c = CollisionSpec::balls(BALL_A, BALL_B)
+                .friction(case.friction)
+                .restitution(0.95)
+                .effects(Effects {
+                    stick: case.stick,
+                    ..Effects::default()
+                })
+                .incoming(case.state)
+                .build();
             let want = solve(&c, profile.as_ref(), &exact, None).unwrap();
             assert_eq!(want.result.sticks, case.sticks, "{}", case.name);
             let got = solve(&c, profile.as_ref(), settings, None).unwrap();

@@ -1,7 +1,9 @@
 //! What the command-line tests share: running the binary, the shipped scenes, a fresh
-//! directory, and the shapes of a refusal and of a warning. Each test file uses a part of
-//! it (hence `dead_code`).
+//! directory, the shapes of a refusal and of a warning, and the JSON report's contract
+//! (`json_contract`). Each test file uses a part of it (hence `dead_code`).
 #![allow(dead_code)]
+
+pub mod json_contract;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

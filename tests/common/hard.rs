@@ -3,12 +3,9 @@
 //! `ClosedForm`), exact profile integrals, and scene builders.
 #![allow(dead_code)]
 
+use crate::common::collision::CollisionSpec;
 use billiard_contact::profile::ForceProfile;
-use billiard_contact::Effects;
-use billiard_contact::{
-    solve, Ball, CmState, Collision, Contact, Friction, ImpulseRule, Method, Outcome,
-    SolverSettings,
-};
+use billiard_contact::{solve, CmState, Collision, Method, Outcome, SolverSettings};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
@@ -280,23 +277,6 @@ pub fn sin4_phi(s: f64) -> f64 {
         * (3.0 * s / 8.0 - (2.0 * PI * s).sin() / (4.0 * PI) + (4.0 * PI * s).sin() / (32.0 * PI))
 }
 
-/// A centre-of-mass collision with constant mu.
-pub fn collision(
-    alpha: f64,
-    mu: f64,
-    rule: ImpulseRule,
-    incoming: CmState,
-    m: f64,
-    r: f64,
-) -> Collision {
-    let ball = Ball::new(m, r, alpha).unwrap();
-    let contact = Contact {
-        friction: Friction::constant(mu).unwrap(),
-        impulse: rule,
-    };
-    Collision::new(ball, contact, Effects::default(), incoming).unwrap()
-}
-
 /// The default tolerance settings of a method (rk4: the default 1000 steps).
 pub fn settings(method: Method) -> SolverSettings {
     SolverSettings::default().with_method(method)
@@ -310,14 +290,11 @@ pub fn default_collision() -> Collision {
     let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     let va = Vector3::new(v * c, v * s, 0.0);
     let spin = Vector3::z().cross(&va) / R;
-    collision(
-        0.4,
-        MU,
-        ImpulseRule::restitution(1.0).unwrap(),
-        CmState::new(va / 2.0, spin, Vector3::zeros()),
-        M,
-        R,
-    )
+    CollisionSpec::ball(M, R, 0.4)
+        .mu(MU)
+        .restitution(1.0)
+        .incoming(CmState::new(va / 2.0, spin, Vector3::zeros()))
+        .build()
 }
 
 /// Right-hand-side evaluations of the default scene with `settings`: the cost unit of the
@@ -328,7 +305,7 @@ pub fn default_cost(settings: &SolverSettings) -> u64 {
     o.stats.rhs_evaluations
 }
 
-/// Cost bound of the issue: 20 times the default scene's evaluations.
+/// Cost bound of the hard cases: 20 times the default scene's evaluations.
 pub const COST_FACTOR: u64 = 20;
 
 /// Runs `c` with `settings` and checks the cost bound, returning the outcome.
