@@ -17,7 +17,6 @@ use super::style::{
 };
 use super::FONT;
 use crate::base::error::Error;
-use crate::model::frame::horizontal;
 use crate::scene::run::SceneOutcome;
 use crate::scene::types::Scene;
 use crate::table_phase::outcome::TableOutcome;
@@ -30,20 +29,16 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::ops::Range;
 
-/// Figure width (px); the height follows the paths' extent.
-pub(crate) const WIDTH: u32 = 1100;
+mod geometry;
+pub(crate) use geometry::WIDTH;
+use geometry::{
+    clip, cushion_corners, equal_scale, larger, Arrow, Layout, Point, Projection, COLOR_A, COLOR_B,
+    LABEL_Y, MARGIN,
+};
 
-/// A point on the figure (m, m).
-type Point = (f64, f64);
-/// An arrow on the figure: from, to, colour.
-type Arrow = (Point, Point, RGBColor);
-/// A stretch of a path with one kind of motion, as points on the figure.
-type Run = (BallMotion, Vec<Point>);
 /// The chart: figure coordinates (m) on both axes.
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-const COLOR_A: RGBColor = RGBColor(31, 90, 180);
-const COLOR_B: RGBColor = RGBColor(200, 60, 30);
 /// The line of centres.
 const COLOR_LINE: RGBColor = RGBColor(90, 90, 90);
 /// The kinds of motion in the legend.
@@ -51,19 +46,13 @@ const COLOR_KEY: RGBColor = RGBColor(70, 70, 70);
 /// The cushions and the cloth.
 const COLOR_CUSHION: RGBColor = RGBColor(20, 110, 60);
 const COLOR_CLOTH: RGBColor = RGBColor(225, 242, 228);
-/// Points per segment of a path (one for a ball at rest).
-const POINTS_PER_SEGMENT: u32 = 120;
 /// Points on a ball's outline.
 const OUTLINE_POINTS: u32 = 72;
-/// Heights (px) of the title strip, the x label area and the strip below the chart; width
-/// (px) of the y label area; the chart's margin.
+/// Heights (px) of the title strip, the x label area and the strip below the chart (the y
+/// label area's width and the margin are with the geometry).
 const HEADER: u32 = 50;
 const LABEL_X: u32 = 56;
 const STRIP: u32 = 300;
-const LABEL_Y: u32 = 84;
-const MARGIN: u32 = 16;
-/// The plotting area's height over its width, at least and at most.
-const ASPECT: (f64, f64) = (0.3, 1.0);
 /// Landing crosses of one ball closer than this (px) are drawn once.
 const CROWDED_PX: f64 = 10.0;
 /// Balls smaller than this radius (px) on the chart get the inset near the contact.
@@ -82,202 +71,6 @@ fn motion_swatch(motion: BallMotion, color: RGBColor) -> Swatch {
         BallMotion::Sliding => Swatch::line(color, 2),
         BallMotion::Rolling | BallMotion::Rest => Swatch::line(color, 5),
     }
-}
-
-/// The figure's horizontal axes: e1 (lab x on the cloth, or lab y when x is vertical) and
-/// e2 = up x e1.
-struct Projection {
-    e1: Vector3<f64>,
-    e2: Vector3<f64>,
-    /// Whether `up` is +z, so that e1, e2 are the lab x and y axes.
-    lab_xy: bool,
-}
-
-impl Projection {
-    /// The axes for the unit vertical `up`.
-    fn new(up: &Vector3<f64>) -> Self {
-        let mut e1 = Vector3::x() - up * up.x;
-        if e1.norm() < 1e-6 {
-            e1 = Vector3::y() - up * up.y;
-        }
-        let e1 = e1.normalize();
-        let e2 = up.cross(&e1);
-        let lab_xy = (up - Vector3::z()).norm() < 1e-12;
-        Projection { e1, e2, lab_xy }
-    }
-
-    /// The point (m) of a lab position (m) on the figure.
-    fn xy(&self, p: &Vector3<f64>) -> Point {
-        (p.dot(&self.e1), p.dot(&self.e2))
-    }
-
-    /// The axis descriptions, x then y.
-    fn axis_names(&self) -> (&'static str, &'static str) {
-        if self.lab_xy {
-            ("x (m)", "y (m)")
-        } else {
-            ("horizontal e1 (m)", "horizontal e2 = up x e1 (m)")
-        }
-    }
-}
-
-/// The smallest box holding some points (m).
-#[derive(Clone, Copy)]
-struct Bounds {
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-}
-
-impl Bounds {
-    /// The box of `points`.
-    fn of(points: impl Iterator<Item = Point>) -> Self {
-        let (x0, x1, y0, y1) = points.fold(
-            (
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            ),
-            |(a, b, c, d), (x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
-        );
-        Bounds { x0, x1, y0, y1 }
-    }
-
-    /// Grows the box to hold `p`.
-    fn include(&mut self, p: Point) {
-        self.x0 = self.x0.min(p.0);
-        self.x1 = self.x1.max(p.0);
-        self.y0 = self.y0.min(p.1);
-        self.y1 = self.y1.max(p.1);
-    }
-
-    /// The larger side (m), at least 8 `radius` (m).
-    fn span(&self, radius: f64) -> f64 {
-        (self.x1 - self.x0).max(self.y1 - self.y0).max(8.0 * radius)
-    }
-}
-
-/// Everything the figure shows, on the figure's axes.
-struct Layout {
-    /// Ball A's and ball B's paths, run by run.
-    runs: [Vec<Run>; 2],
-    /// Arrows along the rolling directions of balls still rolling at the end.
-    arrows: Vec<Arrow>,
-    /// Where the dotted line of ball A's incoming direction starts (it ends at A).
-    incoming_from: Option<Point>,
-    /// The box holding the paths, the outlines at contact, the arrows and the table.
-    bounds: Bounds,
-}
-
-impl Layout {
-    /// The layout of `t`'s figure, balls A and B of radii `radii` (m), the table `size`.
-    fn new(t: &TableOutcome, radii: [f64; 2], size: Option<TableSize>, proj: &Projection) -> Self {
-        let up = t.table.up;
-        let end = t.end_time();
-        let runs = [runs(&t.a, &up, end, proj), runs(&t.b, &up, end, proj)];
-        let outlines = [&t.a, &t.b].into_iter().zip(radii).flat_map(|(r, radius)| {
-            let (x, y) = proj.xy(&r.start.position);
-            [(x - radius, y - radius), (x + radius, y + radius)]
-        });
-        let paths = runs.iter().flatten().flat_map(|(_, p)| p.iter().copied());
-        let mut bounds = Bounds::of(paths.chain(outlines));
-        let span = bounds.span(larger(radii));
-        let arrows = final_arrows(t, proj, end, 0.15 * span);
-        let vin = horizontal(&t.incoming[0], &up);
-        let incoming_from = (vin.norm() > 0.0).then(|| {
-            let (ax, ay) = proj.xy(&t.a.start.position);
-            let back = proj.xy(&(vin.normalize() * (0.2 * span)));
-            (ax - back.0, ay - back.1)
-        });
-        for to in arrows.iter().map(|a| a.1).chain(incoming_from) {
-            bounds.include(to);
-        }
-        for corner in size.iter().flat_map(cushion_corners) {
-            bounds.include(corner);
-        }
-        Layout {
-            runs,
-            arrows,
-            incoming_from,
-            bounds,
-        }
-    }
-}
-
-/// The corners of the playing area (m, figure axes), closed: centred on the origin,
-/// length along the first axis.
-fn cushion_corners(size: &TableSize) -> [Point; 5] {
-    let (l, w) = (0.5 * size.length(), 0.5 * size.width());
-    [(-l, -w), (l, -w), (l, w), (-l, w), (-l, -w)]
-}
-
-/// Points of a ball's path from separation to `end` (s), split into runs of one motion.
-fn runs(r: &RollOut, up: &Vector3<f64>, end: f64, proj: &Projection) -> Vec<Run> {
-    let mut out = Vec::new();
-    for seg in &r.segments {
-        if seg.t0 > end {
-            break;
-        }
-        let t1 = seg.t1.min(end);
-        let n = if seg.phase == BallMotion::Rest {
-            1
-        } else {
-            POINTS_PER_SEGMENT
-        };
-        let pts = (0..=n)
-            .map(|i| {
-                let t = seg.t0 + (t1 - seg.t0) * f64::from(i) / f64::from(n);
-                proj.xy(&seg.at(up, t).position)
-            })
-            .collect();
-        out.push((seg.phase, pts));
-    }
-    out
-}
-
-/// Arrows of length `len` (m) from the position at `end` (s) along the rolling direction
-/// of each ball still rolling then (none for a ball that rests: its path ends there).
-fn final_arrows(t: &TableOutcome, proj: &Projection, end: f64, len: f64) -> Vec<Arrow> {
-    let up = t.table.up;
-    [(&t.a, COLOR_A), (&t.b, COLOR_B)]
-        .into_iter()
-        .filter(|(r, _)| r.rest.is_none())
-        .filter_map(|(r, c)| {
-            let (_, s) = r.at(&up, end, true);
-            let vh = horizontal(&r.rolling.velocity, &up);
-            (vh.norm() > 0.0).then(|| {
-                let from = proj.xy(&s.position);
-                let d = proj.xy(&(vh.normalize() * len));
-                (from, (from.0 + d.0, from.1 + d.1), c)
-            })
-        })
-        .collect()
-}
-
-/// The main chart's axis ranges (m) and its plotting area's height (px): `b` padded by 5 %
-/// of its span, the height following the box's shape within [`ASPECT`], the shorter side
-/// widened so that both axes have the same scale.
-fn equal_scale(b: &Bounds, radius: f64) -> (Range<f64>, Range<f64>, u32) {
-    let pw = f64::from(WIDTH - 2 * MARGIN - LABEL_Y);
-    let pad = 0.05 * b.span(radius);
-    let (cx0, cx1, cy0, cy1) = (b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad);
-    let ph = (pw * (cy1 - cy0) / (cx1 - cx0))
-        .clamp(ASPECT.0 * pw, ASPECT.1 * pw)
-        .round();
-    let scale = ((cx1 - cx0) / pw).max((cy1 - cy0) / ph);
-    let (mx, my) = (0.5 * (cx0 + cx1), 0.5 * (cy0 + cy1));
-    (
-        mx - 0.5 * scale * pw..mx + 0.5 * scale * pw,
-        my - 0.5 * scale * ph..my + 0.5 * scale * ph,
-        ph as u32,
-    )
-}
-
-/// The larger of two radii (m): what the figure's margins are measured in.
-fn larger(radii: [f64; 2]) -> f64 {
-    radii[0].max(radii[1])
 }
 
 /// The top view of a run's table phase, laid out and ready to draw.
@@ -791,35 +584,6 @@ fn draw_clipped<'b, DB: DrawingBackend + 'b>(
     swatch.draw_line(chart.plotting_area(), &piece)
 }
 
-/// The part of the segment `p`-`q` inside the box (Liang-Barsky); `None` when none is.
-fn clip(p: Point, q: Point, (xr, yr): (&Range<f64>, &Range<f64>)) -> Option<(Point, Point)> {
-    let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (pk, qk) in [
-        (-dx, p.0 - xr.start),
-        (dx, xr.end - p.0),
-        (-dy, p.1 - yr.start),
-        (dy, yr.end - p.1),
-    ] {
-        if pk == 0.0 {
-            if qk < 0.0 {
-                return None;
-            }
-        } else {
-            let r = qk / pk;
-            if pk < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    (t0 <= t1).then_some((
-        (p.0 + t0 * dx, p.1 + t0 * dy),
-        (p.0 + t1 * dx, p.1 + t1 * dy),
-    ))
-}
-
 /// The line of centres at contact, `reach` (m) beyond both balls: across the chart.
 fn draw_line_of_centres<'a, DB: DrawingBackend + 'a>(
     chart: &mut Chart<'a, DB>,
@@ -876,6 +640,7 @@ fn draw_arrow<'a, DB: DrawingBackend + 'a>(chart: &mut Chart<'a, DB>, arrow: &Ar
 
 #[cfg(test)]
 mod tests {
+    use super::geometry::ASPECT;
     use super::*;
     use crate::scene::run::run_scene;
     use std::path::Path;
