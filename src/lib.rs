@@ -41,7 +41,8 @@
 //!
 //! **A scene file** (TOML, `docs/formats.md`): [`Scene::load`] reads and validates it,
 //! [`run_scene`] runs it with its own solver settings (or others), and [`Report`] is the JSON
-//! the command line prints.
+//! the command line prints. A scene can also be built in code, key by key, with
+//! [`SceneBuilder`], which validates it as the file reader does.
 //!
 //! ```
 //! use billiard_contact::{run_scene, Scene};
