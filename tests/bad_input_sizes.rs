@@ -172,3 +172,41 @@ fn numbers_in_messages_are_readable() {
     assert!(stderr.contains("balls.mass = 1e300 kg"), "{stderr}");
     assert!(!stderr.contains(&"0".repeat(20)), "{stderr}");
 }
+
+/// Sweep grids: every row stays in memory for the figure, so a grid is at most 1e6 shots.
+/// Each list alone is bounded too (repeated ranges once grew without limit), and the
+/// product of four long lists is refused before it is formed (1e6^4 passes usize).
+#[test]
+fn sweep_grids_beyond_their_bound_are_refused() {
+    let dir = sandbox("sweep", &[]);
+    refused(
+        &dir,
+        &["sweep", "--cut", "0:89:0.00001", "--out", "o"],
+        &["--cut", "at most 1e6 values"],
+    );
+    let repeated = vec!["0:80:0.0001"; 20].join(",");
+    refused(
+        &dir,
+        &["sweep", "--cut", &repeated, "--out", "o"],
+        &["--cut", "at most 1e6 values in all"],
+    );
+    refused(
+        &dir,
+        &[
+            "sweep",
+            "--speed",
+            "1:1000:1",
+            "--side",
+            "0:0.999:0.001",
+            "--cut",
+            "0:9:1",
+            "--out",
+            "o",
+        ],
+        &[
+            "--spin x --speed x --side x --cut",
+            "1000 x 1000 x 10 shots",
+            "at most 1e6 shots",
+        ],
+    );
+}
