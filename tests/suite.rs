@@ -44,6 +44,7 @@ mod hertz_material;
 mod lab_rows_errors;
 mod lab_rows_methods;
 mod layering;
+mod plane_contact;
 mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;
