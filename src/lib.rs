@@ -124,7 +124,7 @@ pub use outputs::trace_csv::CsvTrace;
 pub use scene::builder::{ForceSpec, LawSpec, SceneBuilder};
 pub use scene::overrides::SolverOverrides;
 pub use scene::run::{run_scene, SceneOutcome};
-pub use scene::types::{Incoming, Scene};
+pub use scene::types::{Incoming, PlaneIncoming, Scene};
 pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
 pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
@@ -140,6 +140,6 @@ pub mod details {
     pub use crate::integrator::driver::{integrate, Integrated};
     pub use crate::integrator::law::HeadOn;
     pub use crate::model::effects::{EffectInfo, CATALOGUE};
-    pub use crate::model::material::{elastic_impact, hertz_stiffness};
+    pub use crate::model::material::{elastic_impact, hertz_stiffness, sphere_plane_stiffness};
     pub use crate::solve::check::{checks, state_error, Checks};
 }

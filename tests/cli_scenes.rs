@@ -163,6 +163,8 @@ fn scenes() -> Vec<PathBuf> {
         // Scenes of unequal balls ([balls.a]/[balls.b]) have their own reference in
         // tests/unequal_balls_*.rs; this file's reference is for identical balls.
         .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[balls.a]"))
+        // Scenes of a ball against a plane ([plane]) have theirs in tests/plane_scenes.rs.
+        .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[plane]"))
         .collect();
     v.sort();
     // The documented scenes must be there.

@@ -45,6 +45,7 @@ mod lab_rows_errors;
 mod lab_rows_methods;
 mod layering;
 mod plane_contact;
+mod plane_scenes;
 mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;

@@ -6,7 +6,7 @@ use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::number::count;
 use crate::cli::choice::{number, whole, MethodChoice};
-use crate::cli::common::{load_scene, progress_bar, solver_options_unused, warn};
+use crate::cli::common::{load_two_ball_scene, progress_bar, solver_options_unused, warn};
 use crate::outputs::atomic_file::AtomicFile;
 use crate::scene::overrides::SolverOverrides;
 use clap::Args;
@@ -50,7 +50,7 @@ pub(super) struct BatchArgs {
 
 /// Resolves every row of the input into the output CSV (written whole or not at all).
 pub(super) fn batch(args: &BatchArgs) -> Result<(), Error> {
-    let scene = load_scene(args.scene.as_deref())?;
+    let scene = load_two_ball_scene(args.scene.as_deref(), "batch")?;
     let method: Method = args.method.0;
     let overrides = SolverOverrides {
         method: Some(method),

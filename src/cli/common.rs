@@ -5,7 +5,7 @@ use crate::base::error::Error;
 use crate::base::number::readable_numbers;
 use crate::base::settings::SolverSettings;
 use crate::scene::overrides::SolverOverrides;
-use crate::scene::types::Scene;
+use crate::scene::types::{Incoming, Scene};
 use std::path::Path;
 
 /// The scene file, or the built-in default scene when none is given; a warning on stderr
@@ -17,6 +17,22 @@ pub(super) fn load_scene(path: Option<&Path>) -> Result<Scene, Error> {
     };
     for w in scene.warnings() {
         warn(w);
+    }
+    Ok(scene)
+}
+
+/// [`load_scene`] for the commands that vary two balls' states (`command`): a plane scene
+/// is refused, naming its section.
+pub(super) fn load_two_ball_scene(path: Option<&Path>, command: &str) -> Result<Scene, Error> {
+    let scene = load_scene(path)?;
+    if let Incoming::Plane(_) = scene.incoming {
+        return Err(Error::invalid(
+            "plane",
+            format!("a [plane] scene given to {command}"),
+            format!(
+                "a scene of two balls: {command} varies their states; run a plane scene with `run`"
+            ),
+        ));
     }
     Ok(scene)
 }

@@ -180,7 +180,10 @@ pub(super) fn run(args: &RunArgs) -> Result<(), Error> {
     let (text, outcome) = match (&args.trace, args.plot_trace.is_some()) {
         (Some(path), plot) => {
             let file = AtomicFile::create(path)?;
-            let mut csv = CsvTrace::with_columns(file, scene.law.is_some())?;
+            let mut csv = match scene.plane()? {
+                Some(plane) => CsvTrace::for_plane(file, scene.law.is_some(), plane)?,
+                None => CsvTrace::with_columns(file, scene.law.is_some())?,
+            };
             let outcome = if plot {
                 let mut both = Tee(&mut csv, &mut rows);
                 run_scene(&scene, &settings, Some((&mut both, sampling)))?

@@ -6,7 +6,7 @@ use crate::apps::plot::sweep as figure;
 use crate::apps::sweep::{self, parse_list, Grid, Spin};
 use crate::base::error::Error;
 use crate::cli::choice::MethodChoice;
-use crate::cli::common::{load_scene, progress_bar};
+use crate::cli::common::{load_two_ball_scene, progress_bar};
 use crate::outputs::atomic_file::AtomicFile;
 use crate::scene::overrides::SolverOverrides;
 use clap::Args;
@@ -61,7 +61,7 @@ pub(super) struct SweepArgs {
 
 /// Runs the sweep, writes its CSV and figure, and prints the largest throw of each curve.
 pub(super) fn sweep(args: &SweepArgs) -> Result<(), Error> {
-    let scene = load_scene(args.scene.as_deref())?;
+    let scene = load_two_ball_scene(args.scene.as_deref(), "sweep")?;
     let overrides = SolverOverrides {
         method: args.method.map(|m| m.0),
         ..SolverOverrides::default()

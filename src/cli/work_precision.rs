@@ -5,7 +5,7 @@ use crate::apps::plot::work_precision as figure;
 use crate::apps::work_precision::{self, StudyForce, StudyOptions, StudyRow};
 use crate::base::error::Error;
 use crate::cli::choice::{whole, ProfileChoice, Trimmed};
-use crate::cli::common::{load_scene, progress_bar};
+use crate::cli::common::{load_two_ball_scene, progress_bar};
 use crate::outputs::atomic_file::AtomicFile;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -69,7 +69,7 @@ pub(super) fn work_precision(args: &StudyArgs) -> Result<(), Error> {
     } else {
         Vec::new()
     };
-    let scene = load_scene(args.scene.as_deref())?;
+    let scene = load_two_ball_scene(args.scene.as_deref(), "work-precision")?;
     let mut options = StudyOptions {
         profiles: match &args.profiles {
             Some(list) => list.iter().map(|p| p.0).collect(),

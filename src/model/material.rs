@@ -54,11 +54,32 @@ impl Material {
     /// # Ok::<(), billiard_contact::Error>(())
     /// ```
     pub fn new(youngs_modulus: f64, poisson_ratio: f64) -> Result<Self, Error> {
-        positive(YOUNGS_MODULUS_FIELD, youngs_modulus, "Pa")?;
-        finite(POISSON_RATIO_FIELD, poisson_ratio)?;
+        Material::in_section("balls", youngs_modulus, poisson_ratio)
+    }
+
+    /// [`Material::new`] with errors naming `section.youngs_modulus` and
+    /// `section.poisson_ratio` (`plane` for a plane's material).
+    pub fn in_section(
+        section: &str,
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+    ) -> Result<Self, Error> {
+        let (e_field, nu_field) = if section == "balls" {
+            (
+                YOUNGS_MODULUS_FIELD.to_string(),
+                POISSON_RATIO_FIELD.to_string(),
+            )
+        } else {
+            (
+                format!("{section}.youngs_modulus"),
+                format!("{section}.poisson_ratio"),
+            )
+        };
+        positive(&e_field, youngs_modulus, "Pa")?;
+        finite(&nu_field, poisson_ratio)?;
         if !(poisson_ratio > -1.0 && poisson_ratio <= 0.5) {
             return Err(Error::invalid(
-                POISSON_RATIO_FIELD,
+                nu_field,
                 poisson_ratio,
                 "in (-1, 0.5]: the Poisson ratio of a stable isotropic solid (0.34 for \
                  phenolic resin)",
@@ -225,11 +246,14 @@ impl HertzContact {
         plane: Option<&Material>,
         approach_speed: f64,
     ) -> Result<Self, Error> {
-        let effective_modulus =
-            1.0 / (material.compliance() + plane.map_or(0.0, |p| p.compliance()));
-        let (radius, mass) = (ball.radius(), ball.mass());
-        let stiffness = 4.0 / 3.0 * effective_modulus * radius.sqrt();
-        HertzContact::of_stiffness(effective_modulus, radius, mass, stiffness, approach_speed)
+        let (effective_modulus, radius, stiffness) = sphere_plane_stiffness(ball, material, plane);
+        HertzContact::of_stiffness(
+            effective_modulus,
+            radius,
+            ball.mass(),
+            stiffness,
+            approach_speed,
+        )
     }
 
     /// Balls A and B of `balls`, both of `material`, with incoming centre-of-mass normal
@@ -260,6 +284,23 @@ pub fn hertz_stiffness(a: (&Ball, &Material), b: (&Ball, &Material)) -> (f64, f6
     let effective_radius = 1.0 / (1.0 / ball_a.radius() + 1.0 / ball_b.radius());
     let stiffness = 4.0 / 3.0 * effective_modulus * effective_radius.sqrt();
     (effective_modulus, effective_radius, stiffness)
+}
+
+/// Hertz's stiffness of `ball` of `material` on a plane of `plane` (`None`: rigid): the
+/// effective modulus E* (Pa), the effective radius r (m) and k = (4/3) E* sqrt(r)
+/// (N / m^(3/2)); the plane is the partner of infinite radius (docs/plane.md).
+pub fn sphere_plane_stiffness(
+    ball: &Ball,
+    material: &Material,
+    plane: Option<&Material>,
+) -> (f64, f64, f64) {
+    let effective_modulus = 1.0 / (material.compliance() + plane.map_or(0.0, |p| p.compliance()));
+    let radius = ball.radius();
+    (
+        effective_modulus,
+        radius,
+        4.0 / 3.0 * effective_modulus * radius.sqrt(),
+    )
 }
 
 /// The reduced mass m* = m_a m_b / (m_a + m_b) (kg) of balls `a` and `b`: the mass of

@@ -4,7 +4,7 @@
 //! Every float is checked finite before output: a non-finite value fails the run, naming
 //! the field, instead of turning into `null`. Only the fields documented as nullable
 //! (docs/formats.md#nulls-and-absent-keys: `theta`, `stick_time`, `stick_impulse`,
-//! `throw_angle_deg`) may be null; optional keys of extensions (`friction`, `lab_out`, `table`, and in
+//! `throw_angle_deg`) may be null; optional keys of extensions (`friction`, `lab_out`, `plane`, `table`, and in
 //! `table` each ball's `direction_deg`, `deflection_deg` and `rest`) are left out when they
 //! do not apply.
 
@@ -15,7 +15,7 @@ use crate::model::params::{Evaluate, Friction, FrictionLaw};
 use crate::model::state::{CmState, LabMotion};
 use crate::profile::force::ForceProfile;
 use crate::scene::run::SceneOutcome;
-use crate::scene::types::Scene;
+use crate::scene::types::{Incoming, Scene};
 use crate::solve::check::Checks;
 use crate::solve::outcome::LawOutcome;
 use crate::table_phase::outcome::TableOutcome;
@@ -100,6 +100,18 @@ impl From<&(LabMotion, LabMotion)> for LabJson {
             b: MotionJson::from(b),
         }
     }
+}
+
+/// A ball meeting a plane in JSON (lab axes); `cm_in` and `cm_out` are then those of the
+/// equivalent pair (docs/plane.md).
+#[derive(Debug, Serialize)]
+pub(crate) struct PlaneJson {
+    /// Unit normal, out of the plane towards the ball.
+    pub normal: [Num; 3],
+    /// The ball before the contact.
+    pub ball_in: MotionJson,
+    /// The ball after it.
+    pub ball_out: MotionJson,
 }
 
 /// The friction law in JSON, written only when a speed-dependent mu is evaluated once at the
@@ -441,7 +453,7 @@ impl Serialize for Report<'_> {
         let (scene, run) = (self.scene, self.run);
         let o = &run.outcome;
         let r = &o.result;
-        let mut m = s.serialize_struct("Report", 26)?;
+        let mut m = s.serialize_struct("Report", 27)?;
         m.serialize_field("name", &scene.name)?;
         let (force, duration) = force_and_duration(scene, run);
         m.serialize_field("profile", force)?;
@@ -475,6 +487,20 @@ impl Serialize for Report<'_> {
         match &run.lab_out {
             Some(lab) => m.serialize_field("lab_out", &LabJson::from(lab))?,
             None => m.skip_field("lab_out")?,
+        }
+        match (&run.plane_out, &scene.incoming) {
+            (Some(out), Incoming::Plane(p)) => m.serialize_field(
+                "plane",
+                &PlaneJson {
+                    normal: v3(&p.normal),
+                    ball_in: MotionJson {
+                        velocity: v3(&p.velocity),
+                        spin: v3(&p.spin),
+                    },
+                    ball_out: MotionJson::from(out),
+                },
+            )?,
+            _ => m.skip_field("plane")?,
         }
         m.serialize_field("throw_angle_deg", &run.throw_angle_deg.map(Num))?;
         m.serialize_field("check", &CheckJson::from(&o.check))?;

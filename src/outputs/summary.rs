@@ -4,7 +4,7 @@ use crate::base::number::{count, decimal, sci, si};
 use crate::model::result::ContactResult;
 use crate::outputs::report::{force_and_duration, HeldFrictionJson, Report};
 use crate::scene::run::SceneOutcome;
-use crate::scene::types::Scene;
+use crate::scene::types::{Incoming, Scene};
 use crate::solve::outcome::LawOutcome;
 use crate::table_phase::outcome::TableOutcome;
 use crate::table_phase::roll_out::RollOut;
@@ -58,20 +58,43 @@ fn summary(scene: &Scene, so: &SceneOutcome) -> String {
             scene.contact.friction.mu(r.s0)
         );
     }
+    let plane = match (&so.plane_out, &scene.incoming) {
+        (Some(out), Incoming::Plane(p)) => Some((p, out)),
+        _ => None,
+    };
     if !r.collided() {
-        let _ = writeln!(
-            s,
-            "  no collision: the balls do not approach (U(0) = {:.6} m/s); state unchanged",
-            so.cm_in.u_cm.x
-        );
+        match plane {
+            Some((p, _)) => writeln!(
+                s,
+                "  no collision: the ball does not move into the plane (v.n = {:.6} m/s); state \
+                 unchanged",
+                -p.approach_speed()
+            ),
+            None => writeln!(
+                s,
+                "  no collision: the balls do not approach (U(0) = {:.6} m/s); state unchanged",
+                so.cm_in.u_cm.x
+            ),
+        }
+        .ok();
         return s;
     }
     s.push_str(&contact_summary(r, o.stick_time, heat_round_off(scene, so)));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
-    let _ = writeln!(s, "  centre-of-mass frame, out:");
-    let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
-    let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&r.out.omega_a));
-    let _ = writeln!(s, "    omega_B  {} rad/s", fmt(&r.out.omega_b));
+    if let Some((p, out)) = plane {
+        let _ = writeln!(
+            s,
+            "  ball against the plane of normal {}, out:",
+            fmt(&p.normal)
+        );
+        let _ = writeln!(s, "    v        {} m/s", fmt(&out.velocity));
+        let _ = writeln!(s, "    spin     {} rad/s", fmt(&out.spin));
+    } else {
+        let _ = writeln!(s, "  centre-of-mass frame, out:");
+        let _ = writeln!(s, "    U        {} m/s", fmt(&r.out.u_cm));
+        let _ = writeln!(s, "    omega_A  {} rad/s", fmt(&r.out.omega_a));
+        let _ = writeln!(s, "    omega_B  {} rad/s", fmt(&r.out.omega_b));
+    }
     if let Some((a, b)) = so.lab_out {
         let _ = writeln!(s, "  lab frame, out:");
         let _ = writeln!(s, "    v_A      {} m/s", fmt(&a.velocity));

@@ -4,6 +4,7 @@ use crate::base::error::Error;
 use crate::base::number::shortest;
 use crate::base::validate::finite_output;
 use crate::model::trace::{TraceRow, TraceSink};
+use crate::solve::plane::PlaneCollision;
 use std::io::Write;
 
 /// The header cells of the trace CSV.
@@ -28,12 +29,25 @@ pub(crate) const HEADER: [&str; 15] = [
 /// The header cell of the compression column, written after [`HEADER`] with a contact law.
 pub(crate) const COMPRESSION_HEADER: &str = "delta (m)";
 
+/// The header cells of the ball's columns of a plane scene (docs/plane.md), written last:
+/// its velocity and spin in the lab axes, read from the equivalent pair's state.
+pub(crate) const PLANE_HEADER: [&str; 6] = [
+    "v_x (m/s)",
+    "v_y (m/s)",
+    "v_z (m/s)",
+    "spin_x (rad/s)",
+    "spin_y (rad/s)",
+    "spin_z (rad/s)",
+];
+
 /// Writes trace rows as CSV, streaming.
 pub struct CsvTrace<W: Write> {
     out: csv::Writer<W>,
     rows: u64,
     /// Whether rows carry the compression column.
     compression: bool,
+    /// The ball meeting a plane, whose columns follow (plane scenes).
+    plane: Option<PlaneCollision>,
 }
 
 impl<W: Write> CsvTrace<W> {
@@ -45,6 +59,16 @@ impl<W: Write> CsvTrace<W> {
     /// A writer that starts with the header line, with the column `delta (m)` of a
     /// contact law when `compression` is true.
     pub fn with_columns(out: W, compression: bool) -> Result<Self, Error> {
+        CsvTrace::start(out, compression, None)
+    }
+
+    /// [`CsvTrace::with_columns`] for the ball meeting `plane`: the rows are those of its
+    /// equivalent pair, and the ball's velocity and spin columns follow (docs/plane.md).
+    pub fn for_plane(out: W, compression: bool, plane: PlaneCollision) -> Result<Self, Error> {
+        CsvTrace::start(out, compression, Some(plane))
+    }
+
+    fn start(out: W, compression: bool, plane: Option<PlaneCollision>) -> Result<Self, Error> {
         let mut out = csv::Writer::from_writer(out);
         for cell in HEADER {
             out.write_field(cell)?;
@@ -52,11 +76,17 @@ impl<W: Write> CsvTrace<W> {
         if compression {
             out.write_field(COMPRESSION_HEADER)?;
         }
+        if plane.is_some() {
+            for cell in PLANE_HEADER {
+                out.write_field(cell)?;
+            }
+        }
         out.write_record(None::<&[u8]>)?;
         Ok(CsvTrace {
             out,
             rows: 0,
             compression,
+            plane,
         })
     }
 
@@ -90,6 +120,13 @@ impl<W: Write> TraceSink for CsvTrace<W> {
             let delta = r.compression.unwrap_or(0.0);
             let delta = finite_output(delta, || format!("trace column delta at t = {}", r.t))?;
             self.out.write_field(shortest(delta + 0.0))?;
+        }
+        if let Some(plane) = &self.plane {
+            let (v, w) = (plane.velocity_of(&r.state), plane.spin_of(&r.state));
+            for (name, x) in PLANE_HEADER.iter().zip(v.iter().chain(w.iter())) {
+                let x = finite_output(*x, || format!("trace column {name} at t = {}", r.t))?;
+                self.out.write_field(shortest(x + 0.0))?;
+            }
         }
         self.out.write_record(None::<&[u8]>)?;
         self.rows += 1;

@@ -13,12 +13,14 @@ use crate::model::contact_law::{
     ContactLaw, Damping, AT_SPEED_FIELD, COEFFICIENT_FIELD, RESTITUTION_FIELD, STIFFNESS_FIELD,
 };
 use crate::model::effects::Effects;
-use crate::model::material::{elastic_impact, hertz_stiffness, HertzContact, Material};
+use crate::model::material::{
+    elastic_impact, hertz_stiffness, sphere_plane_stiffness, HertzContact, Material,
+};
 use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule};
 use crate::profile::hertz::Hertz;
 use crate::profile::spec::{Profile, ProfileSpec};
 use crate::scene::overrides::SolverOverrides;
-use crate::scene::types::{Incoming, Scene};
+use crate::scene::types::{Incoming, PlaneIncoming, Scene};
 use crate::table_phase::params::{TableParams, TableSize};
 use std::path::{Path, PathBuf};
 
@@ -260,8 +262,28 @@ impl SceneBuilder {
         }
         let impulse = ImpulseRule::from_either("contact.", self.restitution, self.impulse)?
             .unwrap_or(ImpulseRule::ELASTIC);
+        let plane = match &self.incoming {
+            Ok(Incoming::Plane(p)) => Some(*p),
+            _ => None,
+        };
+        if plane.is_some() && !balls.is_identical() {
+            return Err(Error::invalid(
+                "balls",
+                "[balls.a] and [balls.b] with [plane]",
+                "one ball, [balls] (mass, radius, alpha), meeting the plane",
+            ));
+        }
+        if let (Some(p), None) = (&plane, &material) {
+            if let Some(m) = &p.material {
+                return Err(Error::invalid(
+                    "plane.youngs_modulus",
+                    format!("{} without the ball's material", m.youngs_modulus()),
+                    "given with [balls] youngs_modulus and poisson_ratio (Hertz's contact needs                      both bodies' materials; leave the plane's out for a rigid plane)",
+                ));
+            }
+        }
         let law = match &force {
-            ForceSpec::Law(law) => Some(law.build(&balls, material.as_ref())?),
+            ForceSpec::Law(law) => Some(law.build(&balls, material.as_ref(), plane.as_ref())?),
             ForceSpec::Profile(spec) => {
                 check_duration_source(spec, material.as_ref())?;
                 None
@@ -283,6 +305,19 @@ impl SceneBuilder {
         let profile = match (given, &force, &law) {
             (Some(p), _, _) => p,
             (None, _, Some(law)) => law_time_unit(law, &balls, &incoming)?,
+            (None, ForceSpec::Profile(spec), None) if plane.is_some() => {
+                let mat = material
+                    .as_ref()
+                    .expect("without the material the profile is built");
+                let p = plane.expect("a plane scene");
+                let hertz = HertzContact::sphere_plane(
+                    &balls.a,
+                    mat,
+                    p.material.as_ref(),
+                    approaching_plane(&p)?,
+                )?;
+                spec.build_with(&self.base, Some(hertz.duration))?
+            }
             (None, ForceSpec::Profile(spec), None) => {
                 let mat = material
                     .as_ref()
@@ -319,10 +354,20 @@ impl SceneBuilder {
 impl LawSpec {
     /// The validated law for the balls `balls` of `material` (if given): the stiffness from
     /// exactly one of `stiffness` or the material, the coefficient given or calibrated.
-    fn build(&self, balls: &BallPair, material: Option<&Material>) -> Result<ContactLaw, Error> {
+    /// Against a plane (`plane`), the stiffness is the sphere-plane one and the mass of the
+    /// relative motion the ball's.
+    fn build(
+        &self,
+        balls: &BallPair,
+        material: Option<&Material>,
+        plane: Option<&PlaneIncoming>,
+    ) -> Result<ContactLaw, Error> {
         let stiffness = match (self.stiffness, material) {
             (Some(k), None) => k,
-            (None, Some(m)) => hertz_stiffness((&balls.a, m), (&balls.b, m)).2,
+            (None, Some(m)) => match plane {
+                Some(p) => sphere_plane_stiffness(&balls.a, m, p.material.as_ref()).2,
+                None => hertz_stiffness((&balls.a, m), (&balls.b, m)).2,
+            },
             (Some(k), Some(m)) => {
                 return Err(Error::invalid(
                     STIFFNESS_FIELD,
@@ -345,7 +390,11 @@ impl LawSpec {
         match (self.coefficient, self.restitution, self.at_speed) {
             (c, None, None) => ContactLaw::new(stiffness, damping, c.unwrap_or(0.0)),
             (None, Some(e), Some(v)) => {
-                ContactLaw::calibrated(stiffness, damping, e, v, 0.5 * balls.pair_mass())
+                let mass = match plane {
+                    Some(_) => balls.a.mass(),
+                    None => 0.5 * balls.pair_mass(),
+                };
+                ContactLaw::calibrated(stiffness, damping, e, v, mass)
             }
             (Some(c), Some(e), _) => Err(Error::invalid(
                 COEFFICIENT_FIELD,
@@ -376,6 +425,11 @@ fn law_time_unit(
     balls: &BallPair,
     incoming: &Incoming,
 ) -> Result<Profile, Error> {
+    if let Incoming::Plane(p) = incoming {
+        let v = approaching_plane(p)?;
+        let (_, tau) = elastic_impact(law.stiffness(), balls.a.mass(), v);
+        return Ok(Profile::Hertz(Hertz::new(tau)?));
+    }
     let (cm, _) = incoming.to_cm(balls)?;
     let u0 = cm.u_cm.x;
     if u0.is_nan() || u0 <= 0.0 {
@@ -387,6 +441,21 @@ fn law_time_unit(
     }
     let (_, tau) = elastic_impact(law.stiffness(), 0.5 * balls.pair_mass(), 2.0 * u0);
     Ok(Profile::Hertz(Hertz::new(tau)?))
+}
+
+/// The normal approach speed of a ball meeting a plane, refused when it does not approach
+/// (the contact time of a material or a law needs a contact to make).
+fn approaching_plane(p: &PlaneIncoming) -> Result<f64, Error> {
+    let v = p.approach_speed();
+    if v.is_nan() || v <= 0.0 {
+        return Err(Error::invalid(
+            "incoming.plane.velocity",
+            format!("a normal speed v.n = {} m/s", -v),
+            "a ball moving into the plane (v.n < 0, n out of the plane towards the ball): \
+             the contact time follows from the approach speed",
+        ));
+    }
+    Ok(v)
 }
 
 /// The contact duration comes from exactly one place: the profile, or (for `hertz` and

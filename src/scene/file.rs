@@ -62,7 +62,7 @@ use crate::model::state::{CmState, LabBall};
 use crate::profile::spec::ProfileSpec;
 use crate::scene::builder::{ForceSpec, LawSpec, SceneBuilder};
 use crate::scene::overrides::{name, optional_name, SolverOverrides};
-use crate::scene::types::{Incoming, Scene};
+use crate::scene::types::{Incoming, PlaneIncoming, Scene};
 use crate::table_phase::params::{TableParams, TableSettings, TableSize};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
@@ -84,6 +84,16 @@ struct RawScene {
     solver: Option<SolverOverrides>,
     effects: Option<Effects>,
     table: Option<RawTable>,
+    plane: Option<RawPlane>,
+}
+
+/// `[plane]`: a plane as the target instead of ball B (docs/plane.md).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlane {
+    normal: [f64; 3],
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -320,11 +330,61 @@ impl FrictionSpec {
 struct RawIncoming {
     cm: Option<RawCm>,
     lab: Option<RawLab>,
+    plane: Option<RawPlaneBall>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlaneBall {
+    velocity: [f64; 3],
+    spin: Option<[f64; 3]>,
 }
 
 impl RawIncoming {
-    /// Exactly one of the two frames, every component finite.
-    fn build(self) -> Result<Incoming, Error> {
+    /// Exactly one of the two frames, every component finite; `[incoming.plane]` exactly
+    /// when the scene has `[plane]`.
+    fn build(self, plane: Option<&RawPlane>) -> Result<Incoming, Error> {
+        match (plane, self.plane) {
+            (Some(p), Some(ball)) => {
+                if self.cm.is_some() || self.lab.is_some() {
+                    return Err(Error::invalid(
+                        "incoming",
+                        "[incoming.plane] together with [incoming.cm] or [incoming.lab]",
+                        "only [incoming.plane] in a scene with [plane]",
+                    ));
+                }
+                let normal = vec3("plane.normal", p.normal)?;
+                let length = normal.norm();
+                if !(length > 0.0 && length.is_finite()) {
+                    return Err(Error::invalid(
+                        "plane.normal",
+                        format!("{:?}", p.normal),
+                        "a non-zero direction, out of the plane towards the ball",
+                    ));
+                }
+                return Ok(Incoming::Plane(PlaneIncoming {
+                    normal: normal / length,
+                    material: plane_material(p)?,
+                    velocity: vec3("incoming.plane.velocity", ball.velocity)?,
+                    spin: vec3("incoming.plane.spin", ball.spin.unwrap_or_default())?,
+                }));
+            }
+            (Some(_), None) => {
+                return Err(Error::invalid(
+                    "incoming.plane",
+                    "missing, with [plane]",
+                    "a section [incoming.plane] (velocity, spin) for the ball meeting the plane",
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(Error::invalid(
+                    "plane",
+                    "missing, with [incoming.plane]",
+                    "a section [plane] (normal, and optionally youngs_modulus, poisson_ratio)",
+                ))
+            }
+            (None, None) => {}
+        }
         match (self.cm, self.lab) {
             (Some(cm), None) => Ok(Incoming::Cm(CmState::new(
                 vec3("incoming.cm.u", cm.u)?,
@@ -424,7 +484,7 @@ impl Scene {
         .files_relative_to(base)
         .source(source)
         .read(
-            raw.incoming.build(),
+            raw.incoming.build(raw.plane.as_ref()),
             raw.table.as_ref().map(RawTable::build).transpose(),
             raw.table
                 .as_ref()
@@ -460,6 +520,24 @@ fn material_of(balls: &RawBalls) -> Result<Option<Material>, Error> {
             YOUNGS_MODULUS_FIELD,
             format!("missing, with {POISSON_RATIO_FIELD} = {nu}"),
             "given together with balls.poisson_ratio (the material needs both)",
+        )),
+    }
+}
+
+/// The plane's material, when `[plane]` gives it: both keys or neither.
+fn plane_material(p: &RawPlane) -> Result<Option<Material>, Error> {
+    match (p.youngs_modulus, p.poisson_ratio) {
+        (Some(e), Some(nu)) => Material::in_section("plane", e, nu).map(Some),
+        (None, None) => Ok(None),
+        (Some(e), None) => Err(Error::invalid(
+            "plane.poisson_ratio",
+            format!("missing, with plane.youngs_modulus = {e}"),
+            "given together with plane.youngs_modulus (the material needs both)",
+        )),
+        (None, Some(nu)) => Err(Error::invalid(
+            "plane.youngs_modulus",
+            format!("missing, with plane.poisson_ratio = {nu}"),
+            "given together with plane.poisson_ratio (the material needs both)",
         )),
     }
 }

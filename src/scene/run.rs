@@ -27,6 +27,9 @@ pub struct SceneOutcome {
     pub throw_angle_deg: Option<f64>,
     /// The table phase after separation (effect `table`).
     pub table: Option<TableOutcome>,
+    /// For a plane scene, the ball's outgoing velocity and spin (lab axes); the other fields
+    /// are those of its equivalent pair (docs/plane.md).
+    pub plane_out: Option<LabMotion>,
 }
 
 /// Runs `scene` with `settings`, optionally streaming a trace (centre-of-mass frame).
@@ -44,6 +47,20 @@ pub fn run_scene(
         None => solve(&collision, &scene.profile, settings, trace)?,
     };
     let out = outcome.result.out;
+    if let Some(plane) = scene.plane()? {
+        return Ok(SceneOutcome {
+            outcome,
+            settings: *settings,
+            cm_in: collision.incoming,
+            lab_out: None,
+            throw_angle_deg: None,
+            table: None,
+            plane_out: Some(LabMotion {
+                velocity: plane.velocity_of(&out),
+                spin: plane.spin_of(&out),
+            }),
+        });
+    }
     let (lab_out, throw, lab_momentum_error, table) = match lab {
         Some(LabFrame { frame, lab }) => {
             let (a, b, throw) = frame.outgoing(lab, &out, outcome.result.collided());
@@ -89,6 +106,7 @@ pub fn run_scene(
         lab_out,
         throw_angle_deg: throw,
         table,
+        plane_out: None,
     })
 }
 

@@ -12,8 +12,10 @@ use crate::model::params::{BallPair, Contact};
 use crate::model::state::CmState;
 use crate::profile::spec::Profile;
 use crate::scene::overrides::SolverOverrides;
+use crate::solve::plane::{equivalent_state, PlaneCollision};
 use crate::table_phase::cloth::Table;
 use crate::table_phase::params::{TableParams, TableSize};
+use nalgebra::Vector3;
 use std::path::PathBuf;
 
 /// The incoming state as a scene gives it.
@@ -23,6 +25,29 @@ pub enum Incoming {
     Cm(CmState),
     /// Both balls in the lab frame.
     Lab(LabScene),
+    /// One ball meeting a plane (`[plane]` and `[incoming.plane]`, docs/plane.md): the ball
+    /// is `[balls]`, the run is that of its equivalent pair.
+    Plane(PlaneIncoming),
+}
+
+/// A ball meeting a plane, as a scene gives it (lab axes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneIncoming {
+    /// Unit normal of the plane, out of it towards the ball (`plane.normal`).
+    pub normal: Vector3<f64>,
+    /// The plane's material (`plane.youngs_modulus`, `plane.poisson_ratio`); `None`: rigid.
+    pub material: Option<Material>,
+    /// Velocity of the ball's centre (m/s).
+    pub velocity: Vector3<f64>,
+    /// Spin of the ball (rad/s).
+    pub spin: Vector3<f64>,
+}
+
+impl PlaneIncoming {
+    /// The normal approach speed -v.n (m/s): positive when the ball approaches.
+    pub fn approach_speed(&self) -> f64 {
+        -self.velocity.dot(&self.normal)
+    }
 }
 
 /// A lab scene with the frame between it and the paper's centre-of-mass frame.
@@ -44,6 +69,7 @@ impl Incoming {
                 let frame = Frame::of_pair(lab, balls)?;
                 (frame.to_cm(lab), Some(LabFrame { frame, lab }))
             }
+            Incoming::Plane(p) => (equivalent_state(&p.normal, &p.velocity, &p.spin), None),
         })
     }
 }
@@ -92,8 +118,10 @@ impl Scene {
     pub fn cloth(&self) -> Result<Option<Table>, Error> {
         match &self.incoming {
             Incoming::Lab(lab) => self.cloth_under(lab),
-            Incoming::Cm(_) if self.effects.table => Err(table_needs_lab_scene()),
-            Incoming::Cm(_) => Ok(None),
+            Incoming::Cm(_) | Incoming::Plane(_) if self.effects.table => {
+                Err(table_needs_lab_scene())
+            }
+            Incoming::Cm(_) | Incoming::Plane(_) => Ok(None),
         }
     }
 
@@ -115,6 +143,9 @@ impl Scene {
     /// The collision in the centre-of-mass frame; for lab scenes also the frame and the
     /// lab scene.
     pub fn collision(&self) -> Result<(Collision, Option<LabFrame<'_>>), Error> {
+        if let Some(plane) = self.plane()? {
+            return Ok((*plane.equivalent(), None));
+        }
         let (cm, lab) = self.incoming.to_cm(&self.balls)?;
         Ok((
             Collision::new(self.balls, self.contact, self.effects, cm)?,
@@ -128,8 +159,34 @@ impl Scene {
         let (Some(material), None) = (&self.material, &self.law) else {
             return Ok(None);
         };
+        if let Incoming::Plane(p) = &self.incoming {
+            let ball = &self.balls.a;
+            return HertzContact::sphere_plane(
+                ball,
+                material,
+                p.material.as_ref(),
+                p.approach_speed(),
+            )
+            .map(Some);
+        }
         let (c, _) = self.collision()?;
         HertzContact::of_pair(&self.balls, material, c.incoming.u_cm.x).map(Some)
+    }
+
+    /// The ball meeting the plane, for a plane scene (`None` for two balls).
+    pub fn plane(&self) -> Result<Option<PlaneCollision>, Error> {
+        let Incoming::Plane(p) = &self.incoming else {
+            return Ok(None);
+        };
+        PlaneCollision::with_effects(
+            self.balls.a,
+            self.contact,
+            self.effects,
+            p.normal,
+            p.velocity,
+            p.spin,
+        )
+        .map(Some)
     }
 }
 

@@ -127,9 +127,7 @@ impl PlaneCollision {
         let n = normal / length;
         let basis = basis_along(-n);
         let twin = Ball::new(2.0 * ball.mass(), ball.radius(), ball.alpha())?;
-        let t = basis.transpose();
-        let half_w = t * spin * 0.5;
-        let incoming = CmState::new(t * velocity * 0.5, half_w, half_w);
+        let incoming = state_in(&basis, &velocity, &spin);
         let pair = Collision::new(twin, contact, effects, incoming)?;
         Ok(PlaneCollision {
             ball,
@@ -170,6 +168,23 @@ impl PlaneCollision {
             outcome,
         }
     }
+}
+
+/// The equivalent pair's state (module docs) of a ball with `velocity` and `spin` against a
+/// plane of unit normal `normal`.
+pub(crate) fn equivalent_state(
+    normal: &Vector3<f64>,
+    velocity: &Vector3<f64>,
+    spin: &Vector3<f64>,
+) -> CmState {
+    state_in(&basis_along(-normal), velocity, spin)
+}
+
+/// U = v/2, Omega^A = Omega^B = w/2 in the axes `basis`.
+fn state_in(basis: &Matrix3<f64>, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> CmState {
+    let t = basis.transpose();
+    let half_w = t * spin * 0.5;
+    CmState::new(t * velocity * 0.5, half_w, half_w)
 }
 
 /// A right-handed orthonormal basis with first axis `x` (unit): e_y from the lab axis least

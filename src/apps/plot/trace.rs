@@ -18,10 +18,11 @@ use super::FONT;
 use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::model::trace::TraceRow;
-use crate::outputs::trace_csv::HEADER;
+use crate::outputs::trace_csv::{HEADER, PLANE_HEADER};
 use crate::profile::force::ForceProfile;
 use crate::scene::run::SceneOutcome;
 use crate::scene::types::Scene;
+use crate::solve::plane::PlaneCollision;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -145,6 +146,8 @@ impl Panel {
 /// The trace's rows as the figure's curves.
 struct Columns<'a> {
     rows: &'a [TraceRow],
+    /// The ball meeting a plane (plane scenes): its velocity and spin are drawn.
+    plane: Option<PlaneCollision>,
     time: TimeAxis,
     /// Few rows: each marked with a dot.
     marked: bool,
@@ -171,6 +174,28 @@ impl Columns<'_> {
                 .rows
                 .iter()
                 .filter_map(|r| Some((r.t * self.time.per_second, r.values()[i]? * factor)))
+                .collect(),
+            right_axis: false,
+        }
+    }
+
+    /// The ball's velocity (`spin` false) or spin component `i` of a plane scene, against t.
+    fn ball_curve(&self, plane: &PlaneCollision, spin: bool, i: usize, swatch: Swatch) -> Curve {
+        let k = if spin { 3 + i } else { i };
+        Curve {
+            column: PLANE_HEADER[k],
+            label: format!("{} {}", if spin { "spin" } else { "v" }, ["x", "y", "z"][i]),
+            swatch,
+            points: self
+                .rows
+                .iter()
+                .map(|r| {
+                    let x = match spin {
+                        true => plane.spin_of(&r.state)[i],
+                        false => plane.velocity_of(&r.state)[i],
+                    };
+                    (r.t * self.time.per_second, x)
+                })
                 .collect(),
             right_axis: false,
         }
@@ -214,6 +239,21 @@ impl Columns<'_> {
                 vec![self.curve(13, "theta(t)", self.swatch(0), degrees)],
             )
         };
+        let heat = Panel::new(
+            "sliding heat H_sfr(t)",
+            "H_sfr (J)",
+            vec![self.curve(14, "H_sfr(t)", self.swatch(0), 1.0)],
+        );
+        if let Some(plane) = &self.plane {
+            let ball = |spin: bool| -> Vec<Curve> {
+                (0..3)
+                    .map(|i| self.ball_curve(plane, spin, i, self.swatch(i)))
+                    .collect()
+            };
+            let velocity = Panel::new("ball velocity v (lab axes)", "velocity (m/s)", ball(false));
+            let spin = Panel::new("ball spin (lab axes)", "spin (rad/s)", ball(true));
+            return vec![force, slip, theta, velocity, spin, heat];
+        }
         let velocity = Panel::new(
             "centre-of-mass velocity u = (U, V, W) of ball A",
             "velocity (m/s)",
@@ -237,11 +277,6 @@ impl Columns<'_> {
             })
             .collect();
         let spin = Panel::new("spins: ball A solid, ball B dashed", "spin (rad/s)", spins);
-        let heat = Panel::new(
-            "sliding heat H_sfr(t)",
-            "H_sfr (J)",
-            vec![self.curve(14, "H_sfr(t)", self.swatch(0), 1.0)],
-        );
         vec![force, slip, theta, velocity, spin, heat]
     }
 }
@@ -251,8 +286,14 @@ impl TraceFigure {
     pub(crate) fn new(scene: &Scene, run: &SceneOutcome, rows: &[TraceRow]) -> Self {
         let duration = scene.profile.duration();
         let time = TimeAxis::for_duration(duration);
+        let plane = scene.plane().ok().flatten();
+        let frame = match plane {
+            Some(_) => "a ball against a plane, lab axes",
+            None => "centre-of-mass frame of the paper",
+        };
         let columns = Columns {
             rows,
+            plane,
             time,
             marked: rows.len() <= MARKED_ROWS,
         };
@@ -275,8 +316,7 @@ impl TraceFigure {
                 method_text(scene, run, rows.len(), &time)
             ),
             subtitle: format!(
-                "centre-of-mass frame of the paper, t from first touch to separation \
-                 ({} {}){}{}",
+                "{frame}, t from first touch to separation ({} {}){}{}",
                 short(duration * time.per_second),
                 time.unit,
                 if columns.marked {
