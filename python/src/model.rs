@@ -17,7 +17,7 @@ use billiard_contact::{BallPair, Error, Friction, Method, Scene};
 use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 
 use billiard_contact::profile::{ProfileKind, ProfileSpec};
 use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
@@ -268,6 +268,33 @@ impl BallBall {
     #[getter]
     fn restitution(&self) -> f64 {
         self.restitution
+    }
+
+    /// Pickling and copying: the keywords that built the model, so `BallBall(**kwargs)`
+    /// builds it again (the same numbers, so bit-identical results).
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let kwargs = PyDict::new(py);
+        match self.shared() {
+            Some(ball) if !self.by_ball => {
+                kwargs.set_item("mass", ball.mass())?;
+                kwargs.set_item("radius", ball.radius())?;
+                kwargs.set_item("alpha", ball.alpha())?;
+            }
+            _ => {
+                kwargs.set_item("a", self.a())?;
+                kwargs.set_item("b", self.b())?;
+            }
+        }
+        kwargs.set_item("mu", self.mu(py)?)?;
+        kwargs.set_item("restitution", self.restitution)?;
+        kwargs.set_item("profile", &self.profile)?;
+        kwargs.set_item("duration", self.duration)?;
+        kwargs.set_item("friction", self.friction)?;
+        kwargs.set_item("stick", self.stick)?;
+        Ok((PyTuple::empty(py), kwargs))
     }
 
     fn __repr__(&self) -> String {
