@@ -123,7 +123,9 @@ impl BallBall {
     ///
     /// pa, va, wa, pb, vb, wb: positions (m), velocities (m/s) and spins (rad/s) of
     /// balls A and B, each of shape (3,) or (N, 3) (any memory order; lists work too; a
-    /// (3,) array is used for every row). up: the direction away from the table (need
+    /// (3,) array is used for every row; float, integer and bool dtypes are converted to
+    /// float64, complex, object, string and other dtypes raise TypeError naming the
+    /// argument). up: the direction away from the table (need
     /// not be unit), (3,) or (N, 3), default (0, 0, 1). The centres must touch:
     /// |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
     ///
@@ -162,13 +164,13 @@ impl BallBall {
         time_transform: Option<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let arrays = [
-            Some(float_array(pa)?),
-            Some(float_array(va)?),
-            Some(float_array(wa)?),
-            Some(float_array(pb)?),
-            Some(float_array(vb)?),
-            Some(float_array(wb)?),
-            up.map(float_array).transpose()?,
+            Some(float_array("pa", pa)?),
+            Some(float_array("va", va)?),
+            Some(float_array("wa", wa)?),
+            Some(float_array("pb", pb)?),
+            Some(float_array("vb", vb)?),
+            Some(float_array("wb", wb)?),
+            up.map(|u| float_array("up", u)).transpose()?,
         ];
         let (inputs, n, single) = shaped(&arrays)?;
         let own_setup;

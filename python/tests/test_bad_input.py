@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -164,5 +165,55 @@ def test_bad_shapes_and_methods():
         model.resolve_lab(*a, method="euler")
     with pytest.raises(ValueError, match=r"^solver\.rtol = 0: in \[1e-15, 0\.1\]"):
         model.resolve_lab(*a, method="dop853", rtol=0.0)
-    with pytest.raises(ValueError):
+    with pytest.raises(TypeError, match=r"^wb has dtype <U\d+: expected real numbers"):
         model.resolve_lab(a[0], a[1], a[2], a[3], a[4], [[1, 2, "x"]] * 4)
+
+
+TOUCHING = ([0.0, 0.0, R], [2 * R, 0.0, R])
+
+
+@pytest.mark.parametrize(
+    "arg,value,shown",
+    [
+        ("va", np.array([1.0, 0.0, 1e-3j]), "complex128"),
+        ("wa", np.array([0, 0, 0], dtype=np.complex64), "complex64"),
+        ("vb", np.array([0.0, 0.0, 0.0], dtype=object), "object"),
+        ("pb", np.array(["0.05715", "0", "0.028575"]), "<U8"),
+        ("wb", [0, 0, 1j], "complex128"),
+        ("pa", [0, None, R], "object"),
+        ("up", np.array([0, 0, 1], dtype="m8[s]"), "timedelta64[s]"),
+        ("wa", np.zeros(3, dtype="V8"), "|V8"),
+    ],
+)
+def test_non_real_arrays_raise_type_error_naming_the_argument(arg, value, shown):
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    pa, pb = TOUCHING
+    args = dict(pa=pa, va=[1.0, 0, 0], wa=[0, 0, 0], pb=pb, vb=[0, 0, 0], wb=[0, 0, 0])
+    args[arg] = value
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's ComplexWarning would mean a quiet cast
+        with pytest.raises(TypeError) as e:
+            model.resolve_lab(**args)
+    assert str(e.value) == (
+        f"{arg} has dtype {shown}: expected real numbers (a float, integer or bool array)"
+    )
+    # The same in a batch of rows.
+    rows = {k: np.broadcast_to(np.asarray(v), (4, 3)) for k, v in args.items()}
+    with pytest.raises(TypeError, match=f"^{arg} has dtype "):
+        model.resolve_lab(**rows)
+
+
+@pytest.mark.parametrize("dtype", [bool, np.int8, np.uint16, np.int32, np.int64, np.float16, np.float32, ">f8", np.longdouble])
+def test_bool_integer_and_other_float_arrays_are_accepted(dtype):
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    pa, pb = TOUCHING
+    as_float = dict(pa=pa, va=[1.0, 0, 0], wa=[0.0, 1.0, 0], pb=pb, vb=[0.0, 0, 0], wb=[0.0, 0, 1.0])
+    # The velocities and spins are 0 or 1: exact in every dtype.
+    typed = {k: (np.asarray(v, dtype=dtype) if k[0] in "vw" else v) for k, v in as_float.items()}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = model.resolve_lab(**typed)
+    want = model.resolve_lab(**as_float)
+    for k in want:
+        np.testing.assert_array_equal(got[k], want[k])
+
