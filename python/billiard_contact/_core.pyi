@@ -224,5 +224,8 @@ class BallBall:
         change of time variable for "hertz" and "sine-power" profiles). N >= 2048 rows run
         on all cores without the GIL.
 
-        Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number").
+        Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number"),
+        also when a result would not be finite ("va[0] = -inf: the result is not finite
+        ...": masses, speeds or spins so large that the collision overflows); no output is
+        inf or NaN but the throw angle where it is undefined.
         """

@@ -145,7 +145,9 @@ impl BallBall {
     /// (np.float64, np.bool_: shape (), as numpy's own reductions return).
     ///
     /// Bad input raises ValueError naming the row and the field, with the command
-    /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.
+    /// line's wording; so does a collision whose result overflows double precision
+    /// ("row 3: va[0] = -inf: the result is not finite ...": no output is ever inf or
+    /// NaN, but for the throw angle where it is undefined). N >= 2048 rows are resolved on all cores without the GIL.
     #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None,
                         time_transform = None))]
     #[allow(clippy::too_many_arguments)]
@@ -219,6 +221,13 @@ impl BallBall {
             } else {
                 pyo3::exceptions::PyRuntimeError::new_err(msg)
             });
+        }
+        if let Some((i, what)) = out.first_non_finite() {
+            return Err(PyValueError::new_err(if single {
+                what
+            } else {
+                format!("row {i}: {what}")
+            }));
         }
         out.into_dict(py)
     }

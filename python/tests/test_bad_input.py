@@ -217,3 +217,36 @@ def test_bool_integer_and_other_float_arrays_are_accepted(dtype):
     for k in want:
         np.testing.assert_array_equal(got[k], want[k])
 
+
+HEAVY = dict(mass=1e300, radius=R, mu=0.06, restitution=1.0)
+
+
+def test_an_overflowing_collision_raises_value_error_naming_the_output():
+    # m v = 1e310 overflows: the impulse, then the velocities, are infinite or NaN.
+    model = bc.BallBall(**HEAVY)
+    pa, pb = TOUCHING
+    with pytest.raises(ValueError, match=r"^va\[0\] = -?inf: the result is not finite") as e:
+        model.resolve_lab(pa, [1e10, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0])
+    assert "row" not in str(e.value)
+    # Time stepping refuses such scales before it starts.
+    with pytest.raises(ValueError, match=r"^incoming = .*finite"):
+        model.resolve_lab(pa, [1e10, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0], method="rk4")
+    # The same collision at an ordinary speed is finite: the model itself is fine.
+    out = model.resolve_lab(pa, [1.0, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0])
+    assert all(np.isfinite(out[k]).all() for k in ("va", "wa", "vb", "wb", "impulse"))
+
+
+@pytest.mark.parametrize("n,bad", [(5, 3), (5000, 4321)])  # with the GIL, and on all cores
+def test_an_overflowing_row_is_named(n, bad):
+    model = bc.BallBall(**HEAVY)
+    pa = np.tile(TOUCHING[0], (n, 1))
+    pb = np.tile(TOUCHING[1], (n, 1))
+    va = np.tile([1.0, 0, 0], (n, 1))
+    va[bad, 0] = 1e10
+    va[n - 1, 0] = 1e10  # a later bad row: the first one is named
+    zeros = np.zeros((n, 3))
+    with pytest.raises(ValueError, match=rf"^row {bad}: va\[0\] = -?inf: the result is not finite"):
+        model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+    va[bad, 0] = va[n - 1, 0] = 1.0
+    out = model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+    np.testing.assert_array_equal(out["vb"][:, 0], np.ones(n))  # elastic, equal balls: exchange
