@@ -127,13 +127,15 @@ pub use scene::run::{run_scene, SceneOutcome};
 pub use scene::types::{Incoming, Scene};
 pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
+pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who
 /// drive them directly.
 pub mod details {
-    pub use crate::base::settings::{DEFAULT_RTOL, DEFAULT_STEPS};
+    pub use crate::base::settings::{DEFAULT_RTOL, DEFAULT_STEPS, MAX_SAMPLES, MAX_STEPS};
     pub use crate::closed_form::kernel::ClosedFormBatch;
+    pub use crate::closed_form::plane::{plane_impact, plane_slip, PlaneImpact};
     pub use crate::integrator::calibrate::CALIBRATION_RTOL;
     pub use crate::integrator::driver::{integrate, Integrated};
     pub use crate::integrator::law::HeadOn;

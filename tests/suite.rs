@@ -16,6 +16,7 @@ mod hard;
 mod scenes;
 
 mod bad_input_cli;
+mod bad_input_sizes;
 mod batch_rows;
 mod cli_batch_values;
 mod cli_contact_law_options;
@@ -43,6 +44,7 @@ mod hertz_material;
 mod lab_rows_errors;
 mod lab_rows_methods;
 mod layering;
+mod plane_contact;
 mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;

@@ -122,6 +122,26 @@ impl HertzContact {
         b: (&Ball, &Material),
         approach_speed: f64,
     ) -> Result<Self, Error> {
+        let (effective_modulus, effective_radius, stiffness) = hertz_stiffness(a, b);
+        let reduced_mass = reduced_mass(a.0, b.0);
+        HertzContact::of_stiffness(
+            effective_modulus,
+            effective_radius,
+            reduced_mass,
+            stiffness,
+            approach_speed,
+        )
+    }
+
+    /// The elastic impact of the given effective modulus, radius, reduced mass and stiffness
+    /// at `approach_speed`, checked.
+    fn of_stiffness(
+        effective_modulus: f64,
+        effective_radius: f64,
+        reduced_mass: f64,
+        stiffness: f64,
+        approach_speed: f64,
+    ) -> Result<Self, Error> {
         if !(approach_speed.is_finite() && approach_speed > 0.0) {
             return Err(Error::invalid(
                 "incoming",
@@ -130,8 +150,6 @@ impl HertzContact {
                  the approach speed",
             ));
         }
-        let (effective_modulus, effective_radius, stiffness) = hertz_stiffness(a, b);
-        let reduced_mass = reduced_mass(a.0, b.0);
         let (max_compression, duration) = elastic_impact(stiffness, reduced_mass, approach_speed);
         let contact = HertzContact {
             effective_modulus,
@@ -179,6 +197,39 @@ impl HertzContact {
     /// ```
     pub fn identical(ball: &Ball, material: &Material, u0: f64) -> Result<Self, Error> {
         HertzContact::of_pair(&BallPair::identical(*ball), material, u0)
+    }
+
+    /// A `ball` of `material` meeting a plane of `plane` (`None`: a rigid plane, compliance
+    /// 0) at the normal approach speed `approach_speed` (m/s, > 0): the effective radius is
+    /// the ball's radius and the mass of the relative motion the ball's own mass (the plane is
+    /// the partner of infinite radius and mass), E* = 1 / ((1 - nu^2)/E + (1 - nu_p^2)/E_p).
+    ///
+    /// ```
+    /// use billiard_contact::{Ball, HertzContact, Material};
+    /// // A resin ball on a steel plane at 1 m/s: R = r, m* = m.
+    /// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+    /// let (resin, steel) = (Material::new(5.4e9, 0.34)?, Material::new(2.0e11, 0.3)?);
+    /// let h = HertzContact::sphere_plane(&ball, &resin, Some(&steel), 1.0)?;
+    /// let e_star = 1.0 / ((1.0 - 0.34f64.powi(2)) / 5.4e9 + (1.0 - 0.3f64.powi(2)) / 2.0e11);
+    /// assert!((h.effective_modulus / e_star - 1.0).abs() < 1e-15);
+    /// assert_eq!(h.effective_radius, 0.028575);
+    /// assert_eq!(h.reduced_mass, 0.17);
+    /// // Hertz: delta_max = (5 m v^2 / (4 k))^(2/5), k = (4/3) E* sqrt(r).
+    /// let k = 4.0 / 3.0 * e_star * 0.028575f64.sqrt();
+    /// assert!((h.max_compression / (5.0 * 0.17 / (4.0 * k)).powf(0.4) - 1.0).abs() < 1e-12);
+    /// # Ok::<(), billiard_contact::Error>(())
+    /// ```
+    pub fn sphere_plane(
+        ball: &Ball,
+        material: &Material,
+        plane: Option<&Material>,
+        approach_speed: f64,
+    ) -> Result<Self, Error> {
+        let effective_modulus =
+            1.0 / (material.compliance() + plane.map_or(0.0, |p| p.compliance()));
+        let (radius, mass) = (ball.radius(), ball.mass());
+        let stiffness = 4.0 / 3.0 * effective_modulus * radius.sqrt();
+        HertzContact::of_stiffness(effective_modulus, radius, mass, stiffness, approach_speed)
     }
 
     /// Balls A and B of `balls`, both of `material`, with incoming centre-of-mass normal

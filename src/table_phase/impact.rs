@@ -1,5 +1,6 @@
 //! Stage 2, the impact with the cloth: impulsive, applied at the contact point, with the
-//! ball-cloth stick rule (docs/model.md#ball-cloth-impact).
+//! ball-cloth stick rule (docs/model.md#ball-cloth-impact): the sphere-plane closed form
+//! with Newton's rule.
 //!
 //! ```text
 //! P_n = (1 + e_t) m |v.n|                         normal impulse (0 when v.n >= 0)
@@ -14,9 +15,9 @@
 //! relative to the centre by -J_t u/(alpha m |u|). Only one body's surface moves, hence
 //! the factor (1 + 1/alpha) where the ball-ball rule has 2 (1 + 1/alpha).
 
-use super::cloth::cloth_slip;
 use super::cloth::roll_spin;
 use super::params::TableParams;
+use crate::closed_form::plane::plane_impact;
 use crate::model::params::Ball;
 use nalgebra::Vector3;
 
@@ -56,25 +57,11 @@ pub fn cloth_impact(
     } else {
         0.0
     };
-    let u = cloth_slip(ball, up, velocity, spin);
-    let s = u.norm();
-    let stop = m * s / (1.0 + 1.0 / ball.alpha());
-    let coulomb = params.mu() * normal;
-    let (jt, sticks) = if s == 0.0 {
-        (0.0, normal > 0.0)
-    } else if coulomb >= stop {
-        (stop, true)
-    } else {
-        (coulomb, false)
-    };
-    let mut v = *velocity + up * (normal / m);
-    let mut w = *spin;
-    if jt > 0.0 {
-        let dir = u / s;
-        v -= dir * (jt / m);
-        w += up.cross(&dir) * (ball.radius() * jt / ball.inertia());
-    }
-    if sticks && s > 0.0 {
+    let hit = plane_impact(ball, params.mu(), normal, up, velocity, spin);
+    let (v, mut w, sticks) = (hit.velocity, hit.spin, hit.sticks);
+    let jt = hit.tangential_impulse;
+    let u = hit.slip_before;
+    if sticks && u.norm() > 0.0 {
         // The slip is zero up to rounding: make it exactly rolling (w.n is unchanged).
         w = roll_spin(ball, up, &v, &w);
     }
