@@ -214,7 +214,9 @@ class BallBall:
 
         pa, va, wa, pb, vb, wb: positions (m), velocities (m/s), spins (rad/s) of balls A
         and B, each of shape (3,) or (N, 3), any memory order (lists work too; a (3,) input
-        is used for every row). up: away from the table, default (0, 0, 1). The centres must
+        is used for every row; float, integer and bool arrays are converted to float64,
+        complex, object, string and other non-real dtypes raise TypeError naming the
+        argument). up: away from the table, default (0, 0, 1). The centres must
         touch: |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
 
         method None is the closed form; "rk4", "dopri5", "dop853" integrate (rtol, default
@@ -222,5 +224,8 @@ class BallBall:
         change of time variable for "hertz" and "sine-power" profiles). N >= 2048 rows run
         on all cores without the GIL.
 
-        Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number").
+        Raises ValueError naming the row and field ("row 7: va[1] = NaN: a finite number"),
+        also when a result would not be finite ("va[0] = -inf: the result is not finite
+        ...": masses, speeds or spins so large that the collision overflows); no output is
+        inf or NaN but the throw angle where it is undefined.
         """

@@ -10,7 +10,10 @@ Install it into an engine (one line), or into pooltool's default engine, the one
     install()                                               # pooltool's default engine (and GUI)
 
 or set ``engine.resolver.ball_ball = BilliardContact(...)`` yourself. Written for pooltool
-0.6 (``pip install pooltool-billiards==0.6.0``).
+0.6 (``pip install pooltool-billiards==0.6.0``) and for the API of pooltool's main branch
+after it, where the engine is ``pooltool.evolution.SimulationEngine(is_3d=...)`` and every
+strategy declares the dimensionality it is safe in (``dim``): ``install`` takes either
+engine, and the model declares ``Dim.BOTH`` where pooltool has ``Dim``.
 
 What the model does with pooltool's balls (``ball.state.rvw``: position, velocity, spin;
 lab frame, z up; any memory order):
@@ -18,14 +21,38 @@ lab frame, z up; any memory order):
 - Geometry. pooltool's ``make_kiss`` leaves the balls ``const.MIN_DIST`` (1e-6 m) apart
   before ``solve``. The collision is resolved along the actual line of centres: both
   centres are moved along it, symmetrically about their midpoint, to touching (|pb - pa| =
-  2R) for the library, which requires touching balls. The balls keep their own positions.
-- Parameters. Mass and radius are the balls' (``ball.params.m``, ``ball.params.R``; both
-  balls must have the same, as the model is for identical balls); ``restitution=None``
-  takes the mean of the balls' ``e_b`` as pooltool does.
+  R1 + R2) for the library, which requires touching balls. The balls keep their own
+  positions.
+- Parameters. Mass and radius are each ball's own (``ball.params.m``, ``ball.params.R``;
+  ``alpha``, the same for both, 0.4 by default); balls of different mass or radius are
+  resolved as ``BallBall(a=Ball(m1, R1, alpha), b=Ball(m2, R2, alpha))``.
+  ``restitution=None`` takes the mean of the balls' ``e_b`` as pooltool does. For balls of
+  different radius the model does its own ``make_kiss`` (pooltool's spaces the centres by
+  twice the first ball's radius): the same construction, moving the balls back or on along
+  their paths to R1 + R2 + ``const.MIN_DIST`` apart. For different masses it does its own
+  continually-touching adjustment (pooltool's moves velocity, which keeps momentum only for
+  equal masses): the same 10 % of the chaser's momentum along the line of centres. Equal
+  balls get pooltool's own methods unchanged.
 - Vertical velocity. pooltool 0.6 is two-dimensional and its ``frictional_inelastic``
-  model zeroes the vertical velocity after a collision; so does this one unless
-  ``keep_vertical_velocity=True`` (the library resolves the collision in 3D, and a ball
-  hit with follow or draw spin gets a small vertical velocity from friction).
+  model zeroes the vertical velocity after a collision; so does this one in a 2D engine
+  unless ``keep_vertical_velocity=True`` (the library resolves the collision in 3D, and a
+  ball hit with follow or draw spin gets a small vertical velocity from friction). In a 3D
+  engine (``is_3d=True``, which ``install`` reads from ``engine.is_3d``, pooltool after 0.6)
+  it is kept unless ``keep_vertical_velocity=False``, and a ball leaving upwards is
+  ``const.airborne``, as pooltool's 3D cue strike leaves it, when it would rise at least
+  ``min_bounce_height`` (0.005 m, pooltool's ball-table models' rule for settling a
+  bounce; a ball-ball collision rarely lifts a ball that far); a smaller or downward
+  vertical velocity of a ball on the table is zeroed (the table takes it).
+- Continually touching. After every ball-ball model's ``solve``, pooltool's
+  ``CoreBallBallCollision.resolve`` calls ``resolve_continually_touching``: when the two
+  balls leave along nearly the same direction (cosine above 0.9) with line-of-centres
+  speeds within 0.01 m/s, the slower ball takes 10 % of the faster one's speed along the
+  line of centres, so that they separate instead of colliding again microseconds later
+  (pooltool's remedy for a row of frozen balls, Newton's cradle, whose pairwise collisions
+  would otherwise stall the simulation). It keeps momentum but not energy: moving 0.1 u
+  from a ball at u to one at about u changes the kinetic energy by about m (0.1 u)^2 > 0,
+  a relative gain of about 1 % when both move at u. ``continually_touching=False`` skips
+  it: the library's result is final (and never gains energy).
 - Friction. ``mu`` is a number or a ``SpeedDependentFriction(a, b, c)`` (default: the
   fit a + b exp(-c S) that pooltool's default resolver uses, a = 9.951e-3, b = 0.108,
   c = 1.088). ``SpeedDependentFriction(..., evaluate="along-contact")`` (default)
@@ -33,7 +60,7 @@ lab frame, z up; any memory order):
   ``evaluate="initial"`` freezes mu at the sliding speed before the collision, pooltool's
   convention: mu(S(0)) is computed from the incoming state and used as a constant
   coefficient (the first release's names "contact" and "initial-slip" work too).
-- Motion state. Both balls leave the collision ``const.sliding``.
+- Motion state. Both balls leave the collision ``const.sliding`` (or airborne, above).
 
 Differences from pooltool's ``frictional_inelastic``: that model's tangential impulse is
 mu e m dv_n (e the restitution), this one's mu (1 + e)/2 m dv_n (Coulomb friction over the
@@ -57,7 +84,28 @@ import pooltool.constants as const
 from pooltool.objects.ball.datatypes import Ball, BallState
 from pooltool.physics.resolve.ball_ball.core import CoreBallBallCollision
 
+from billiard_contact import Ball as _LibBall
 from billiard_contact import BallBall, SpeedDependentFriction
+
+
+def _first_found(*names: str) -> Any:
+    """The first of ``"module:attribute"`` that imports (pooltool moves names between
+    releases), or None."""
+    import importlib
+
+    for name in names:
+        module, _, attribute = name.partition(":")
+        try:
+            return getattr(importlib.import_module(module), attribute)
+        except (ImportError, AttributeError):
+            continue
+    return None
+
+
+#: pooltool after 0.6: strategies declare the dimensionality they are safe in (None: 0.6).
+Dim = _first_found("pooltool.physics.dimensionality:Dim")
+#: pooltool after 0.6: the motion state of a ball off the table (None: 0.6, all on it).
+_AIRBORNE = getattr(const, "airborne", None)
 
 __all__ = ["BilliardContact", "install", "MODEL_NAME"]
 
@@ -78,44 +126,121 @@ class BilliardContact(CoreBallBallCollision):
         restitution: e in [0, 1] (normal impulse (1 + e) m U(0)); ``None``: the mean of
             the two balls' ``params.e_b``.
         alpha: moment of inertia factor, I = alpha m R^2 (0.4: solid ball).
-        keep_vertical_velocity: keep the vertical velocity the collision gives (off: zeroed,
-            as pooltool 0.6's models do).
+        is_3d: the engine is 3D (``SimulationEngine(is_3d=True)``, pooltool after 0.6;
+            ``install`` sets it from the engine): the vertical velocity is kept by default
+            and a ball leaving the table is airborne.
+        min_bounce_height: (3D engines) a ball on the table that the collision would lift
+            by less (m; v_z^2 / 2g) stays on it, with no vertical velocity, as pooltool's
+            ball-table models settle such a bounce; ``install`` takes the engine's
+            ``resolver.ball_table.min_bounce_height`` (pooltool's default 0.005).
+        keep_vertical_velocity: keep the vertical velocity the collision gives; ``None``
+            (default): kept in a 3D engine, zeroed in a 2D one as pooltool 0.6's models do.
         method: ``None`` (the closed form) or a time-stepping method of the library
             ("rk4", "dopri5", "dop853"); ``rtol`` its tolerance.
+        continually_touching: apply pooltool's ``resolve_continually_touching`` after the
+            solve (pooltool calls it after every ball-ball model's ``solve``, in
+            ``CoreBallBallCollision.resolve``). On by default, as in pooltool; it moves 10 %
+            of the faster ball's momentum along the line of centres to the slower ball when
+            the two leave with nearly the same velocity, which keeps momentum but can add
+            kinetic energy (see the module's documentation). ``False``: the library's
+            result is final.
+        dim: (pooltool after 0.6 only) ``Dim.BOTH``: the library resolves collisions in
+            3D, so the model is safe in 2D and 3D engines.
     """
 
     mu: Union[float, SpeedDependentFriction] = DEFAULT_MU
     restitution: Optional[float] = None
     alpha: float = 0.4
-    keep_vertical_velocity: bool = False
+    keep_vertical_velocity: Optional[bool] = None
     method: Optional[str] = None
     rtol: Optional[float] = None
+    continually_touching: bool = True
+    is_3d: bool = False
+    min_bounce_height: float = 0.005
 
+    if Dim is not None:
+        dim: Dim = attrs.field(default=Dim.BOTH, init=False, repr=False)
     model: str = attrs.field(default=MODEL_NAME, init=False, repr=False)
     _models: dict = attrs.field(factory=dict, init=False, repr=False, eq=False)
 
-    def _ball_ball(self, m: float, radius: float, e: float) -> BallBall:
-        key = (m, radius, e)
+    def _ball_ball(self, m1: float, r1: float, m2: float, r2: float, e: float) -> BallBall:
+        key = (m1, r1, m2, r2, e)
         model = self._models.get(key)
         if model is None:
-            model = BallBall(
-                mass=m, radius=radius, alpha=self.alpha, mu=self.mu, restitution=e
-            )
+            if (m1, r1) == (m2, r2):
+                model = BallBall(
+                    mass=m1, radius=r1, alpha=self.alpha, mu=self.mu, restitution=e
+                )
+            else:
+                model = BallBall(
+                    a=_LibBall(m1, r1, self.alpha),
+                    b=_LibBall(m2, r2, self.alpha),
+                    mu=self.mu,
+                    restitution=e,
+                )
             self._models[key] = model
         return model
+
+    def make_kiss(self, ball1: Ball, ball2: Ball) -> tuple[Ball, Ball]:
+        """Places the balls ``const.MIN_DIST`` apart before ``solve``: pooltool's own
+        ``make_kiss`` for balls of the same radius; for different radii the same
+        construction with the sum of the radii (pooltool's uses twice the first's)."""
+        R1, R2 = ball1.params.R, ball2.params.R
+        if R1 == R2:
+            return super().make_kiss(ball1, ball2)
+        r1, r2 = ball1.state.rvw[0], ball2.state.rvw[0]
+        v1, v2 = ball1.state.rvw[1], ball2.state.rvw[1]
+        target = R1 + R2 + const.MIN_DIST
+        c = r2 - r1
+        along_paths = not (
+            ball1.state.s in const.nontranslating and ball2.state.s in const.nontranslating
+        )
+        t = _time_to_distance(c, v2 - v1, target) if along_paths else None
+        if t is not None:
+            n1, n2 = r1 + t * v1, r2 + t * v2
+            # Balls moving nearly together move far for a small change of distance: then,
+            # as pooltool does, move them along the line of centres instead.
+            if np.linalg.norm((n1 + n2 - r1 - r2) / 2) > 5 * const.MIN_DIST:
+                t = None
+        if t is None:
+            u = c / np.linalg.norm(c)
+            gap = target - np.linalg.norm(c)
+            n1, n2 = r1 - gap / 2 * u, r2 + gap / 2 * u
+        ball1.state.rvw[0] = n1
+        ball2.state.rvw[0] = n2
+        return ball1, ball2
+
+    def resolve_continually_touching(self, ball1: Ball, ball2: Ball) -> tuple[Ball, Ball]:
+        """pooltool's adjustment for balls leaving with nearly the same velocity (its own
+        method for equal masses; for different masses the same rule moving momentum, not
+        velocity), or nothing when ``continually_touching`` is off."""
+        if not self.continually_touching:
+            return ball1, ball2
+        m1, m2 = ball1.params.m, ball2.params.m
+        if m1 == m2:
+            return super().resolve_continually_touching(ball1, ball2)
+        v1, v2 = ball1.state.rvw[1], ball2.state.rvw[1]
+        s1, s2 = np.linalg.norm(v1), np.linalg.norm(v2)
+        if not (s1 > 0 and s2 > 0):
+            return ball1, ball2
+        c = ball2.state.rvw[0] - ball1.state.rvw[0]
+        u = c / np.linalg.norm(c)
+        u1, u2 = float(np.dot(v1, u)), float(np.dot(v2, u))
+        if abs(u2 - u1) < 0.01 and np.dot(v1, v2) / (s1 * s2) > 0.9:
+            # The chased ball takes 10 % of the chaser's momentum along the line of centres.
+            dp = 0.1 * (m1 * u1 if u1 > u2 else m2 * u2)
+            sign = 1.0 if u1 > u2 else -1.0
+            ball1.state.rvw[1] = v1 - sign * dp / m1 * u
+            ball2.state.rvw[1] = v2 + sign * dp / m2 * u
+        return ball1, ball2
 
     def solve(self, ball1: Ball, ball2: Ball) -> tuple[Ball, Ball]:
         """Resolves the collision of two touching (or 1e-6 m apart) balls, in place."""
         p1, p2 = ball1.params, ball2.params
-        if p1.m != p2.m or p1.R != p2.R:
-            raise ValueError(
-                f"balls {ball1.id!r} and {ball2.id!r}: mass {p1.m} and {p2.m} kg, radius "
-                f"{p1.R} and {p2.R} m: the model is for identical balls"
-            )
         e = self.restitution
         if e is None:
             e = (p1.e_b + p2.e_b) / 2
-        model = self._ball_ball(p1.m, p1.R, e)
+        model = self._ball_ball(p1.m, p1.R, p2.m, p2.R, e)
         rvw1 = ball1.state.rvw
         rvw2 = ball2.state.rvw
         r1 = rvw1[0]
@@ -127,7 +252,7 @@ class BilliardContact(CoreBallBallCollision):
             raise ValueError(
                 f"balls {ball1.id!r} and {ball2.id!r} have the same centre: no line of centres"
             )
-        s = p1.R / dist
+        s = 0.5 * (p1.R + p2.R) / dist
         mx, my, mz = (
             0.5 * float(r1[0] + r2[0]),
             0.5 * float(r1[1] + r2[1]),
@@ -139,23 +264,71 @@ class BilliardContact(CoreBallBallCollision):
             pa, rvw1[1], rvw1[2], pb, rvw2[1], rvw2[2], method=self.method, rtol=self.rtol
         )
         va, vb = out["va"], out["vb"]
-        if not self.keep_vertical_velocity:
+        keep = self.keep_vertical_velocity
+        if not (self.is_3d if keep is None else keep):
             va[2] = 0.0
             vb[2] = 0.0
-        ball1.state = BallState(np.array([r1, va, out["wa"]]), const.sliding)
-        ball2.state = BallState(np.array([r2, vb, out["wb"]]), const.sliding)
+        s1, s2 = self._state(va, r1, p1), self._state(vb, r2, p2)  # (may zero v_z)
+        ball1.state = BallState(np.array([r1, va, out["wa"]]), s1)
+        ball2.state = BallState(np.array([r2, vb, out["wb"]]), s2)
         return ball1, ball2
+
+    def _state(self, v: np.ndarray, r: np.ndarray, params: Any) -> int:
+        """Sliding; in a 3D engine airborne when the ball leaves the table. A ball on the
+        table keeps no vertical velocity that would lift it less than
+        ``min_bounce_height`` (v_z^2 / 2g, the rule of pooltool's ball-table models, which
+        would zero it on landing), nor any downward one (the table's reaction, which the
+        two-ball collision leaves out, takes it)."""
+        if not (self.is_3d and _AIRBORNE is not None and v[2] != 0.0):
+            return const.sliding
+        if r[2] > params.R + const.MIN_DIST:
+            return _AIRBORNE
+        if v[2] > 0.0 and v[2] * v[2] / (2 * params.g) >= self.min_bounce_height:
+            return _AIRBORNE
+        v[2] = 0.0
+        return const.sliding
+
+
+def _time_to_distance(c: np.ndarray, b: np.ndarray, target: float) -> Optional[float]:
+    """The time t of least |t| at which |c + t b| = target (c: the centres' offset, b: the
+    relative velocity), or None when there is none (no relative motion, or the paths never
+    come that far apart or close)."""
+    a = float(np.dot(b, b))
+    half_b = float(np.dot(b, c))
+    cc = float(np.dot(c, c)) - target * target
+    disc = half_b * half_b - a * cc
+    if not (a > 0.0 and disc >= 0.0):
+        return None
+    # The two roots without cancellation: q = -(half_b + sign(half_b) sqrt(disc)).
+    q = -(half_b + math.copysign(math.sqrt(disc), half_b))
+    roots = [x for x in (q / a, cc / q if q != 0.0 else None) if x is not None]
+    return min(roots, key=abs)
 
 
 def install(engine: Any = None, **options: Any) -> BilliardContact:
-    """Makes ``BilliardContact(**options)`` the ball-ball model of ``engine`` (a
-    ``pooltool.physics.PhysicsEngine``), or of pooltool's default engine when ``engine`` is
-    None (used by ``pt.simulate`` without ``engine=`` and by the GUI). Returns the model.
-    """
-    model = BilliardContact(**options)
-    if engine is None:
-        from pooltool.evolution.event_based import simulate as _simulate
+    """Makes ``BilliardContact(**options)`` the ball-ball model of ``engine`` (pooltool
+    0.6's ``pooltool.physics.PhysicsEngine`` or, after 0.6, a
+    ``pooltool.evolution.SimulationEngine``), or of pooltool's default engine when
+    ``engine`` is None (used by ``pt.simulate`` without ``engine=`` and by the GUI).
+    Returns the model.
 
-        engine = _simulate.DEFAULT_ENGINE
-    engine.resolver.ball_ball = model
+    ``is_3d`` is the engine's (``engine.is_3d``; False for 0.6's engine, which has none):
+    in a 3D engine the vertical velocity is kept unless ``keep_vertical_velocity=False``
+    is given. ``install(engine, continually_touching=False)`` skips pooltool's
+    ``resolve_continually_touching`` after each collision.
+    """
+    if engine is None:
+        engine = _first_found("pooltool.evolution.event_based.simulate:DEFAULT_ENGINE")
+    resolver = getattr(engine, "resolver", None)
+    if resolver is None or not hasattr(resolver, "ball_ball"):
+        raise TypeError(
+            f"install(engine): expected a pooltool engine (PhysicsEngine or SimulationEngine, "
+            f"with resolver.ball_ball), got {type(engine).__name__}"
+        )
+    options.setdefault("is_3d", bool(getattr(engine, "is_3d", False)))
+    settle = getattr(getattr(resolver, "ball_table", None), "min_bounce_height", None)
+    if isinstance(settle, (int, float)):
+        options.setdefault("min_bounce_height", float(settle))
+    model = BilliardContact(**options)
+    resolver.ball_ball = model
     return model

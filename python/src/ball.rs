@@ -47,6 +47,12 @@ impl Ball {
         self.ball == other.ball
     }
 
+    /// Pickling and copying: `Ball(mass, radius, alpha)` again (the same numbers, so the
+    /// same ball bit for bit).
+    fn __getnewargs__(&self) -> (f64, f64, f64) {
+        (self.ball.mass(), self.ball.radius(), self.ball.alpha())
+    }
+
     pub(crate) fn __repr__(&self) -> String {
         format!(
             "Ball(mass={:?}, radius={:?}, alpha={:?})",

@@ -81,6 +81,16 @@ impl SpeedDependentFriction {
         self.friction.mu(s)
     }
 
+    /// Equal when a, b, c and `evaluate` are (the same law, evaluated the same way).
+    fn __eq__(&self, other: &Self) -> bool {
+        (self.a, self.b, self.c, self.evaluate) == (other.a, other.b, other.c, other.evaluate)
+    }
+
+    /// Pickling and copying: `SpeedDependentFriction(a, b, c, evaluate)` again.
+    fn __getnewargs__(&self) -> (f64, f64, f64, &'static str) {
+        (self.a, self.b, self.c, self.evaluate())
+    }
+
     pub(crate) fn __repr__(&self) -> String {
         format!(
             "SpeedDependentFriction(a={:?}, b={:?}, c={:?}, evaluate=\"{}\")",

@@ -8,7 +8,7 @@ use numpy::npyffi::NPY_TYPES;
 use numpy::{
     PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use std::os::raw::c_int;
 
@@ -136,24 +136,46 @@ pub(crate) fn with_argument_names(e: Error) -> Error {
 }
 
 /// An input as a float64 numpy array: itself when it is one (no copy, any strides), else
-/// numpy's conversion (lists, tuples, other dtypes).
-pub(crate) fn float_array<'py>(ob: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    if let Ok(a) = ob.cast::<PyUntypedArray>() {
-        let dtype = a.dtype();
-        if dtype.num() == NPY_TYPES::NPY_DOUBLE as c_int
-            && dtype.is_native_byteorder() != Some(false)
-        {
-            // SAFETY: a numpy array of native float64.
-            return Ok(unsafe { a.cast_unchecked::<PyArrayDyn<f64>>() }.clone());
-        }
-    }
+/// numpy's conversion (lists, tuples, other dtypes). Real numbers only: float, integer and
+/// bool arrays are converted; complex, object, string and other non-real dtypes raise
+/// TypeError naming the argument (`name`), as numpy's cast would drop an imaginary part or
+/// fail with a message that names no argument.
+pub(crate) fn float_array<'py>(
+    name: &str,
+    ob: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let py = ob.py();
-    // SAFETY: PyArray_FromAny with a new reference to the float64 descriptor (stolen), the
-    // standard conversion of any array-like; the result is a new reference or NULL.
-    let array = unsafe {
+    let array = match ob.cast::<PyUntypedArray>() {
+        Ok(a) => a.clone(),
+        // SAFETY: PyArray_FromAny without a descriptor (numpy picks the dtype), the
+        // standard conversion of any array-like; the result is a new reference or NULL.
+        Err(_) => unsafe {
+            let ptr = numpy::PY_ARRAY_API.PyArray_FromAny(
+                py,
+                ob.as_ptr(),
+                std::ptr::null_mut(),
+                0,
+                0,
+                0,
+                std::ptr::null_mut(),
+            );
+            Bound::from_owned_ptr_or_err(py, ptr)?.cast_into::<PyUntypedArray>()?
+        },
+    };
+    let dtype = array.dtype();
+    if dtype.num() == NPY_TYPES::NPY_DOUBLE as c_int && dtype.is_native_byteorder() != Some(false) {
+        // SAFETY: a numpy array of native float64.
+        return Ok(unsafe { array.cast_into_unchecked::<PyArrayDyn<f64>>() });
+    }
+    if !matches!(dtype.kind(), b'f' | b'i' | b'u' | b'b') {
+        return Err(not_real(name, &dtype));
+    }
+    // SAFETY: PyArray_FromAny with a new reference to the float64 descriptor (stolen), a
+    // cast of a real array; the result is a new reference or NULL.
+    let converted = unsafe {
         let ptr = numpy::PY_ARRAY_API.PyArray_FromAny(
             py,
-            ob.as_ptr(),
+            array.as_ptr(),
             numpy::dtype::<f64>(py).into_ptr().cast(),
             0,
             0,
@@ -162,7 +184,19 @@ pub(crate) fn float_array<'py>(ob: &Bound<'py, PyAny>) -> PyResult<Bound<'py, Py
         );
         Bound::from_owned_ptr_or_err(py, ptr)?
     };
-    Ok(array.cast_into::<PyArrayDyn<f64>>()?)
+    Ok(converted.cast_into::<PyArrayDyn<f64>>()?)
+}
+
+#[cold]
+#[inline(never)]
+fn not_real(name: &str, dtype: &Bound<'_, numpy::PyArrayDescr>) -> PyErr {
+    let shown = dtype
+        .str()
+        .map(|s| s.to_string())
+        .unwrap_or_else(|_| "?".into());
+    PyTypeError::new_err(format!(
+        "{name} has dtype {shown}: expected real numbers (a float, integer or bool array)"
+    ))
 }
 
 /// The inputs and the number of rows n; `single` when every input has shape (3,).

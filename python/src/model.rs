@@ -17,7 +17,7 @@ use billiard_contact::{BallPair, Error, Friction, Method, Scene};
 use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 
 use billiard_contact::profile::{ProfileKind, ProfileSpec};
 use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
@@ -123,7 +123,9 @@ impl BallBall {
     ///
     /// pa, va, wa, pb, vb, wb: positions (m), velocities (m/s) and spins (rad/s) of
     /// balls A and B, each of shape (3,) or (N, 3) (any memory order; lists work too; a
-    /// (3,) array is used for every row). up: the direction away from the table (need
+    /// (3,) array is used for every row; float, integer and bool dtypes are converted to
+    /// float64, complex, object, string and other dtypes raise TypeError naming the
+    /// argument). up: the direction away from the table (need
     /// not be unit), (3,) or (N, 3), default (0, 0, 1). The centres must touch:
     /// |pb - pa| = 2 radius (r_A + r_B) within a relative 1e-9.
     ///
@@ -143,7 +145,9 @@ impl BallBall {
     /// (np.float64, np.bool_: shape (), as numpy's own reductions return).
     ///
     /// Bad input raises ValueError naming the row and the field, with the command
-    /// line's wording. N >= 2048 rows are resolved on all cores without the GIL.
+    /// line's wording; so does a collision whose result overflows double precision
+    /// ("row 3: va[0] = -inf: the result is not finite ...": no output is ever inf or
+    /// NaN, but for the throw angle where it is undefined). N >= 2048 rows are resolved on all cores without the GIL.
     #[pyo3(signature = (pa, va, wa, pb, vb, wb, up = None, method = None, rtol = None,
                         time_transform = None))]
     #[allow(clippy::too_many_arguments)]
@@ -162,13 +166,13 @@ impl BallBall {
         time_transform: Option<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let arrays = [
-            Some(float_array(pa)?),
-            Some(float_array(va)?),
-            Some(float_array(wa)?),
-            Some(float_array(pb)?),
-            Some(float_array(vb)?),
-            Some(float_array(wb)?),
-            up.map(float_array).transpose()?,
+            Some(float_array("pa", pa)?),
+            Some(float_array("va", va)?),
+            Some(float_array("wa", wa)?),
+            Some(float_array("pb", pb)?),
+            Some(float_array("vb", vb)?),
+            Some(float_array("wb", wb)?),
+            up.map(|u| float_array("up", u)).transpose()?,
         ];
         let (inputs, n, single) = shaped(&arrays)?;
         let own_setup;
@@ -217,6 +221,13 @@ impl BallBall {
             } else {
                 pyo3::exceptions::PyRuntimeError::new_err(msg)
             });
+        }
+        if let Some((i, what)) = out.first_non_finite() {
+            return Err(PyValueError::new_err(if single {
+                what
+            } else {
+                format!("row {i}: {what}")
+            }));
         }
         out.into_dict(py)
     }
@@ -268,6 +279,33 @@ impl BallBall {
     #[getter]
     fn restitution(&self) -> f64 {
         self.restitution
+    }
+
+    /// Pickling and copying: the keywords that built the model, so `BallBall(**kwargs)`
+    /// builds it again (the same numbers, so bit-identical results).
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let kwargs = PyDict::new(py);
+        match self.shared() {
+            Some(ball) if !self.by_ball => {
+                kwargs.set_item("mass", ball.mass())?;
+                kwargs.set_item("radius", ball.radius())?;
+                kwargs.set_item("alpha", ball.alpha())?;
+            }
+            _ => {
+                kwargs.set_item("a", self.a())?;
+                kwargs.set_item("b", self.b())?;
+            }
+        }
+        kwargs.set_item("mu", self.mu(py)?)?;
+        kwargs.set_item("restitution", self.restitution)?;
+        kwargs.set_item("profile", &self.profile)?;
+        kwargs.set_item("duration", self.duration)?;
+        kwargs.set_item("friction", self.friction)?;
+        kwargs.set_item("stick", self.stick)?;
+        Ok((PyTuple::empty(py), kwargs))
     }
 
     fn __repr__(&self) -> String {

@@ -63,6 +63,37 @@ impl<'py> Outputs<'py> {
         }
     }
 
+    /// The first row (and its message) with an output that is not finite: "va", "wa", "vb",
+    /// "wb", "impulse" or "tangential_impulse" (the throw angle is NaN by definition where
+    /// there is none). The inputs were finite, so the collision overflowed.
+    pub(crate) fn first_non_finite(&self) -> Option<(usize, String)> {
+        let n = self.n;
+        // SAFETY: the buffer's first 14n elements were all written by `resolve_lab_into`,
+        // and nothing writes them now.
+        let values = unsafe { std::slice::from_raw_parts(self.block.data(), 14 * n) };
+        // Fast path: chunks of 64 checked without branches.
+        if values
+            .chunks(64)
+            .all(|c| c.iter().fold(true, |ok, x| ok & x.is_finite()))
+        {
+            return None;
+        }
+        (0..n).find_map(|i| {
+            let row = |at: usize| {
+                [
+                    values[at + 3 * i],
+                    values[at + 3 * i + 1],
+                    values[at + 3 * i + 2],
+                ]
+            };
+            non_finite_output(
+                [row(0), row(3 * n), row(6 * n), row(9 * n)],
+                [values[12 * n + i], values[13 * n + i]],
+            )
+            .map(|m| (i, m))
+        })
+    }
+
     pub(crate) fn into_dict(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (b, n) = (&self.block, self.n);
         let real = NPY_TYPES::NPY_DOUBLE;
@@ -131,6 +162,9 @@ pub(crate) fn single_collision<'py>(
             pyo3::exceptions::PyRuntimeError::new_err(e.to_string())
         });
     }
+    if let Some(what) = non_finite_output([va[0], wa[0], vb[0], wb[0]], [p[0], j[0]]) {
+        return Err(PyValueError::new_err(what));
+    }
     let values = [
         vector(py, va[0])?,
         vector(py, wa[0])?,
@@ -153,6 +187,43 @@ pub(crate) fn single_collision<'py>(
         }
         Ok(d)
     }
+}
+
+/// The message for the first output of one collision that is not finite (va, wa, vb, wb,
+/// impulse, tangential_impulse), if any.
+#[inline]
+pub(crate) fn non_finite_output(vectors: [[f64; 3]; 4], scalars: [f64; 2]) -> Option<String> {
+    let finite = vectors
+        .iter()
+        .flatten()
+        .chain(&scalars)
+        .fold(true, |ok, x| ok & x.is_finite());
+    if finite {
+        None
+    } else {
+        Some(non_finite_message(vectors, scalars))
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn non_finite_message(vectors: [[f64; 3]; 4], scalars: [f64; 2]) -> String {
+    let named_vectors = ["va", "wa", "vb", "wb"]
+        .into_iter()
+        .zip(vectors)
+        .flat_map(|(name, v)| (0..3).map(move |k| (format!("{name}[{k}]"), v[k])));
+    let named_scalars = ["impulse", "tangential_impulse"]
+        .into_iter()
+        .zip(scalars)
+        .map(|(name, x)| (name.to_string(), x));
+    let (name, x) = named_vectors
+        .chain(named_scalars)
+        .find(|(_, x)| !x.is_finite())
+        .unwrap_or_else(|| ("output".into(), f64::NAN));
+    format!(
+        "{name} = {x}: the result is not finite (the collision overflows double precision: \
+         masses, speeds or spins too large)"
+    )
 }
 
 /// A fresh float64 array of shape (3,) holding `v`.

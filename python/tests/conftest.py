@@ -66,3 +66,13 @@ def pooltool_or_skip():
 
         return pooltool
     return pytest.importorskip("pooltool")
+
+
+def required_or_skip(name: str):
+    """An optional package (Dask for the parallel tests), required when
+    BILLIARD_CONTACT_REQUIRE_POOLTOOL=1 (CI installs it with pooltool), else optional."""
+    if os.environ.get("BILLIARD_CONTACT_REQUIRE_POOLTOOL") == "1":
+        import importlib
+
+        return importlib.import_module(name)
+    return pytest.importorskip(name)

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -164,5 +165,88 @@ def test_bad_shapes_and_methods():
         model.resolve_lab(*a, method="euler")
     with pytest.raises(ValueError, match=r"^solver\.rtol = 0: in \[1e-15, 0\.1\]"):
         model.resolve_lab(*a, method="dop853", rtol=0.0)
-    with pytest.raises(ValueError):
+    with pytest.raises(TypeError, match=r"^wb has dtype <U\d+: expected real numbers"):
         model.resolve_lab(a[0], a[1], a[2], a[3], a[4], [[1, 2, "x"]] * 4)
+
+
+TOUCHING = ([0.0, 0.0, R], [2 * R, 0.0, R])
+
+
+@pytest.mark.parametrize(
+    "arg,value,shown",
+    [
+        ("va", np.array([1.0, 0.0, 1e-3j]), "complex128"),
+        ("wa", np.array([0, 0, 0], dtype=np.complex64), "complex64"),
+        ("vb", np.array([0.0, 0.0, 0.0], dtype=object), "object"),
+        ("pb", np.array(["0.05715", "0", "0.028575"]), "<U8"),
+        ("wb", [0, 0, 1j], "complex128"),
+        ("pa", [0, None, R], "object"),
+        ("up", np.array([0, 0, 1], dtype="m8[s]"), "timedelta64[s]"),
+        ("wa", np.zeros(3, dtype="V8"), "|V8"),
+    ],
+)
+def test_non_real_arrays_raise_type_error_naming_the_argument(arg, value, shown):
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    pa, pb = TOUCHING
+    args = dict(pa=pa, va=[1.0, 0, 0], wa=[0, 0, 0], pb=pb, vb=[0, 0, 0], wb=[0, 0, 0])
+    args[arg] = value
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's ComplexWarning would mean a quiet cast
+        with pytest.raises(TypeError) as e:
+            model.resolve_lab(**args)
+    assert str(e.value) == (
+        f"{arg} has dtype {shown}: expected real numbers (a float, integer or bool array)"
+    )
+    # The same in a batch of rows.
+    rows = {k: np.broadcast_to(np.asarray(v), (4, 3)) for k, v in args.items()}
+    with pytest.raises(TypeError, match=f"^{arg} has dtype "):
+        model.resolve_lab(**rows)
+
+
+@pytest.mark.parametrize("dtype", [bool, np.int8, np.uint16, np.int32, np.int64, np.float16, np.float32, ">f8", np.longdouble])
+def test_bool_integer_and_other_float_arrays_are_accepted(dtype):
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    pa, pb = TOUCHING
+    as_float = dict(pa=pa, va=[1.0, 0, 0], wa=[0.0, 1.0, 0], pb=pb, vb=[0.0, 0, 0], wb=[0.0, 0, 1.0])
+    # The velocities and spins are 0 or 1: exact in every dtype.
+    typed = {k: (np.asarray(v, dtype=dtype) if k[0] in "vw" else v) for k, v in as_float.items()}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = model.resolve_lab(**typed)
+    want = model.resolve_lab(**as_float)
+    for k in want:
+        np.testing.assert_array_equal(got[k], want[k])
+
+
+HEAVY = dict(mass=1e300, radius=R, mu=0.06, restitution=1.0)
+
+
+def test_an_overflowing_collision_raises_value_error_naming_the_output():
+    # m v = 1e310 overflows: the impulse, then the velocities, are infinite or NaN.
+    model = bc.BallBall(**HEAVY)
+    pa, pb = TOUCHING
+    with pytest.raises(ValueError, match=r"^va\[0\] = -?inf: the result is not finite") as e:
+        model.resolve_lab(pa, [1e10, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0])
+    assert "row" not in str(e.value)
+    # Time stepping refuses such scales before it starts.
+    with pytest.raises(ValueError, match=r"^incoming = .*finite"):
+        model.resolve_lab(pa, [1e10, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0], method="rk4")
+    # The same collision at an ordinary speed is finite: the model itself is fine.
+    out = model.resolve_lab(pa, [1.0, 0, 0], [0, 0, 0], pb, [0, 0, 0], [0, 0, 0])
+    assert all(np.isfinite(out[k]).all() for k in ("va", "wa", "vb", "wb", "impulse"))
+
+
+@pytest.mark.parametrize("n,bad", [(5, 3), (5000, 4321)])  # with the GIL, and on all cores
+def test_an_overflowing_row_is_named(n, bad):
+    model = bc.BallBall(**HEAVY)
+    pa = np.tile(TOUCHING[0], (n, 1))
+    pb = np.tile(TOUCHING[1], (n, 1))
+    va = np.tile([1.0, 0, 0], (n, 1))
+    va[bad, 0] = 1e10
+    va[n - 1, 0] = 1e10  # a later bad row: the first one is named
+    zeros = np.zeros((n, 3))
+    with pytest.raises(ValueError, match=rf"^row {bad}: va\[0\] = -?inf: the result is not finite"):
+        model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+    va[bad, 0] = va[n - 1, 0] = 1.0
+    out = model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+    np.testing.assert_array_equal(out["vb"][:, 0], np.ones(n))  # elastic, equal balls: exchange
