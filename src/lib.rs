@@ -132,7 +132,7 @@ pub use solve::outcome::{solve, LawOutcome, Outcome};
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who
 /// drive them directly.
 pub mod details {
-    pub use crate::base::settings::{DEFAULT_RTOL, DEFAULT_STEPS};
+    pub use crate::base::settings::{DEFAULT_RTOL, DEFAULT_STEPS, MAX_SAMPLES, MAX_STEPS};
     pub use crate::closed_form::kernel::ClosedFormBatch;
     pub use crate::integrator::calibrate::CALIBRATION_RTOL;
     pub use crate::integrator::driver::{integrate, Integrated};

@@ -451,7 +451,7 @@ fn parameters_out_of_range() {
     cm(
         "rtol = 1e-10",
         "rtol = 1e-10\nsteps = 0",
-        &["solver.steps = 0", "[1, 1e9]"],
+        &["solver.steps = 0", "[1, 1e7]"],
     );
 }
 

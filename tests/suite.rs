@@ -16,6 +16,7 @@ mod hard;
 mod scenes;
 
 mod bad_input_cli;
+mod bad_input_sizes;
 mod batch_rows;
 mod cli_batch_values;
 mod cli_contact_law_options;

@@ -117,7 +117,7 @@ fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     let steps = match o.steps {
         None => None,
         Some(s) => {
-            Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e9]"))?)
+            Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e7]"))?)
         }
     };
     let overrides =

@@ -124,6 +124,9 @@ pub struct Grid {
     pub cuts_deg: Vec<f64>,
 }
 
+/// The most shots a sweep takes: every row stays in memory for the figure and the summary.
+pub const MAX_SHOTS: usize = 1_000_000;
+
 impl Grid {
     /// A validated grid: every list non-empty, speeds finite and > 0, sides finite, cuts in
     /// (-90, 90) degrees.
@@ -146,6 +149,23 @@ impl Grid {
                     "at least one value",
                 ));
             }
+        }
+        let shots = [spins.len(), speeds.len(), sides.len(), cuts_deg.len()]
+            .iter()
+            .try_fold(1usize, |n, &k| n.checked_mul(k))
+            .filter(|&n| n <= MAX_SHOTS);
+        if shots.is_none() {
+            return Err(Error::invalid(
+                "--spin x --speed x --side x --cut",
+                format!(
+                    "{} x {} x {} x {} shots",
+                    spins.len(),
+                    speeds.len(),
+                    sides.len(),
+                    cuts_deg.len()
+                ),
+                "at most 1e6 shots (every row is kept for the figure, about 200 bytes a shot)",
+            ));
         }
         if let Some(v) = speeds.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
             return Err(Error::invalid("--speed", v, "speeds > 0 m/s"));
@@ -214,7 +234,8 @@ pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
     for item in text.split(',') {
         let parts: Vec<&str> = item.split(':').collect();
         match parts[..] {
-            [x] => out.push(number(x)?),
+            [x] if out.len() < MAX_SHOTS => out.push(number(x)?),
+            [_] => return Err(too_many(option, out.len() + 1)),
             [a, b, s] => {
                 let (start, stop, step) = (number(a)?, number(b)?, number(s)?);
                 let n = (stop - start) / step;
@@ -223,16 +244,28 @@ pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
                         option,
                         format!("\"{}\"", item.trim()),
                         "a range start:stop:step with step > 0, start <= stop and at most \
-                         a million values",
+                         1e6 values",
                     ));
                 }
                 let count = (n + 1e-9).floor() as usize + 1;
+                if out.len() + count > MAX_SHOTS {
+                    return Err(too_many(option, out.len() + count));
+                }
                 out.extend((0..count).map(|i| start + i as f64 * step));
             }
             _ => return Err(number(item).unwrap_err()),
         }
     }
     Ok(out)
+}
+
+/// The error for a list longer than a sweep can take.
+fn too_many(option: &str, values: usize) -> Error {
+    Error::invalid(
+        option,
+        format!("{values} values or more"),
+        "at most 1e6 values in all",
+    )
 }
 
 /// One shot of the grid.

@@ -6,6 +6,7 @@
 //! apart by [`Error::is_bad_input`], which the command line maps to exit codes
 //! 2 and 1.
 
+use crate::base::number::readable_numbers;
 use std::path::PathBuf;
 
 /// Errors of the library and the command line.
@@ -199,8 +200,8 @@ impl Error {
     ) -> Self {
         Error::InvalidParameter {
             field: field.into(),
-            value: value.to_string(),
-            expected: expected.into(),
+            value: readable_numbers(&value.to_string()),
+            expected: readable_numbers(&expected.into()),
         }
     }
 

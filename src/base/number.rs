@@ -117,9 +117,84 @@ pub(crate) fn count(n: u64, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// `text` with every number written out in full as a person reads it: a decimal numeral
+/// whose value lies outside 1e-4 <= |v| < 1e16 (with a point) or that has more than 20
+/// digits (without) is replaced by its shortest round-trip form in scientific notation
+/// (`1e300`, `5e-324`, `-1.25e-7`); every other numeral, and all other text, is kept as it
+/// is. Rust's `{}` of an `f64` never uses an exponent, so an error naming `1e300` would
+/// otherwise spell out 301 digits.
+pub(crate) fn readable_numbers(text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let starts_number = bytes[i].is_ascii_digit() && (i == 0 || !is_word_byte(bytes[i - 1]));
+        if !starts_number {
+            let next = text[i..].chars().next().map_or(1, char::len_utf8);
+            out.push_str(&text[i..i + next]);
+            i += next;
+            continue;
+        }
+        let mut j = i;
+        while j < bytes.len() && bytes[j].is_ascii_digit() {
+            j += 1;
+        }
+        let point = j + 1 < bytes.len() && bytes[j] == b'.' && bytes[j + 1].is_ascii_digit();
+        if point {
+            j += 1;
+            while j < bytes.len() && bytes[j].is_ascii_digit() {
+                j += 1;
+            }
+        }
+        let numeral = &text[i..j];
+        let long = if point { true } else { numeral.len() > 20 };
+        match numeral.parse::<f64>() {
+            Ok(v) if long && v.is_finite() && format!("{v:?}").contains('e') => {
+                out.push_str(&format!("{v:?}"));
+            }
+            _ => out.push_str(numeral),
+        }
+        i = j;
+    }
+    out
+}
+
+/// Whether `b` continues a word or a numeral (so a digit after it does not start one).
+fn is_word_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_' || b == b'.'
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rust's `{}` writes 1e300 as 1 followed by 300 zeros and 5e-324 as 323 zeros then 5
+    /// (324 digits after the point): both come back as their shortest forms; numbers in the
+    /// plain range, integers up to 20 digits, names with digits and exponents already
+    /// written are kept.
+    #[test]
+    fn long_numerals_in_messages_become_readable() {
+        let big = format!("{}", 1e300);
+        let tiny = format!("{}", 5e-324);
+        assert_eq!((big.len(), tiny.len()), (301, 326));
+        assert_eq!(
+            readable_numbers(&format!("mass = {tiny} kg, radius = {big} m")),
+            "mass = 5e-324 kg, radius = 1e300 m"
+        );
+        assert_eq!(
+            readable_numbers(&format!("x = -{}", 1.25e-7)),
+            "x = -1.25e-7"
+        );
+        // 20 digits (u64::MAX has 20) are kept; 21 are a float's.
+        assert_eq!(
+            readable_numbers(&u64::MAX.to_string()),
+            "18446744073709551615"
+        );
+        assert_eq!(readable_numbers(&format!("{}", 1e20)), "1e20");
+        let kept = "--chunk = 1000000000000: at most 1048576; u_x = 0.0001, 1e-9, a_px2 7.5";
+        assert_eq!(readable_numbers(kept), kept);
+        assert_eq!(readable_numbers("µ 0.5 ✓"), "µ 0.5 ✓");
+    }
 
     #[test]
     fn shortest_reads_back_exactly() {

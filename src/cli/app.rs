@@ -1,6 +1,7 @@
 //! The command's arguments, its subcommands and its exit codes.
 
 use crate::base::names::closest;
+use crate::base::number::readable_numbers;
 use clap::{CommandFactory, Parser, Subcommand};
 use std::ffi::OsString;
 use std::process::ExitCode;
@@ -69,7 +70,7 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", readable_numbers(&e.to_string()));
             if e.is_bad_input() {
                 ExitCode::from(2)
             } else {

@@ -1,7 +1,7 @@
 //! `billiard-contact batch`: one collision per row of a CSV file, streamed in chunks over a
 //! thread pool, with a progress bar and a one-line account on stderr.
 
-use crate::apps::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS};
+use crate::apps::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS, MAX_CHUNK_ROWS};
 use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::number::count;
@@ -74,6 +74,15 @@ pub(super) fn batch(args: &BatchArgs) -> Result<(), Error> {
     }
     if args.chunk == 0 {
         return Err(Error::invalid("--chunk", 0, "at least 1"));
+    }
+    if args.chunk > MAX_CHUNK_ROWS {
+        return Err(Error::invalid(
+            "--chunk",
+            args.chunk,
+            format!(
+                "at most {MAX_CHUNK_ROWS} rows (memory holds one chunk, up to about 1 kB a row)"
+            ),
+        ));
     }
     let setup = BatchSetup::from_scene(&scene, settings);
     let input = std::fs::File::open(&args.input)

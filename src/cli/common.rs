@@ -2,6 +2,7 @@
 //! progress bars, warnings, and clap's errors in one line.
 
 use crate::base::error::Error;
+use crate::base::number::readable_numbers;
 use crate::base::settings::SolverSettings;
 use crate::scene::overrides::SolverOverrides;
 use crate::scene::types::Scene;
@@ -104,7 +105,7 @@ pub(super) fn one_line(e: &clap::Error) -> String {
 
 /// A warning on stderr: one line starting `warning: `; the run goes on.
 pub(super) fn warn(message: impl std::fmt::Display) {
-    eprintln!("warning: {message}");
+    eprintln!("warning: {}", readable_numbers(&message.to_string()));
 }
 
 /// A progress bar on stderr with `template` (indicatif's syntax).

@@ -6,8 +6,8 @@ use crate::apps::plot::trace::TraceFigure;
 use crate::apps::plot::FigureFormat;
 use crate::base::error::Error;
 use crate::base::method::Method;
-use crate::base::settings::Sampling;
 use crate::base::settings::SolverSettings;
+use crate::base::settings::{check_samples, check_steps_as, Sampling};
 use crate::cli::choice::{number, whole, MethodChoice};
 use crate::cli::common::{load_scene, solver_options_unused, warn};
 use crate::model::trace::{Tee, TraceRow};
@@ -100,9 +100,7 @@ impl RunArgs {
             }
         }
         if let Some(n) = self.samples {
-            if n == 0 {
-                return Err(Error::invalid("--samples", 0, "at least 1"));
-            }
+            check_samples("--samples", n)?;
             if self.trace.is_none() && self.plot_trace.is_none() {
                 return Err(Error::invalid(
                     "--samples",
@@ -113,6 +111,7 @@ impl RunArgs {
             }
         }
         if let Some(n) = self.ball_path_samples {
+            check_samples("--path-samples", n)?;
             if self.ball_paths.is_none() {
                 return Err(Error::invalid(
                     "--path-samples",
@@ -152,9 +151,6 @@ impl RunArgs {
                 ));
             }
         }
-        if self.ball_path_samples == Some(0) {
-            return Err(Error::invalid("--path-samples", 0, "at least 1"));
-        }
         Ok(())
     }
 }
@@ -162,6 +158,9 @@ impl RunArgs {
 /// Runs the scene; prints the JSON report or the summary once every file is written.
 pub(super) fn run(args: &RunArgs) -> Result<(), Error> {
     let scene = load_scene(args.scene.as_deref())?;
+    if let Some(n) = args.steps {
+        check_steps_as("--steps", n)?;
+    }
     let settings = args.solver_overrides().apply(&scene.solver)?;
     args.validate(&scene, &settings)?;
     let sampling = match args.samples {

@@ -2,7 +2,7 @@
 //! form.
 
 use crate::base::error::Error;
-use crate::base::settings::{Sampling, SolverSettings};
+use crate::base::settings::{check_samples, Sampling, SolverSettings};
 use crate::model::frame::{Frame, LabScene};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::model::trace::TraceSink;
@@ -35,6 +35,9 @@ pub fn run_scene(
     settings: &SolverSettings,
     trace: Option<(&mut dyn TraceSink, Sampling)>,
 ) -> Result<SceneOutcome, Error> {
+    if let Some((_, Sampling::Uniform(n))) = &trace {
+        check_samples("samples", *n)?;
+    }
     let (collision, lab) = scene.collision()?;
     let mut outcome = match &scene.law {
         Some(law) => solve_law(&collision, law, settings, trace)?,

@@ -50,4 +50,4 @@ pub use engine::{
     closed_form_into, resolve, resolve_slice, BatchInput, BatchOutput, BatchSetup, Overrides,
 };
 pub use lab_rows::{resolve_lab_into, LabOutColumns, LabRows, PARALLEL_LAB_ROWS};
-pub use stream::{run_csv, BatchSummary, DEFAULT_CHUNK_ROWS};
+pub use stream::{run_csv, BatchSummary, DEFAULT_CHUNK_ROWS, MAX_CHUNK_ROWS};

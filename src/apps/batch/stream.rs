@@ -11,6 +11,11 @@ use std::path::{Path, PathBuf};
 /// Rows read, resolved and written per chunk by default: the memory held at any time.
 pub const DEFAULT_CHUNK_ROWS: usize = 16_384;
 
+/// The largest chunk `batch --chunk` accepts: 2^20 rows, about 1 GB held at once (a row's
+/// record, result and output text take up to about 1 kB). Larger chunks gain nothing: the
+/// parallel work per chunk is already far longer than reading and writing it.
+pub const MAX_CHUNK_ROWS: usize = 1 << 20;
+
 /// What a streamed batch did.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct BatchSummary {
@@ -114,9 +119,12 @@ pub fn run_csv<R: Read, W: Write>(
         .map_err(io)?;
     let mut summary = BatchSummary::default();
     // Reused buffers: their size is bounded by the chunk, not by the file.
-    let mut records: Vec<csv::StringRecord> = Vec::with_capacity(chunk_rows);
-    let mut lines: Vec<u64> = Vec::with_capacity(chunk_rows);
-    let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(chunk_rows);
+    // They grow with the rows actually read: a short file with a large chunk holds only
+    // its own rows.
+    let first = chunk_rows.min(DEFAULT_CHUNK_ROWS);
+    let mut records: Vec<csv::StringRecord> = Vec::with_capacity(first);
+    let mut lines: Vec<u64> = Vec::with_capacity(first);
+    let mut results: Vec<Result<(String, bool, bool), String>> = Vec::with_capacity(first);
     loop {
         let n = read_chunk(&mut rd, &mut records, &mut lines, chunk_rows, &bad)?;
         if n == 0 {

@@ -114,7 +114,8 @@ pub(crate) fn time_solves(
         .clamp(1.0, 1e6) as u32;
     let repeats = options.repeats.max(1);
     let minimum = repeats.min(3);
-    let mut times = Vec::with_capacity(repeats);
+    // Grown as samples are taken: the budget, not `repeats`, bounds them in practice.
+    let mut times = Vec::with_capacity(repeats.min(64));
     while times.len() < repeats {
         let t0 = Instant::now();
         for _ in 0..per_sample {

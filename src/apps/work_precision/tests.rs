@@ -354,3 +354,25 @@ fn read_csv_names_the_bad_line() {
         .to_string();
     assert!(e.starts_with("w.csv:3:"), "{e}");
 }
+
+/// `--repeats` far beyond what the budget lets run (1e14 once asked for 800 TB up front):
+/// the samples taken are the three of the minimum, the budget being zero, and nothing is
+/// allocated for the rest.
+#[test]
+fn a_huge_repeat_count_takes_only_what_the_budget_allows() {
+    let options = StudyOptions {
+        repeats: 100_000_000_000_000,
+        ..quick()
+    };
+    let mut calls = 0u64;
+    let timing = time_solves(
+        || {
+            calls += 1;
+            Ok(())
+        },
+        &options,
+    )
+    .unwrap();
+    // One warm-up call, then three samples of one call each (sample_time 1 ns).
+    assert_eq!((calls, timing.samples, timing.solves_per_sample), (4, 3, 1));
+}
