@@ -382,13 +382,18 @@ pub fn check_sweep(data: &[u8]) -> Verdict {
     let cuts = lists.pop().unwrap();
     let sides = lists.pop().unwrap();
     let speeds = lists.pop().unwrap();
-    let shots = spins.len() * speeds.len() * sides.len() * cuts.len();
+    let shots = [spins.len(), speeds.len(), sides.len(), cuts.len()]
+        .iter()
+        .try_fold(1usize, |n, &k| n.checked_mul(k))
+        .unwrap_or(usize::MAX);
     let grid = match Grid::new(spins, speeds, sides, cuts) {
         Ok(g) => g,
         Err(e) => {
+            // One option, or the product of all four (`--spin x --speed x --side x --cut`:
+            // too many shots).
             let names = |e: &Error, msg: &str| {
                 matches!(e, Error::InvalidParameter { field, .. }
-                    if ["--spin", "--speed", "--side", "--cut"].contains(&field.as_str())
+                    if ["--spin", "--speed", "--side", "--cut"].iter().any(|o| field.contains(o))
                         && msg.starts_with(field.as_str()))
             };
             return refused(&e, "grid", names);
