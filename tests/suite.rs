@@ -36,6 +36,7 @@ mod convergence_profiles;
 mod effects_switches;
 mod examples_checks;
 mod friction_speed_dependent;
+mod fuzz_corpus;
 mod fuzz_smoke;
 mod hard_cases_rk4_coarse;
 mod hard_cases_scales_profiles;

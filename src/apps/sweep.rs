@@ -214,7 +214,9 @@ impl Grid {
 
 /// A list of numbers as the options write them: comma-separated items, each a number or a
 /// range `start:stop:step` (stop included when the steps reach it to 1e-9 of a step).
-pub(crate) fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
+/// Public only for the fuzz targets and their replay (`fuzz/`), which feed it the option text.
+#[doc(hidden)]
+pub fn parse_list(option: &str, text: &str) -> Result<Vec<f64>, Error> {
     let number = |t: &str| {
         t.trim()
             .parse::<f64>()

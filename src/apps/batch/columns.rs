@@ -59,6 +59,20 @@ pub(super) fn bare(cell: &str) -> &str {
     }
 }
 
+/// `text` (a header or cell of the input) as an error shows it: control characters (a
+/// newline inside a quoted cell) escaped, so the message stays one line.
+fn shown(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 /// Prefixes of the x, y, z columns of the centre-of-mass frame's state.
 const CM_PREFIXES: [&str; 3] = ["u_", "omega_a_", "omega_b_"];
 
@@ -92,7 +106,8 @@ pub(super) fn check_names(names: &[&str]) -> Result<(), String> {
         }
         if !all.contains(n) {
             return Err(format!(
-                "column `{n}`: unknown column, expected one of {}{}",
+                "column `{}`: unknown column, expected one of {}{}",
+                shown(n),
                 all.iter()
                     .map(|a| format!("`{a}`"))
                     .collect::<Vec<_>>()
@@ -101,7 +116,7 @@ pub(super) fn check_names(names: &[&str]) -> Result<(), String> {
             ));
         }
         if !seen.insert(*n) {
-            return Err(format!("column `{n}` appears twice"));
+            return Err(format!("column `{}` appears twice", shown(n)));
         }
     }
     Ok(())
@@ -113,8 +128,9 @@ pub(super) fn check_frame(names: &[&str], prefixes: &[&str], frame: &str) -> Res
     let own = accepted_columns(prefixes);
     match names.iter().find(|n| !own.iter().any(|o| o == *n)) {
         Some(n) => Err(format!(
-            "column `{n}` belongs to the other frame; this input is in the {frame} frame: give \
-             the columns of one frame"
+            "column `{}` belongs to the other frame; this input is in the {frame} frame: give \
+             the columns of one frame",
+            shown(n)
         )),
         None => Ok(()),
     }
@@ -191,7 +207,7 @@ impl Columns {
             }
             let v: f64 = cell
                 .parse()
-                .map_err(|_| format!("{} = `{cell}` is not a number", name()))?;
+                .map_err(|_| format!("{} = `{}` is not a number", name(), shown(cell)))?;
             if !v.is_finite() {
                 return Err(format!("{} = {cell}: expected a finite number", name()));
             }

@@ -1,0 +1,10 @@
+//! Fuzz target `sweep_options`: the promises are in `fuzz/checks.rs` (`check_sweep`).
+#![no_main]
+
+#[path = "../checks.rs"]
+#[allow(dead_code)]
+mod checks;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    checks::check_sweep(data);
+});

@@ -1,0 +1,441 @@
+#!/usr/bin/env python
+"""Coverage-guided fuzzing (atheris, libFuzzer) of the Python package's input surface.
+
+The constructors ``Ball``, ``SpeedDependentFriction`` and ``BallBall`` get keywords drawn
+from the input (mass, radius, alpha, a=/b= balls, mu as a number or a speed-dependent
+friction, restitution, profile, duration, friction, stick; plausible values, edge values,
+wrong types), then ``BallBall.resolve_lab`` gets arrays of arbitrary dtypes (every float and
+integer width, bool, complex, object, strings, byte-swapped), shapes ((3,), (N, 3), wrong
+ones, empty), memory layouts (Fortran order, strided, negative strides), lists and scalars,
+with a method, rtol and time_transform. The promise checked on every call:
+
+- it returns, and every output is finite (``throw_angle_deg`` may be NaN where the library
+  documents it has none), ``sticks`` is boolean, the shapes are (N, 3) and (N,) or (3,)
+  and scalars; or
+- it raises ValueError or TypeError whose message names the argument (a keyword of the
+  call, or ``row i:`` and a field of the row).
+
+Anything else (another exception, a non-finite output, a wrong shape, a crash of the
+extension) is a finding: the input is written as ``crash-*`` by libFuzzer. Known problems
+of a package without the checks of the Python package's own branch (a non-finite output
+that should be a ValueError; a complex array whose imaginary part is dropped) are counted
+in ``$FUZZ_PY_KNOWN`` (default target/fuzz-python-known.txt) instead, so the campaign goes
+on past them; ``FUZZ_PY_STRICT=1`` makes them findings too.
+
+Run (after installing the package and atheris into a Python, see docs/testing.md):
+
+    python fuzz/python/fuzz_python.py fuzz/corpus/python -max_total_time=600 \
+        -timeout=10 -rss_limit_mb=2048
+
+The extension is instrumented for coverage when built with the sanitizer-coverage flags
+(``fuzz/python/build``); without them libFuzzer is guided by the Python code alone.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import glob
+import inspect
+import math
+import os
+import re
+import sys
+import warnings
+
+import atheris
+import numpy as np
+
+bc = None  # billiard_contact, imported in main() once libFuzzer is loaded
+
+warnings.simplefilter("ignore")
+
+STRICT = os.environ.get("FUZZ_PY_STRICT") == "1"
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+KNOWN_LOG = os.environ.get("FUZZ_PY_KNOWN", os.path.join(ROOT, "target", "fuzz-python-known.txt"))
+known_counts: dict[str, int] = {}
+
+M, R = 0.17, 0.028575
+EDGE = [
+    0.0, -0.0, 1.0, -1.0, 0.4, 2 / 3, 0.5, 1e-12, 1e-300, 5e-324, 1e300, 1.7976931348623157e308,
+    -1e300, math.nan, math.inf, -math.inf, 1e6, 1e6 + 1, 2.5e-4, M, R, 0.06, 1e-9, 1e9,
+]
+PROFILES = ["half-sine", "hertz", "sine-power", "rectangle", "tabulated", "", "HERTZ", "x"]
+METHODS = [None, "closed-form", "rk4", "dopri5", "dop853", "euler", ""]
+EVALUATES = ["along-contact", "initial", "contact", "initial-slip", "start", ""]
+DTYPES = [
+    np.float64, np.float32, np.float16, np.longdouble, np.int8, np.int16, np.int32,
+    np.int64, np.uint8, np.uint64, np.bool_, np.complex128, np.complex64, object,
+    np.dtype(">f8"), np.dtype("<f4"), "U8", "S8", "m8[s]", "M8[s]",
+]
+ARRAY_ARGS = ["pa", "va", "wa", "pb", "vb", "wb", "up"]
+CTOR_ARGS = ["mass", "radius", "alpha", "a", "b", "mu", "restitution", "profile", "duration",
+             "friction", "stick"]
+OUT_VECTORS = ["va", "wa", "vb", "wb"]
+OUT_SCALARS = ["impulse", "tangential_impulse", "sticks", "throw_angle_deg"]
+
+
+CONVERSION = re.compile(
+    r"could not convert|float\(\) argument|setting an array element|invalid literal|"
+    r"could not be converted|not supported for|cannot convert|Could not convert"
+)
+
+
+PYO3_EXTRACTION = re.compile(
+    r"^must be real number, not |^only 0-dimensional arrays|^only length-1 arrays|"
+    r"^'\w+' object cannot be converted to '\w+'$|^'\w+' object cannot be interpreted"
+)
+
+
+class Finding(Exception):
+    """A broken promise."""
+
+
+def known(kind: str, detail: str) -> None:
+    """A problem the Python package's own branch fixes: a finding when STRICT, else counted."""
+    if STRICT:
+        raise Finding(f"{kind}: {detail}")
+    n = known_counts.get(kind, 0) + 1
+    known_counts[kind] = n
+    if n in (1, 10, 100, 1000, 10000, 100000):
+        with open(KNOWN_LOG, "a") as f:
+            f.write(f"{kind} (seen {n}x): {' '.join(detail.split())[:2000]}\n")
+
+
+def names_an_argument(msg: str, names: list[str]) -> bool:
+    """Whether the message names one of the call's arguments (`balls.mass`, `contact.mu.a`,
+    `argument 'rtol'`, `va[1]`, ...): the name as a word, dots and brackets as separators."""
+    for n in names:
+        if re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", msg):
+            # A single letter must be a field (`contact.mu.a`, `balls.b`) or quoted.
+            if len(n) > 1 or re.search(rf"(\.{n}\b|'{n}'|\b{n} =)", msg):
+                return True
+    return False
+
+
+def refusal(e: BaseException, names: list[str], what: str) -> None:
+    """An exception of a call: a ValueError/TypeError naming an argument, else a finding."""
+    if isinstance(e, (ValueError, TypeError)):
+        msg = str(e)
+        if "\n" in msg or not msg.strip():
+            raise Finding(f"{what}: a refusal not of one line: {msg!r}") from e
+        if not names_an_argument(msg, names):
+            if isinstance(e, TypeError) and (
+                not what.startswith("resolve_lab") or PYO3_EXTRACTION.search(msg)
+            ):
+                # A scalar keyword of another type (a constructor's, or rtol=,
+                # time_transform=, method=): PyO3's extraction ("must be real number, not
+                # str", numpy's "only 0-dimensional arrays can be converted") does not say
+                # which argument.
+                known("keyword of a wrong type: TypeError names no argument (open)", f"{what}: {msg}")
+                return
+            if what.startswith("resolve_lab") and CONVERSION.search(msg):
+                # numpy's own conversion of a non-numeric array-like.
+                known("array of non-numbers: numpy's error names no argument", f"{what}: {msg}")
+                return
+            raise Finding(f"{what}: the refusal names no argument: {type(e).__name__}: {msg}") from e
+        return
+    raise Finding(f"{what}: {type(e).__name__}: {e}") from e
+
+
+def draw_float(fdp: atheris.FuzzedDataProvider, plausible: float) -> float:
+    k = fdp.ConsumeIntInRange(0, 7)
+    if k <= 2:
+        return plausible
+    if k == 3:
+        return plausible * fdp.ConsumeFloatInRange(0.0, 4.0)
+    if k == 4:
+        return EDGE[fdp.ConsumeIntInRange(0, len(EDGE) - 1)]
+    if k == 5:
+        return fdp.ConsumeRegularFloat()
+    return fdp.ConsumeFloat()
+
+
+def draw_value(fdp: atheris.FuzzedDataProvider, plausible: float):
+    """A keyword's value: mostly a float near the plausible one, sometimes another type."""
+    k = fdp.ConsumeIntInRange(0, 15)
+    if k <= 10:
+        return draw_float(fdp, plausible)
+    if k == 11:
+        return fdp.ConsumeIntInRange(-(2**70), 2**70)
+    if k == 12:
+        kind = [np.float32, np.int64, np.float16, np.bool_][fdp.ConsumeIntInRange(0, 3)]
+        x = draw_float(fdp, plausible)
+        try:
+            return kind(x)
+        except (OverflowError, ValueError):
+            return np.float32(x)
+    if k == 13:
+        return fdp.ConsumeUnicodeNoSurrogates(6)
+    if k == 14:
+        return complex(plausible, fdp.ConsumeRegularFloat())
+    return [None, [plausible], (plausible,), np.array([plausible]), True, object()][
+        fdp.ConsumeIntInRange(0, 5)
+    ]
+
+
+def pick(fdp: atheris.FuzzedDataProvider, choices: list):
+    return choices[fdp.ConsumeIntInRange(0, len(choices) - 1)]
+
+
+def draw_ball(fdp: atheris.FuzzedDataProvider):
+    kw = {"mass": draw_value(fdp, M), "radius": draw_value(fdp, R)}
+    if fdp.ConsumeBool():
+        kw["alpha"] = draw_value(fdp, 0.4)
+    try:
+        return bc.Ball(**kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["mass", "radius", "alpha"], f"Ball({kw})")
+        return None
+
+
+def draw_friction(fdp: atheris.FuzzedDataProvider):
+    kw = {"a": draw_value(fdp, 0.01), "b": draw_value(fdp, 0.1), "c": draw_value(fdp, 1.0)}
+    if fdp.ConsumeBool():
+        kw["evaluate"] = pick(fdp, EVALUATES) if fdp.ConsumeIntInRange(0, 7) else 3
+    try:
+        f = bc.SpeedDependentFriction(**kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["a", "b", "c", "evaluate"], f"SpeedDependentFriction({kw})")
+        return None
+    s = draw_float(fdp, 0.5)
+    try:
+        mu = f.mu(s)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["s"], f"{f!r}.mu({s})")
+        return f
+    if math.isfinite(s) and s >= 0 and not math.isfinite(mu):
+        raise Finding(f"{f!r}.mu({s}) = {mu}")
+    return f
+
+
+def draw_model(fdp: atheris.FuzzedDataProvider):
+    kw = {}
+    form = fdp.ConsumeIntInRange(0, 7)
+    if form <= 4 or form == 7:  # identical balls (7: and a=/b= too, refused)
+        for name, p in (("mass", M), ("radius", R), ("alpha", 0.4)):
+            if name == "alpha" and fdp.ConsumeBool():
+                continue
+            if fdp.ConsumeIntInRange(0, 15) or name == "alpha":
+                kw[name] = draw_value(fdp, p)
+    if form >= 5:
+        for name in ("a", "b"):
+            if fdp.ConsumeIntInRange(0, 15):
+                ball = draw_ball(fdp)
+                if ball is None:
+                    return None, kw
+                kw[name] = ball
+    k = fdp.ConsumeIntInRange(0, 15)
+    if k <= 10:
+        kw["mu"] = draw_value(fdp, 0.06)
+    elif k <= 14:
+        f = draw_friction(fdp)
+        if f is None:
+            return None, kw
+        kw["mu"] = f
+    for name, p in (("restitution", 1.0), ("duration", 2.5e-4)):
+        if fdp.ConsumeBool():
+            kw[name] = draw_value(fdp, p)
+    if fdp.ConsumeBool():
+        kw["profile"] = pick(fdp, PROFILES) if fdp.ConsumeIntInRange(0, 15) else 1.0
+    for name in ("friction", "stick"):
+        if fdp.ConsumeIntInRange(0, 3) == 0:
+            kw[name] = pick(fdp, [True, False, 0, 1, None, "yes"])
+    try:
+        return bc.BallBall(**kw), kw
+    except Exception as e:  # noqa: BLE001
+        refusal(e, CTOR_ARGS, f"BallBall({kw})")
+        return None, kw
+
+
+def unit(fdp: atheris.FuzzedDataProvider) -> np.ndarray:
+    v = np.array([fdp.ConsumeFloatInRange(-1, 1) for _ in range(3)])
+    n = np.linalg.norm(v)
+    return v / n if n > 1e-3 else np.array([1.0, 0.0, 0.0])
+
+
+def draw_states(fdp: atheris.FuzzedDataProvider, n: int, model) -> dict[str, np.ndarray]:
+    """Plausible collisions of n rows (touching, approaching), some entries then spoiled."""
+    try:
+        ra, rb = model.a.radius, model.b.radius
+    except Exception:  # noqa: BLE001
+        ra = rb = R
+    rows = max(n, 1)
+    pa = np.zeros((rows, 3))
+    pb = np.zeros((rows, 3))
+    va = np.zeros((rows, 3))
+    for i in range(rows):
+        d = unit(fdp)
+        d[2] *= 0.1 if fdp.ConsumeBool() else 1.0
+        d /= np.linalg.norm(d)
+        pa[i] = [fdp.ConsumeFloatInRange(-2, 2), fdp.ConsumeFloatInRange(-1, 1), ra]
+        pb[i] = pa[i] + (ra + rb) * d
+        va[i] = d * fdp.ConsumeFloatInRange(-1, 8)
+    s = {
+        "pa": pa, "va": va, "pb": pb,
+        "wa": np.array([[fdp.ConsumeFloatInRange(-400, 400) for _ in range(3)] for _ in range(rows)]),
+        "vb": np.zeros((rows, 3)),
+        "wb": np.zeros((rows, 3)),
+        "up": np.tile([0.0, 0.0, 1.0], (rows, 1)),
+    }
+    for _ in range(fdp.ConsumeIntInRange(0, 3)):
+        name = pick(fdp, ARRAY_ARGS)
+        i, k = fdp.ConsumeIntInRange(0, rows - 1), fdp.ConsumeIntInRange(0, 2)
+        s[name][i, k] = draw_float(fdp, s[name][i, k])
+    return s
+
+
+def as_argument(fdp: atheris.FuzzedDataProvider, a: np.ndarray, single: bool):
+    """The array as the call gets it: a dtype, a shape, a layout, or a list."""
+    x = a[0] if single else a
+    k = fdp.ConsumeIntInRange(0, 15)
+    if k <= 6:
+        return x
+    if k == 7:
+        return x.tolist()
+    if k == 8:
+        dt = pick(fdp, DTYPES)
+        try:
+            y = x.astype(dt)
+        except (TypeError, ValueError, OverflowError):
+            return x
+        if np.dtype(dt).kind == "c" and fdp.ConsumeBool():
+            y = y + 1j * fdp.ConsumeRegularFloat()
+        return y
+    if k == 9:
+        return np.asfortranarray(x)
+    if k == 10:  # strided and reversed views of a larger buffer
+        big = np.repeat(x, 2, axis=0)
+        return big[::-2][::-1] if big.ndim == 2 else big[::2]
+    if k == 11:
+        return x[..., ::-1]
+    if k == 12:  # a wrong shape
+        shapes = [(2,), (4,), (1, 3, 1), (3, 1), (0, 3), (0,), (), (1, 4)]
+        shape = pick(fdp, shapes)
+        return np.resize(x, shape) if shape else np.float64(x.flat[0])
+    if k == 13:
+        return x.reshape(-1)[: fdp.ConsumeIntInRange(0, 6)].tolist()
+    if k == 14:
+        return pick(fdp, [None, "abc", 1.0, [[1, 2, 3], [4, 5]], {"x": 1}, [None, 1, 2]])
+    y = x.copy()
+    y.setflags(write=False)
+    return y
+
+
+def complex_imaginary(x) -> bool:
+    return isinstance(x, np.ndarray) and x.dtype.kind == "c" and bool(np.any(x.imag != 0))
+
+
+def check_outputs(out, n: int, single: bool, what: str) -> None:
+    if not isinstance(out, dict) or set(out) != set(OUT_VECTORS + OUT_SCALARS):
+        raise Finding(f"{what}: keys {sorted(out) if isinstance(out, dict) else type(out)}")
+    for name in OUT_VECTORS:
+        v = np.asarray(out[name])
+        want = (3,) if single else (n, 3)
+        if v.shape != want or v.dtype != np.float64:
+            raise Finding(f"{what}: {name} has shape {v.shape} {v.dtype}, expected {want}")
+    for name in OUT_SCALARS:
+        v = np.asarray(out[name])
+        want = () if single else (n,)
+        if v.shape != want:
+            raise Finding(f"{what}: {name} has shape {v.shape}, expected {want}")
+    if np.asarray(out["sticks"]).dtype != np.bool_:
+        raise Finding(f"{what}: sticks is {np.asarray(out['sticks']).dtype}")
+    bad = []
+    for name in OUT_VECTORS + ["impulse", "tangential_impulse"]:
+        if not np.all(np.isfinite(out[name])):
+            bad.append(name)
+    throw = np.asarray(out["throw_angle_deg"])
+    if np.any(np.isinf(throw)) or np.any(np.abs(throw[np.isfinite(throw)]) > 180):
+        bad.append("throw_angle_deg")
+    if np.any(np.asarray(out["impulse"]) < 0) or np.any(np.asarray(out["tangential_impulse"]) < 0):
+        raise Finding(f"{what}: a negative impulse: {out['impulse']}, {out['tangential_impulse']}")
+    if bad:
+        known("non-finite output (should be a ValueError)", f"{bad} of {what}")
+
+
+def resolve(fdp: atheris.FuzzedDataProvider, model) -> None:
+    method = pick(fdp, METHODS) if fdp.ConsumeIntInRange(0, 3) else None
+    stepping = method in ("rk4", "dopri5", "dop853")
+    if stepping:
+        n = fdp.ConsumeIntInRange(0, 4)
+    else:
+        n = pick(fdp, [0, 1, 2, 3, 7, 64]) if fdp.ConsumeIntInRange(0, 63) else 2048
+    single = n == 0 and fdp.ConsumeBool()
+    rows = max(n, 1)
+    states = draw_states(fdp, rows, model)
+    args = {name: as_argument(fdp, states[name], single) for name in ARRAY_ARGS}
+    if fdp.ConsumeIntInRange(0, 3):
+        del args["up"]
+    kw = {}
+    if method is not None or fdp.ConsumeBool():
+        kw["method"] = method
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        r = draw_value(fdp, 1e-8)
+        if stepping and isinstance(r, float) and 0 < r < 1e-12:
+            r = 1e-12  # the work of one input stays bounded
+        kw["rtol"] = r
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        kw["time_transform"] = pick(fdp, [True, False, None, 1, "no"])
+    what = f"resolve_lab({args}, {kw}) of {model!r}"
+    try:
+        out = model.resolve_lab(**args, **kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ARRAY_ARGS + ["method", "rtol", "time_transform", "row"], what)
+        return
+    if any(complex_imaginary(a) for a in args.values()):
+        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
+    shapes = [np.shape(a) for a in args.values()]
+    multi = [s[0] for s in shapes if len(s) == 2]
+    check_outputs(out, multi[0] if multi else 1, not multi, what)
+
+
+def load_package() -> None:
+    """Imports billiard_contact once libFuzzer runs (the first input): atheris loads its
+    libFuzzer with local symbols, made global here (RTLD_NOLOAD only promotes the loaded
+    copy) so that an extension instrumented for coverage links its hooks to it."""
+    global bc
+    for core in glob.glob(os.path.join(os.path.dirname(atheris.__file__), "core_with_libfuzzer*.so")):
+        try:
+            ctypes.CDLL(core, mode=os.RTLD_GLOBAL | os.RTLD_NOLOAD)
+        except OSError:
+            pass
+    with atheris.instrument_imports(include=["billiard_contact"]):
+        import billiard_contact
+
+    bc = billiard_contact
+
+
+def test_one_input(data: bytes) -> None:
+    if bc is None:
+        load_package()
+    fdp = atheris.FuzzedDataProvider(data)
+    surface = fdp.ConsumeIntInRange(0, 7)
+    if surface == 0:
+        draw_ball(fdp)
+        return
+    if surface == 1:
+        draw_friction(fdp)
+        return
+    model, _ = draw_model(fdp)
+    if model is None:
+        return
+    if surface == 2:
+        for attr in ("mass", "radius", "alpha", "a", "b", "mu", "restitution"):
+            getattr(model, attr)
+        repr(model)
+        return
+    resolve(fdp, model)
+
+
+def main() -> None:
+    # The harness's own branches guide too (which refusal, which output check).
+    here = sys.modules[__name__]
+    for name, f in list(vars(here).items()):
+        if inspect.isfunction(f) and f.__module__ == __name__ and name != "main":
+            setattr(here, name, atheris.instrument_func(f))
+    atheris.Setup(sys.argv, here.test_one_input)
+    atheris.Fuzz()
+
+
+if __name__ == "__main__":
+    main()
