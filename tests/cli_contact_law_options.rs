@@ -5,7 +5,7 @@
 //! integrates the normal law with dop853 at them).
 
 use crate::cli_common;
-use cli_common::{bin, fresh_dir, scene, scene_path, succeeded, warned};
+use cli_common::{bin, fresh_dir, json, scene, scene_path, warned};
 
 /// The rows of a trace CSV: (t, p, S) and the header.
 fn trace(path: &std::path::Path) -> (String, Vec<[f64; 3]>) {
@@ -123,12 +123,6 @@ fn stop_row(rows: &[[f64; 3]], t_stick: f64, p_stick: f64, what: &str) {
     );
     assert!(rows[..k].iter().all(|r| r[2] > 0.0), "{what}: {rows:?}");
     assert!(rows[k..].iter().all(|r| r[2] == 0.0), "{what}: {rows:?}");
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = bin(args);
-    succeeded(&out);
-    serde_json::from_slice(&out.stdout).unwrap()
 }
 
 /// The Hunt-Crossley stun cut at 10 degrees (data/scenes/hertz_law_hunt_crossley.toml):

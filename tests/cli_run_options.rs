@@ -9,31 +9,14 @@
 use crate::cli_common;
 use crate::common;
 
-use cli_common::{bin, fresh_dir, refused, scene, succeeded};
+use cli_common::json_contract::vector3;
+use cli_common::{bin, fresh_dir, json, refused, scene, succeeded};
 use common::{amax, resolve, Balls, Law, Pair, Rule};
 use nalgebra::Vector3;
 use serde_json::Value;
 
 /// The paper's special case: (u, v) = (1, 0.5) m/s rolling into a ball at rest, CM frame.
 const SPECIAL: &str = "paper_special_case.toml";
-
-fn json(args: &[&str]) -> Value {
-    let out = bin(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-fn vec3(v: &Value) -> Vector3<f64> {
-    Vector3::new(
-        v[0].as_f64().unwrap(),
-        v[1].as_f64().unwrap(),
-        v[2].as_f64().unwrap(),
-    )
-}
 
 /// Scaled distance of a report's outgoing state from the first-principles resolution of the
 /// special case (velocities over v_ref, spins over v_ref / r).
@@ -52,9 +35,9 @@ fn special_case_error(j: &Value) -> f64 {
     let want = resolve(&b, &Law::new(0.06, Rule::Restitution(1.0)), &pair).out;
     let v_ref = pair.v_ref(b.r);
     let cm = &j["cm_out"];
-    (amax(&(vec3(&cm["u"]) - want.va)) / v_ref)
-        .max(amax(&(vec3(&cm["omega_a"]) - want.wa)) * b.r / v_ref)
-        .max(amax(&(vec3(&cm["omega_b"]) - want.wb)) * b.r / v_ref)
+    (amax(&(vector3(&cm["u"]) - want.va)) / v_ref)
+        .max(amax(&(vector3(&cm["omega_a"]) - want.wa)) * b.r / v_ref)
+        .max(amax(&(vector3(&cm["omega_b"]) - want.wb)) * b.r / v_ref)
 }
 
 fn solver(j: &Value, key: &str) -> f64 {

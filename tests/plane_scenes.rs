@@ -4,34 +4,9 @@
 //! trace's ball columns, and the figure.
 
 use crate::cli_common;
-use cli_common::fresh_dir;
+use cli_common::json_contract::vector3;
+use cli_common::{bin, fresh_dir, json, refused, scene};
 use nalgebra::Vector3;
-use serde_json::Value;
-use std::process::Command;
-
-const BIN: &str = env!("CARGO_BIN_EXE_billiard-contact");
-
-fn scene(name: &str) -> String {
-    format!("{}/data/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))
-}
-
-fn run(args: &[&str]) -> Value {
-    let out = Command::new(BIN).args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-fn vec3(v: &Value) -> Vector3<f64> {
-    Vector3::new(
-        v[0].as_f64().unwrap(),
-        v[1].as_f64().unwrap(),
-        v[2].as_f64().unwrap(),
-    )
-}
 
 /// The closed form of a solid ball (m = 0.17 kg, r = 0.028575 m, alpha = 0.4) against the
 /// plane of unit normal n, written out here from the ball's equations.
@@ -81,9 +56,9 @@ fn plane_scenes_agree_with_the_closed_form() {
     for (name, n, v, w, mu, e, sticks) in cases {
         let (ve, we) = expected(n, v, w, mu, e);
         for method in ["closed-form", "rk4", "dopri5", "dop853"] {
-            let j = run(&[
+            let j = json(&[
                 "run",
-                &scene(name),
+                &scene(&format!("{name}.toml")),
                 "--method",
                 method,
                 "--rtol",
@@ -91,11 +66,11 @@ fn plane_scenes_agree_with_the_closed_form() {
                 "--json",
             ]);
             let out = &j["plane"]["ball_out"];
-            let dv = (vec3(&out["velocity"]) - ve).amax() / v.norm();
-            let dw = (vec3(&out["spin"]) - we).amax() * 0.028575 / v.norm();
+            let dv = (vector3(&out["velocity"]) - ve).amax() / v.norm();
+            let dw = (vector3(&out["spin"]) - we).amax() * 0.028575 / v.norm();
             assert!(dv < 1e-9 && dw < 1e-9, "{name} {method}: {dv:e} {dw:e}");
             assert_eq!(j["sticks"].as_bool(), Some(sticks), "{name} {method}");
-            assert_eq!(vec3(&j["plane"]["normal"]), n);
+            assert_eq!(vector3(&j["plane"]["normal"]), n);
         }
     }
 }
@@ -106,9 +81,9 @@ fn plane_scenes_agree_with_the_closed_form() {
 fn a_plane_trace_carries_the_ball() {
     let dir = fresh_dir("plane-trace");
     let (csv, png) = (dir.join("t.csv"), dir.join("t.png"));
-    let j = run(&[
+    let j = json(&[
         "run",
-        &scene("plane_resin_on_steel"),
+        &scene("plane_resin_on_steel.toml"),
         "--trace",
         csv.to_str().unwrap(),
         "--plot-trace",
@@ -127,7 +102,7 @@ fn a_plane_trace_carries_the_ball() {
     let last = cells(text.lines().last().unwrap());
     assert_eq!(first[col("v_z (m/s)")], -0.8660254037844386);
     assert_eq!(first[col("spin_y (rad/s)")], -20.0);
-    let out = vec3(&j["plane"]["ball_out"]["velocity"]);
+    let out = vector3(&j["plane"]["ball_out"]["velocity"]);
     assert!((last[col("v_x (m/s)")] - out.x).abs() < 1e-12);
     assert!((last[col("v_z (m/s)")] - out.z).abs() < 1e-12);
     assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
@@ -137,7 +112,7 @@ fn a_plane_trace_carries_the_ball() {
 #[test]
 fn bad_plane_input_names_the_field() {
     let dir = fresh_dir("plane-bad");
-    let base = std::fs::read_to_string(scene("plane_wall_side_spin")).unwrap();
+    let base = std::fs::read_to_string(scene("plane_wall_side_spin.toml")).unwrap();
     for (from, to, want) in [
         (
             "normal = [-1.0, 0.0, 0.0]",
@@ -154,16 +129,7 @@ fn bad_plane_input_names_the_field() {
         let text = base.replacen(from, to, 1);
         let path = dir.join("s.toml");
         std::fs::write(&path, &text).unwrap();
-        let out = Command::new(BIN)
-            .args(["run", path.to_str().unwrap()])
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{to}: {err}");
-        assert!(
-            err.lines().count() == 1 && err.contains(want),
-            "{to}: {err}"
-        );
+        refused(&bin(&["run", path.to_str().unwrap()]), &[want]);
     }
 }
 
@@ -172,17 +138,12 @@ fn bad_plane_input_names_the_field() {
 #[test]
 fn two_ball_commands_refuse_a_plane_scene() {
     let dir = fresh_dir("plane-sweep");
-    let out = Command::new(BIN)
-        .args([
-            "sweep",
-            &scene("plane_wall_side_spin"),
-            "--out",
-            dir.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("[plane] scene given to sweep"), "{err}");
+    let out = bin(&[
+        "sweep",
+        &scene("plane_wall_side_spin.toml"),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    refused(&out, &["[plane] scene given to sweep"]);
     assert!(!dir.join("sweep.csv").exists());
 }
