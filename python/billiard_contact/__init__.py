@@ -11,6 +11,8 @@ SI units throughout (kg, m, s, m/s, rad/s, N s, J).
   mass, size or inertia; ``model.resolve_lab(pa, va, wa, pb, vb, wb, up=(0, 0, 1))``
   resolves one collision or N (arrays of shape (3,) or (N, 3)).
 - ``SpeedDependentFriction(a=, b=, c=)``: mu(S) = a + b exp(-c S).
+- ``BallPlane(mass=, radius=, alpha=0.4, mu=, restitution=1.0)``: a ball against a plane;
+  ``plane.resolve(v, w, normal)`` resolves one impact or N (arrays of shape (3,) or (N, 3)).
 - ``billiard_contact.pooltool``: a ball-ball model for pooltool's ``Resolver.ball_ball``.
 
 Bad input raises ``ValueError`` with the command line's one-line message (the field, the
@@ -21,6 +23,7 @@ from billiard_contact._core import (
     TRACE_COLUMNS,
     Ball,
     BallBall,
+    BallPlane,
     SpeedDependentFriction,
     __version__,
     run,
@@ -31,6 +34,7 @@ __all__ = [
     "TRACE_COLUMNS",
     "Ball",
     "BallBall",
+    "BallPlane",
     "SpeedDependentFriction",
     "__version__",
     "run",

@@ -22,6 +22,21 @@ pub(crate) struct Strided {
     col: isize,
 }
 
+impl Strided {
+    /// Row i of the (n, 3) (or broadcast (3,)) float64 array this view addresses.
+    ///
+    /// # Safety
+    /// i < n, and the array outlives the view (see `strided`).
+    #[inline(always)]
+    pub(crate) unsafe fn row(&self, i: usize) -> Vector3<f64> {
+        let base = i as isize * self.row;
+        unsafe {
+            let at = |off: isize| self.ptr.offset(off).cast::<f64>().read_unaligned();
+            Vector3::new(at(base), at(base + self.col), at(base + 2 * self.col))
+        }
+    }
+}
+
 // SAFETY: the pointer reads a numpy buffer that `resolve_lab` keeps alive (and, when it
 // releases the GIL, holds a read-only borrow of) for the whole computation, or a static;
 // nothing writes through it.
@@ -40,14 +55,9 @@ pub(crate) static UP_DEFAULT: [f64; 3] = [0.0, 0.0, 1.0];
 impl Inputs {
     #[inline(always)]
     pub(crate) fn vec(&self, k: usize, i: usize) -> Vector3<f64> {
-        let v = self.views[k];
-        let base = i as isize * v.row;
         // SAFETY: i < n, and each view addresses an (n, 3) (or broadcast (3,)) float64 array
         // that outlives the call (checked in `shaped`).
-        unsafe {
-            let at = |off: isize| v.ptr.offset(off).cast::<f64>().read_unaligned();
-            Vector3::new(at(base), at(base + v.col), at(base + 2 * v.col))
-        }
+        unsafe { self.views[k].row(i) }
     }
 }
 
@@ -203,12 +213,24 @@ fn not_real(name: &str, dtype: &Bound<'_, numpy::PyArrayDescr>) -> PyErr {
 pub(crate) fn shaped(
     arrays: &[Option<Bound<'_, PyArrayDyn<f64>>>; 7],
 ) -> PyResult<(Inputs, usize, bool)> {
+    let (views, rows, single) = strided(&NAMES, arrays)?;
+    Ok((Inputs { views, n: rows }, rows, single))
+}
+
+/// The views of `arrays` (named `names`; a missing one reads `UP_DEFAULT`, broadcast), the
+/// number of rows n (1 when every input has shape (3,)) and whether every input has shape
+/// (3,). Shapes other than (3,) and (N, 3), and different N, raise ValueError naming the
+/// argument.
+pub(crate) fn strided<const K: usize>(
+    names: &[&str; K],
+    arrays: &[Option<Bound<'_, PyArrayDyn<f64>>>; K],
+) -> PyResult<([Strided; K], usize, bool)> {
     let mut n: Option<(usize, &str)> = None;
     let mut views = [Strided {
         ptr: UP_DEFAULT.as_ptr().cast(),
         row: 0,
         col: 8,
-    }; 7];
+    }; K];
     for (k, a) in arrays.iter().enumerate() {
         let Some(a) = a else { continue };
         let shape = a.shape();
@@ -223,12 +245,12 @@ pub(crate) fn shaped(
             }
             [rows, 3] => {
                 match n {
-                    None => n = Some((rows, NAMES[k])),
+                    None => n = Some((rows, names[k])),
                     Some((m, first)) if m != rows => {
                         return Err(PyValueError::new_err(format!(
                             "{} has {rows} rows but {first} has {m}: arrays of shape (N, 3) \
                              must have the same N",
-                            NAMES[k]
+                            names[k]
                         )))
                     }
                     _ => {}
@@ -242,14 +264,14 @@ pub(crate) fn shaped(
             _ => {
                 return Err(PyValueError::new_err(format!(
                     "{} has shape {}: expected (3,) or (N, 3)",
-                    NAMES[k],
+                    names[k],
                     shape_str(shape)
                 )))
             }
         }
     }
     let rows = n.map_or(1, |(m, _)| m);
-    Ok((Inputs { views, n: rows }, rows, n.is_none()))
+    Ok((views, rows, n.is_none()))
 }
 
 pub(crate) fn shape_str(shape: &[usize]) -> String {

@@ -7,6 +7,7 @@ mod friction;
 mod inputs;
 mod model;
 mod outputs;
+mod plane;
 mod run;
 mod settings;
 
@@ -17,6 +18,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ball::Ball>()?;
     m.add_class::<model::BallBall>()?;
     m.add_class::<friction::SpeedDependentFriction>()?;
+    m.add_class::<plane::BallPlane>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;
     m.add("TRACE_COLUMNS", run::TRACE_COLUMNS.to_vec())?;

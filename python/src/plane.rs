@@ -1,0 +1,510 @@
+//! `BallPlane`: a sphere against a plane (docs/plane.md), one impact or N from numpy
+//! arrays. The closed form is the library's direct sphere-plane closed form
+//! (`details::plane_impact`, a few dozen operations a row); `method=` runs the library's
+//! `PlaneCollision` with `solve_plane` instead (its equivalent pair, by any method).
+
+use crate::errors::to_py;
+use crate::inputs::{float_array, strided, Strided};
+use crate::outputs::{bool_, float64, vector};
+use crate::settings;
+use billiard_contact::details::{plane_impact, PlaneImpact};
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::profile::HalfSine;
+use billiard_contact::{
+    solve_plane, Ball, Contact, Error, Friction, ImpulseRule, Method, PlaneCollision,
+    SolverSettings,
+};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::intern;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use rayon::prelude::*;
+
+/// The argument names of `resolve`, in the order of the views.
+const NAMES: [&str; 3] = ["v", "w", "normal"];
+
+/// Rows from which the closed form spreads over rayon's pool.
+const PARALLEL_ROWS: usize = 2048;
+
+/// Rows a chunk: the unit of the parallel split and of the check that every output is
+/// finite (one branch a chunk; the row is found only when a chunk fails).
+const CHUNK: usize = 1024;
+
+/// Contact duration (s) of the half-sine pulse the time-stepping methods integrate (the
+/// outcome does not depend on it: friction and restitution act on the impulse).
+const DURATION: f64 = 2.5e-4;
+
+/// A ball against a plane: the ball's mass (kg), radius (m) and alpha (I = alpha m r^2,
+/// default 0.4), Coulomb friction mu between ball and plane (a number >= 0), restitution e
+/// in [0, 1] (P = (1 + e) m |v.n|: Newton's, Poisson's and Stronge's rules agree for a
+/// sphere on a plane).
+///
+/// Bad values raise ValueError naming the keyword, e.g. "mass = -1: > 0 kg".
+#[pyclass(frozen, module = "billiard_contact._core", name = "BallPlane")]
+pub struct BallPlane {
+    ball: Ball,
+    contact: Contact,
+    mu: f64,
+    restitution: f64,
+}
+
+/// `e` with the field `from` named `to` (the library names a scene file's fields).
+fn renamed(e: Error, from: &str, to: &str) -> Error {
+    match e {
+        Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } => Error::InvalidParameter {
+            field: field
+                .strip_prefix(from)
+                .map_or(field.clone(), |rest| format!("{to}{rest}")),
+            value,
+            expected,
+        },
+        other => other,
+    }
+}
+
+/// One row's outputs.
+#[derive(Clone, Copy)]
+struct Row {
+    v: [f64; 3],
+    w: [f64; 3],
+    impulse: f64,
+    tangential_impulse: f64,
+    sticks: bool,
+    /// NaN where there is none.
+    stick_impulse: f64,
+}
+
+impl Row {
+    fn of(i: &PlaneImpact) -> Row {
+        Row {
+            v: i.velocity.into(),
+            w: i.spin.into(),
+            impulse: i.normal_impulse,
+            tangential_impulse: i.tangential_impulse,
+            sticks: i.sticks,
+            stick_impulse: i.stick_impulse.unwrap_or(f64::NAN),
+        }
+    }
+
+    /// Whether every output but the stick impulse (NaN where there is none) is finite.
+    #[inline(always)]
+    fn finite(&self) -> bool {
+        let z = self.v[0] * 0.0
+            + self.v[1] * 0.0
+            + self.v[2] * 0.0
+            + self.w[0] * 0.0
+            + self.w[1] * 0.0
+            + self.w[2] * 0.0
+            + self.impulse * 0.0
+            + self.tangential_impulse * 0.0;
+        z == 0.0
+    }
+}
+
+/// The first output of a row that is not finite, as the error message.
+#[cold]
+#[inline(never)]
+fn non_finite_output(r: &Row) -> String {
+    let named = ["v", "w"]
+        .into_iter()
+        .zip([r.v, r.w])
+        .flat_map(|(name, v)| (0..3).map(move |k| (format!("{name}[{k}]"), v[k])))
+        .chain([
+            ("impulse".to_string(), r.impulse),
+            ("tangential_impulse".to_string(), r.tangential_impulse),
+        ]);
+    let (name, x) = named
+        .into_iter()
+        .find(|(_, x)| !x.is_finite())
+        .unwrap_or_else(|| ("output".into(), f64::NAN));
+    format!(
+        "{name} = {x}: the result is not finite (the impact overflows double precision: \
+         mass, speed or spin too large)"
+    )
+}
+
+/// The error for a non-finite input of a row.
+#[cold]
+#[inline(never)]
+fn non_finite_input(all: [Vector3<f64>; 3]) -> Error {
+    for (name, v) in NAMES.iter().zip(all) {
+        for k in 0..3 {
+            if !v[k].is_finite() {
+                return Error::invalid(format!("{name}[{k}]"), v[k], "a finite number");
+            }
+        }
+    }
+    Error::invalid("input", "a non-finite number", "finite numbers")
+}
+
+#[cold]
+#[inline(never)]
+fn bad_normal(n: Vector3<f64>) -> Error {
+    Error::invalid(
+        "normal",
+        format!("[{}, {}, {}]", n.x, n.y, n.z),
+        "a non-zero, finite direction (out of the plane, towards the ball)",
+    )
+}
+
+/// Why a row failed: its input (ValueError), or the method (RuntimeError).
+enum Failure {
+    Input(Error),
+    Output(String),
+}
+
+/// The raw output columns, written row by row from several threads (each row by one).
+#[derive(Clone, Copy)]
+struct Columns {
+    v: *mut [f64; 3],
+    w: *mut [f64; 3],
+    impulse: *mut f64,
+    tangential_impulse: *mut f64,
+    sticks: *mut bool,
+    stick_impulse: *mut f64,
+}
+
+// SAFETY: the columns are fresh numpy buffers of n rows, not visible to Python until every
+// row is written; each row is written by exactly one thread.
+unsafe impl Send for Columns {}
+unsafe impl Sync for Columns {}
+
+impl Columns {
+    /// # Safety
+    /// i < n, and no other thread writes row i.
+    #[inline(always)]
+    unsafe fn write(&self, i: usize, r: &Row) {
+        unsafe {
+            *self.v.add(i) = r.v;
+            *self.w.add(i) = r.w;
+            *self.impulse.add(i) = r.impulse;
+            *self.tangential_impulse.add(i) = r.tangential_impulse;
+            *self.sticks.add(i) = r.sticks;
+            *self.stick_impulse.add(i) = r.stick_impulse;
+        }
+    }
+}
+
+impl BallPlane {
+    /// Row i's inputs: v, w and the unit normal, checked (finite; the normal non-zero).
+    #[inline(always)]
+    fn inputs(views: &[Strided; 3], i: usize) -> Result<[Vector3<f64>; 3], Error> {
+        // SAFETY: i < n of the views (the callers' loops), whose arrays outlive the call.
+        let (v, w, normal) = unsafe { (views[0].row(i), views[1].row(i), views[2].row(i)) };
+        let z = |x: &Vector3<f64>| x.x * 0.0 + x.y * 0.0 + x.z * 0.0;
+        if z(&v) + z(&w) + z(&normal) != 0.0 {
+            return Err(non_finite_input([v, w, normal]));
+        }
+        let length = normal.norm();
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(bad_normal(normal));
+        }
+        // A unit normal divides by 1: exactly itself.
+        Ok([v, w, normal / length])
+    }
+
+    /// The closed form of one row.
+    #[inline(always)]
+    fn closed_form(&self, views: &[Strided; 3], i: usize) -> Result<Row, Error> {
+        let [v, w, n] = Self::inputs(views, i)?;
+        let p = self.contact.impulse.impulse(self.ball.mass(), -v.dot(&n))?;
+        Ok(Row::of(&plane_impact(&self.ball, self.mu, p, &n, &v, &w)))
+    }
+
+    /// One row by `settings`' method: the library's `PlaneCollision` and `solve_plane`.
+    fn by_method(
+        &self,
+        views: &[Strided; 3],
+        i: usize,
+        settings: &SolverSettings,
+    ) -> Result<Row, Error> {
+        let [v, w, n] = Self::inputs(views, i)?;
+        let hit = PlaneCollision::new(self.ball, self.contact, n, v, w)?;
+        let out = solve_plane(&hit, &HalfSine::new(DURATION)?, settings, None)?;
+        let r = &out.outcome.result;
+        Ok(Row {
+            v: out.velocity.into(),
+            w: out.spin.into(),
+            impulse: r.impulse,
+            tangential_impulse: r.tangential_impulse,
+            sticks: r.sticks,
+            stick_impulse: r.stick_impulse.unwrap_or(f64::NAN),
+        })
+    }
+
+    /// Rows [start, end) into `out`: the first failure (its row) if any. The outputs are
+    /// checked finite once for the chunk; the failing row is looked for only when it fails.
+    fn rows(
+        &self,
+        views: &[Strided; 3],
+        settings: Option<&SolverSettings>,
+        out: Columns,
+        start: usize,
+        end: usize,
+    ) -> Option<(usize, Failure)> {
+        let mut finite = true;
+        for i in start..end {
+            let r = match settings {
+                None => self.closed_form(views, i),
+                Some(s) => self.by_method(views, i, s),
+            };
+            match r {
+                Ok(r) => {
+                    finite &= r.finite();
+                    // SAFETY: i < n; this chunk is this thread's alone.
+                    unsafe { out.write(i, &r) }
+                }
+                Err(e) => return Some((i, Failure::Input(e))),
+            }
+        }
+        if finite {
+            return None;
+        }
+        (start..end).find_map(|i| {
+            // SAFETY: rows [start, end) were written above, by this thread.
+            let r = unsafe {
+                Row {
+                    v: *out.v.add(i),
+                    w: *out.w.add(i),
+                    impulse: *out.impulse.add(i),
+                    tangential_impulse: *out.tangential_impulse.add(i),
+                    sticks: *out.sticks.add(i),
+                    stick_impulse: *out.stick_impulse.add(i),
+                }
+            };
+            (!r.finite()).then(|| (i, Failure::Output(non_finite_output(&r))))
+        })
+    }
+}
+
+/// The Python exception for a failed row (`row i: ` for arrays).
+fn failure_error(i: usize, f: Failure, single: bool) -> PyErr {
+    let row = |m: String| if single { m } else { format!("row {i}: {m}") };
+    match f {
+        Failure::Input(e) if e.is_bad_input() => PyValueError::new_err(row(e.to_string())),
+        Failure::Input(e) => PyRuntimeError::new_err(row(e.to_string())),
+        Failure::Output(m) => PyValueError::new_err(row(m)),
+    }
+}
+
+#[pymethods]
+impl BallPlane {
+    #[new]
+    #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0))]
+    fn new(mass: f64, radius: f64, alpha: f64, mu: f64, restitution: f64) -> PyResult<Self> {
+        let ball = Ball::in_section("ball", mass, radius, alpha)
+            .map_err(|e| to_py(renamed(e, "ball.", "")))?;
+        let friction = Friction::constant(mu).map_err(|e| to_py(renamed(e, "contact.", "")))?;
+        let impulse =
+            ImpulseRule::restitution(restitution).map_err(|e| to_py(renamed(e, "contact.", "")))?;
+        Ok(BallPlane {
+            ball,
+            contact: Contact { friction, impulse },
+            mu,
+            restitution,
+        })
+    }
+
+    /// Resolves impacts of the ball on the plane.
+    ///
+    /// v, w: the ball's velocity (m/s) and spin (rad/s) before; normal: the plane's normal,
+    /// out of the plane towards the ball (any non-zero length); each (3,) or (N, 3) (a (3,)
+    /// input, say one normal, is used for every row). A ball that does not approach the
+    /// plane (v.n >= 0) passes unchanged: impulse 0, sticks False.
+    ///
+    /// method None: the direct closed form; "closed-form", "rk4", "dopri5", "dop853": the
+    /// library's PlaneCollision by that method (a half-sine pulse; rtol as resolve_lab's).
+    ///
+    /// Returns a dict: "v", "w" (after; the input's shape), "impulse" (P = (1 + e) m |v.n|,
+    /// N s), "tangential_impulse" (J <= mu P, N s), "sticks" (the slip stopped),
+    /// "stick_impulse" (the normal impulse at which the slip stops or would stop, N s; NaN
+    /// without friction or impulse), each (N,) or a numpy scalar for one impact.
+    #[pyo3(signature = (v, w, normal, method = None, rtol = None))]
+    fn resolve<'py>(
+        &self,
+        py: Python<'py>,
+        v: &Bound<'py, PyAny>,
+        w: &Bound<'py, PyAny>,
+        normal: &Bound<'py, PyAny>,
+        method: Option<&str>,
+        rtol: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let arrays = [
+            Some(float_array("v", v)?),
+            Some(float_array("w", w)?),
+            Some(float_array("normal", normal)?),
+        ];
+        let (views, n, single) = strided(&NAMES, &arrays)?;
+        let settings = match (method, rtol) {
+            (None, None) => None,
+            _ => Some(settings::for_batch(method, rtol, None).map_err(to_py)?),
+        };
+        if single {
+            let r = match &settings {
+                None => self.closed_form(&views, 0),
+                Some(s) => self.by_method(&views, 0, s),
+            };
+            drop(arrays);
+            let r = r.map_err(|e| failure_error(0, Failure::Input(e), true))?;
+            if !r.finite() {
+                return Err(failure_error(
+                    0,
+                    Failure::Output(non_finite_output(&r)),
+                    true,
+                ));
+            }
+            let d = PyDict::new(py);
+            d.set_item(intern!(py, "v"), vector(py, r.v)?)?;
+            d.set_item(intern!(py, "w"), vector(py, r.w)?)?;
+            d.set_item(intern!(py, "impulse"), float64(py, r.impulse)?)?;
+            d.set_item(
+                intern!(py, "tangential_impulse"),
+                float64(py, r.tangential_impulse)?,
+            )?;
+            d.set_item(intern!(py, "sticks"), bool_(py, r.sticks)?)?;
+            d.set_item(intern!(py, "stick_impulse"), float64(py, r.stick_impulse)?)?;
+            return Ok(d);
+        }
+        // SAFETY (uninitialised): every row is written before the arrays reach Python; on
+        // error they are dropped unseen.
+        let (ov, ow, op, oj, os, osp) = unsafe {
+            (
+                PyArray2::<f64>::new(py, [n, 3], false),
+                PyArray2::<f64>::new(py, [n, 3], false),
+                PyArray1::<f64>::new(py, [n], false),
+                PyArray1::<f64>::new(py, [n], false),
+                PyArray1::<bool>::new(py, [n], false),
+                PyArray1::<f64>::new(py, [n], false),
+            )
+        };
+        let columns = Columns {
+            v: ov.data().cast(),
+            w: ow.data().cast(),
+            impulse: op.data(),
+            tangential_impulse: oj.data(),
+            sticks: os.data(),
+            stick_impulse: osp.data(),
+        };
+        let serial = || {
+            (0..n.div_ceil(CHUNK)).find_map(|c| {
+                self.rows(
+                    &views,
+                    settings.as_ref(),
+                    columns,
+                    c * CHUNK,
+                    ((c + 1) * CHUNK).min(n),
+                )
+            })
+        };
+        let failure = if n >= PARALLEL_ROWS || settings.is_some() {
+            // Without the GIL, holding read-only borrows of the inputs.
+            let borrows = arrays
+                .iter()
+                .flatten()
+                .map(|a| a.try_readonly())
+                .collect::<Result<Vec<_>, _>>()?;
+            let parallel = settings
+                .as_ref()
+                .is_none_or(|s| s.method() == Method::ClosedForm);
+            let r = py.detach(|| {
+                if parallel {
+                    (0..n.div_ceil(CHUNK))
+                        .into_par_iter()
+                        .filter_map(|c| {
+                            self.rows(
+                                &views,
+                                settings.as_ref(),
+                                columns,
+                                c * CHUNK,
+                                ((c + 1) * CHUNK).min(n),
+                            )
+                        })
+                        .min_by_key(|(i, _)| *i)
+                } else {
+                    serial()
+                }
+            });
+            drop(borrows);
+            r
+        } else {
+            serial()
+        };
+        drop(arrays);
+        if let Some((i, f)) = failure {
+            return Err(failure_error(i, f, false));
+        }
+        let d = PyDict::new(py);
+        d.set_item(intern!(py, "v"), ov)?;
+        d.set_item(intern!(py, "w"), ow)?;
+        d.set_item(intern!(py, "impulse"), op)?;
+        d.set_item(intern!(py, "tangential_impulse"), oj)?;
+        d.set_item(intern!(py, "sticks"), os)?;
+        d.set_item(intern!(py, "stick_impulse"), osp)?;
+        Ok(d)
+    }
+
+    /// Mass m (kg).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.ball.mass()
+    }
+
+    /// Radius r (m).
+    #[getter]
+    fn radius(&self) -> f64 {
+        self.ball.radius()
+    }
+
+    /// I = alpha m r^2.
+    #[getter]
+    fn alpha(&self) -> f64 {
+        self.ball.alpha()
+    }
+
+    /// Friction between ball and plane.
+    #[getter]
+    fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// Restitution e: P = (1 + e) m |v.n|.
+    #[getter]
+    fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    /// Pickling and copying: the keywords that built the model (the same numbers, so
+    /// bit-identical results).
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("mass", self.ball.mass())?;
+        kwargs.set_item("radius", self.ball.radius())?;
+        kwargs.set_item("alpha", self.ball.alpha())?;
+        kwargs.set_item("mu", self.mu)?;
+        kwargs.set_item("restitution", self.restitution)?;
+        Ok((PyTuple::empty(py), kwargs))
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        (self.ball, self.mu, self.restitution) == (other.ball, other.mu, other.restitution)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "BallPlane(mass={:?}, radius={:?}, alpha={:?}, mu={:?}, restitution={:?})",
+            self.ball.mass(),
+            self.ball.radius(),
+            self.ball.alpha(),
+            self.mu,
+            self.restitution
+        )
+    }
+}
