@@ -4,6 +4,9 @@
 
 Prints each measured value with its target and whether it is met:
 - resolve_lab on --rows lab states (closed form, all cores), ns per collision (target <= 80);
+- the same with the outputs checked finite as before, in one pass over all rows after they
+  are written, against the default check, once per chunk of 1024 rows while they are in
+  cache (timed alternately, so both see the same machine);
 - resolve_lab on single (3,) arrays, us per call (target <= 1.5);
 - pooltool's frictional_inelastic numba kernel (_resolve_ball_ball) on the same states, one
   call per collision as pooltool makes it, us per collision;
@@ -81,6 +84,30 @@ def main() -> None:
     best, med = timed(lambda: model.resolve_lab(pa, va, wa, pb, vb, wb), args.repeats, "array")
     array_ns = best / args.rows * 1e9
     line(f"resolve_lab, {args.rows} states, per collision", array_ns, med / args.rows * 1e9, "ns", 80)
+
+    # The finite check of the outputs: per chunk (default) against one pass after all rows
+    # (before), alternating repeats so that both see the same load.
+    check = bc._core._check_outputs_per_chunk
+    run = lambda: model.resolve_lab(pa, va, wa, pb, vb, wb)
+    times = {True: [], False: []}
+    cpus = {True: [], False: []}
+    for per_chunk in (True, False):
+        check(per_chunk)
+        run()  # warm-up
+    for _ in range(args.repeats):
+        for per_chunk in (False, True):
+            check(per_chunk)
+            start, start_cpu = time.perf_counter(), time.process_time()
+            run()
+            times[per_chunk].append(time.perf_counter() - start)
+            cpus[per_chunk].append(time.process_time() - start_cpu)
+    check(True)
+    for per_chunk, what in ((False, "before: one pass after all rows"), (True, "after: once per 1024-row chunk")):
+        t = times[per_chunk]
+        line(f"resolve_lab, finite check {what}", min(t) / args.rows * 1e9,
+             statistics.median(t) / args.rows * 1e9, "ns", None)
+        print(f"{'  its CPU time (all threads), best and median':<58} {min(cpus[per_chunk]) / args.rows * 1e9:9.1f} ns"
+              f"  {statistics.median(cpus[per_chunk]) / args.rows * 1e9:9.1f} ns")
 
     one = [np.ascontiguousarray(x[0]) for x in (pa, va, wa, pb, vb, wb)]
     f = model.resolve_lab

@@ -19,6 +19,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::BallBall>()?;
     m.add_class::<friction::SpeedDependentFriction>()?;
     m.add_class::<plane::BallPlane>()?;
+    m.add_function(wrap_pyfunction!(outputs::_check_outputs_per_chunk, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;
     m.add("TRACE_COLUMNS", run::TRACE_COLUMNS.to_vec())?;

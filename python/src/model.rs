@@ -9,7 +9,7 @@ use crate::ball::Ball;
 use crate::errors::to_py;
 use crate::friction::Mu;
 use crate::inputs::{float_array, shaped, with_argument_names};
-use crate::outputs::{single_collision, Outputs};
+use crate::outputs::{resolve_checked, single_collision, Outputs, RowFailure, PER_CHUNK};
 use crate::settings;
 use billiard_contact::batch::{resolve_lab_into, BatchSetup, PARALLEL_LAB_ROWS};
 use billiard_contact::nalgebra::Vector3;
@@ -18,6 +18,7 @@ use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
+use std::sync::atomic::Ordering;
 
 use billiard_contact::profile::{ProfileKind, ProfileSpec};
 use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
@@ -191,43 +192,62 @@ impl BallBall {
         let out = Outputs::new(py, n, single);
         // SAFETY: fresh C-contiguous arrays, written only here (see `Outputs`).
         let columns = unsafe { out.columns() };
-        let result = if n >= PARALLEL_LAB_ROWS || setup.settings.method() != Method::ClosedForm {
-            // Without the GIL (the library spreads the rows over its threads from
-            // PARALLEL_LAB_ROWS on; time stepping takes long even for one row): hold
-            // read-only borrows, so no Rust code writes the inputs meanwhile (numpy's
-            // borrow tracking).
+        let per_chunk = PER_CHUNK.load(Ordering::Relaxed);
+        let parallel = n >= PARALLEL_LAB_ROWS;
+        let run = |columns| {
+            if per_chunk {
+                resolve_checked(setup, &inputs, columns, parallel)
+            } else {
+                resolve_lab_into(setup, &inputs, columns)
+                    .map_err(|(i, e)| (i, RowFailure::Library(e)))
+            }
+        };
+        let result = if parallel || setup.settings.method() != Method::ClosedForm {
+            // Without the GIL (from PARALLEL_LAB_ROWS rows on all cores; time stepping
+            // takes long even for one row): hold read-only borrows, so no Rust code writes
+            // the inputs meanwhile (numpy's borrow tracking).
             let borrows = arrays
                 .iter()
                 .flatten()
                 .map(|a| a.try_readonly())
                 .collect::<Result<Vec<_>, _>>()?;
-            let r = py.detach(|| resolve_lab_into(setup, &inputs, columns));
+            let r = py.detach(|| run(columns));
             drop(borrows);
             r
         } else {
             // A few rows with the GIL held: read straight from the buffers.
-            resolve_lab_into(setup, &inputs, columns)
+            run(columns)
         };
         drop(arrays);
-        if let Err((i, e)) = result {
-            let e = with_argument_names(e);
-            let msg = if single {
-                e.to_string()
-            } else {
-                format!("row {i}: {e}")
-            };
-            return Err(if e.is_bad_input() {
-                PyValueError::new_err(msg)
-            } else {
-                pyo3::exceptions::PyRuntimeError::new_err(msg)
-            });
-        }
-        if let Some((i, what)) = out.first_non_finite() {
-            return Err(PyValueError::new_err(if single {
-                what
-            } else {
-                format!("row {i}: {what}")
-            }));
+        let result = match result {
+            Ok(()) if !per_chunk => match out.first_non_finite() {
+                Some((i, what)) => Err((i, RowFailure::NonFinite(what))),
+                None => Ok(()),
+            },
+            other => other,
+        };
+        match result {
+            Ok(()) => {}
+            Err((i, RowFailure::Library(e))) => {
+                let e = with_argument_names(e);
+                let msg = if single {
+                    e.to_string()
+                } else {
+                    format!("row {i}: {e}")
+                };
+                return Err(if e.is_bad_input() {
+                    PyValueError::new_err(msg)
+                } else {
+                    pyo3::exceptions::PyRuntimeError::new_err(msg)
+                });
+            }
+            Err((i, RowFailure::NonFinite(what))) => {
+                return Err(PyValueError::new_err(if single {
+                    what
+                } else {
+                    format!("row {i}: {what}")
+                }));
+            }
         }
         out.into_dict(py)
     }

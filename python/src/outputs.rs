@@ -1,7 +1,8 @@
 //! The arrays and scalars `resolve_lab` returns, written in place by the library.
 
 use crate::inputs::{with_argument_names, Inputs};
-use billiard_contact::batch::{resolve_lab_into, BatchSetup, LabOutColumns};
+use billiard_contact::batch::{resolve_lab_into, BatchSetup, LabOutColumns, LabRows};
+use billiard_contact::{Error, LabScene};
 use numpy::npyffi::{npy_intp, NPY_ARRAY_CARRAY, NPY_TYPES, PY_ARRAY_API};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -9,7 +10,9 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyString};
+use rayon::prelude::*;
 use std::os::raw::c_int;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The output arrays of `resolve_lab`, all in one numpy buffer of float64 (the outputs are
 /// C-contiguous views of it): "va", "wa", "vb", "wb" at elements 0, 3n, 6n, 9n (n rows of
@@ -65,7 +68,9 @@ impl<'py> Outputs<'py> {
 
     /// The first row (and its message) with an output that is not finite: "va", "wa", "vb",
     /// "wb", "impulse" or "tangential_impulse" (the throw angle is NaN by definition where
-    /// there is none). The inputs were finite, so the collision overflowed.
+    /// there is none). The inputs were finite, so the collision overflowed. One pass over
+    /// the whole buffer after every row is written: the check before [`resolve_checked`],
+    /// kept for the benchmark (`_core._check_outputs_per_chunk(False)`).
     pub(crate) fn first_non_finite(&self) -> Option<(usize, String)> {
         let n = self.n;
         // SAFETY: the buffer's first 14n elements were all written by `resolve_lab_into`,
@@ -361,4 +366,152 @@ pub(crate) fn result_dict(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         Ok(d.unbind())
     })?;
     t.bind(py).copy()
+}
+
+/// Rows a chunk of [`resolve_checked`]: the outputs of 1024 rows (115 kB) are still in the
+/// core's cache when they are checked.
+pub(crate) const CHECK_ROWS: usize = 1024;
+
+/// Whether `resolve_lab` checks its outputs chunk by chunk ([`resolve_checked`], the
+/// default) or in one pass after all rows ([`Outputs::first_non_finite`]): a switch for
+/// `python/bench/bench_resolve.py` to time both in one run.
+pub(crate) static PER_CHUNK: AtomicBool = AtomicBool::new(true);
+
+/// Chooses how `resolve_lab` checks that its outputs are finite: per chunk of 1024 rows
+/// (True, the default) or in one pass after every row is written (False, the earlier way);
+/// returns the previous choice. For the benchmark: both give the same results and errors.
+#[pyfunction]
+pub(crate) fn _check_outputs_per_chunk(on: bool) -> bool {
+    PER_CHUNK.swap(on, Ordering::Relaxed)
+}
+
+/// Why a row failed: the library refused it, or its outputs are not finite (the message).
+pub(crate) enum RowFailure {
+    Library(Error),
+    NonFinite(String),
+}
+
+/// Rows [start, start + n) of the inputs.
+struct Window<'a> {
+    inputs: &'a Inputs,
+    start: usize,
+    n: usize,
+}
+
+impl LabRows for Window<'_> {
+    fn len(&self) -> usize {
+        self.n
+    }
+
+    #[inline(always)]
+    fn row(&self, i: usize) -> Result<LabScene, Error> {
+        self.inputs.row(self.start + i)
+    }
+}
+
+/// `resolve_lab_into` chunk by chunk ([`CHECK_ROWS`] rows; over rayon's pool when
+/// `parallel`), each chunk's outputs checked finite once, right after it is written (one
+/// branch a chunk; the failing row is looked for only when a chunk fails): the first
+/// failing row and why.
+pub(crate) fn resolve_checked(
+    setup: &BatchSetup,
+    inputs: &Inputs,
+    out: LabOutColumns<'_>,
+    parallel: bool,
+) -> Result<(), (usize, RowFailure)> {
+    let n = inputs.len();
+    let mut parts = Vec::with_capacity(n.div_ceil(CHECK_ROWS));
+    let (mut rest, mut start) = (out, 0);
+    while start < n {
+        let k = CHECK_ROWS.min(n - start);
+        let (head, tail) = rest.split_at(k);
+        parts.push((start, head));
+        rest = tail;
+        start += k;
+    }
+    let chunk =
+        |(start, cols): (usize, LabOutColumns<'_>)| checked_chunk(setup, inputs, start, cols);
+    let failure = if parallel {
+        parts
+            .into_par_iter()
+            .filter_map(chunk)
+            .min_by_key(|(i, _)| *i)
+    } else {
+        parts.into_iter().find_map(chunk)
+    };
+    failure.map_or(Ok(()), Err)
+}
+
+/// One chunk: the library's rows, then the check of the rows it wrote.
+fn checked_chunk(
+    setup: &BatchSetup,
+    inputs: &Inputs,
+    start: usize,
+    cols: LabOutColumns<'_>,
+) -> Option<(usize, RowFailure)> {
+    let k = cols.impulse.len();
+    let window = Window {
+        inputs,
+        start,
+        n: k,
+    };
+    let result = resolve_lab_into(
+        setup,
+        &window,
+        LabOutColumns {
+            va: &mut *cols.va,
+            wa: &mut *cols.wa,
+            vb: &mut *cols.vb,
+            wb: &mut *cols.wb,
+            impulse: &mut *cols.impulse,
+            tangential_impulse: &mut *cols.tangential_impulse,
+            sticks: &mut *cols.sticks,
+            throw_angle_deg: &mut *cols.throw_angle_deg,
+        },
+    );
+    // The rows before a refused one are written (resolve_lab_into's promise): an overflow
+    // among them comes first.
+    let written = result.as_ref().map_or_else(|(i, _)| *i, |_| k);
+    let vectors = [
+        &cols.va[..written],
+        &cols.wa[..written],
+        &cols.vb[..written],
+        &cols.wb[..written],
+    ];
+    let scalars = [
+        &cols.impulse[..written],
+        &cols.tangential_impulse[..written],
+    ];
+    let finite = vectors.iter().all(|c| all_finite(c.as_flattened()))
+        & scalars.iter().all(|c| all_finite(c));
+    if !finite {
+        return first_bad_row(&vectors, &scalars)
+            .map(|(q, m)| (start + q, RowFailure::NonFinite(m)));
+    }
+    result
+        .err()
+        .map(|(i, e)| (start + i, RowFailure::Library(e)))
+}
+
+/// Whether every number of `xs` is finite: the exponent bits of each compared without a
+/// branch, so the loop runs in SIMD registers (a fold of `is_finite` through chained
+/// iterators ran value by value).
+#[inline]
+fn all_finite(xs: &[f64]) -> bool {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    xs.iter().fold(0u64, |bad, x| {
+        bad | u64::from(x.to_bits() & EXPONENT == EXPONENT)
+    }) == 0
+}
+
+#[cold]
+#[inline(never)]
+fn first_bad_row(vectors: &[&[[f64; 3]]; 4], scalars: &[&[f64]; 2]) -> Option<(usize, String)> {
+    (0..scalars[0].len()).find_map(|q| {
+        non_finite_output(
+            [vectors[0][q], vectors[1][q], vectors[2][q], vectors[3][q]],
+            [scalars[0][q], scalars[1][q]],
+        )
+        .map(|m| (q, m))
+    })
 }

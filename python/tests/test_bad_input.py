@@ -236,8 +236,18 @@ def test_an_overflowing_collision_raises_value_error_naming_the_output():
     assert all(np.isfinite(out[k]).all() for k in ("va", "wa", "vb", "wb", "impulse"))
 
 
-@pytest.mark.parametrize("n,bad", [(5, 3), (5000, 4321)])  # with the GIL, and on all cores
-def test_an_overflowing_row_is_named(n, bad):
+@pytest.fixture(params=[True, False], ids=["per-chunk", "one-pass"])
+def output_check(request):
+    """Both ways resolve_lab checks its outputs (once per chunk of 1024 rows, the default;
+    one pass after all rows, the benchmark's comparison) give the same errors."""
+    before = bc._core._check_outputs_per_chunk(request.param)
+    yield request.param
+    bc._core._check_outputs_per_chunk(before)
+
+
+# with the GIL (one chunk, two), and on all cores (the bad row in the fifth chunk)
+@pytest.mark.parametrize("n,bad", [(5, 3), (1500, 1100), (5000, 4321)])
+def test_an_overflowing_row_is_named(n, bad, output_check):
     model = bc.BallBall(**HEAVY)
     pa = np.tile(TOUCHING[0], (n, 1))
     pb = np.tile(TOUCHING[1], (n, 1))
@@ -250,3 +260,23 @@ def test_an_overflowing_row_is_named(n, bad):
     va[bad, 0] = va[n - 1, 0] = 1.0
     out = model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
     np.testing.assert_array_equal(out["vb"][:, 0], np.ones(n))  # elastic, equal balls: exchange
+
+
+@pytest.mark.parametrize("n", [1500, 5000])
+def test_the_first_bad_row_is_named_whether_it_overflows_or_is_refused(n, output_check):
+    """An overflowing row before a refused one (a NaN input) in the same chunk is named
+    first, and a refused row before an overflowing one; in the one-pass check the library's
+    refusal is found first (it stops before the pass)."""
+    model = bc.BallBall(**HEAVY)
+    pa = np.tile(TOUCHING[0], (n, 1))
+    pb = np.tile(TOUCHING[1], (n, 1))
+    va = np.tile([1.0, 0, 0], (n, 1))
+    zeros = np.zeros((n, 3))
+    va[1030, 0] = 1e10
+    va[1040, 1] = np.nan
+    expected = r"^row 1030: va\[0\] = -?inf: the result is not finite" if output_check else r"^row 1040: va\[1\] = NaN"
+    with pytest.raises(ValueError, match=expected):
+        model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+    va[1030, 0], va[1020, 0] = 1.0, np.inf
+    with pytest.raises(ValueError, match=r"^row 1020: va\[0\] = inf: a finite number"):
+        model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
