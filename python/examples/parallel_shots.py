@@ -143,9 +143,21 @@ def _on_dask(client: Any, n: int, model: BilliardContact) -> list[list[Event]]:
     # This module may not be importable in the workers (a script, or a folder not on
     # their path): send its functions by value.
     cloudpickle.register_pickle_by_value(sys.modules[__name__])
-    model_future = client.scatter(model, broadcast=True)
+    model_future = scatter_model(client, model)
     futures = client.map(shot, range(n), model=model_future, pure=False)
     return client.gather(futures)
+
+
+def scatter_model(client: Any, model: BilliardContact) -> Any:
+    """The model on every worker of ``client``'s cluster, under a key of its own.
+
+    ``client.scatter`` names data by a hash of its pickle by default, so the same model
+    scattered twice gets the same key: when the first future is released (its run is over)
+    just before the second scatter, the scheduler's release of that key can reach the
+    workers after the new data, which is then deleted, and the next shots fail with
+    "lost dependencies". ``hash=False`` gives every scatter a fresh key; the model is small
+    (its parameters, and the library's models rebuilt from them)."""
+    return client.scatter(model, broadcast=True, hash=False)
 
 
 def main() -> None:

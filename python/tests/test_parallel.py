@@ -47,3 +47,29 @@ def test_dask_local_cluster_equals_the_serial_run(serial_run):
     required_or_skip("distributed")
     model, serial = serial_run
     assert shots.dask_cluster(N, model, workers=2) == serial
+
+
+def test_dask_runs_two_models_and_one_scattered_twice(serial_run):
+    """On one cluster, one after the other: the same model again and again, and another
+    model in between, each equal to its serial run. Scattered under a hash of its pickle,
+    the same model got the same key each time, and a run just after the previous one's
+    release lost its model at times ("lost dependencies"); every scatter has a key of its
+    own now."""
+    required_or_skip("distributed")
+    from distributed import Client, LocalCluster
+
+    model, serial = serial_run
+    other = BilliardContact(mu=0.02, restitution=0.9)
+    k = 4
+    other_serial = shots.serial(k, other)
+    assert other_serial != serial[:k]
+    with LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, Client(cluster) as client:
+        first, second = shots.scatter_model(client, model), shots.scatter_model(client, model)
+        assert first.key != second.key
+        assert shots.scatter_model(client, other).key not in (first.key, second.key)
+        del first, second
+        for m, expected in [(model, serial[:k]), (model, serial[:k]), (other, other_serial),
+                            (model, serial[:k]), (other, other_serial)]:
+            assert shots.dask_cluster(k, m, client=client) == expected
