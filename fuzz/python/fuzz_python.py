@@ -80,12 +80,6 @@ CONVERSION = re.compile(
 )
 
 
-PYO3_EXTRACTION = re.compile(
-    r"^must be real number, not |^only 0-dimensional arrays|^only length-1 arrays|"
-    r"^'\w+' object cannot be converted to '\w+'$|^'\w+' object cannot be interpreted"
-)
-
-
 class Finding(Exception):
     """A broken promise."""
 
@@ -107,7 +101,7 @@ def names_an_argument(msg: str, names: list[str]) -> bool:
     for n in names:
         if re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", msg):
             # A single letter must be a field (`contact.mu.a`, `balls.b`) or quoted.
-            if len(n) > 1 or re.search(rf"(\.{n}\b|'{n}'|\b{n} =)", msg):
+            if len(n) > 1 or re.search(rf"(\.{n}\b|'{n}'|\b{n} =|^{n}: )", msg):
                 return True
     return False
 
@@ -119,15 +113,9 @@ def refusal(e: BaseException, names: list[str], what: str) -> None:
         if "\n" in msg or not msg.strip():
             raise Finding(f"{what}: a refusal not of one line: {msg!r}") from e
         if not names_an_argument(msg, names):
-            if isinstance(e, TypeError) and (
-                not what.startswith("resolve_lab") or PYO3_EXTRACTION.search(msg)
-            ):
-                # A scalar keyword of another type (a constructor's, or rtol=,
-                # time_transform=, method=): PyO3's extraction ("must be real number, not
-                # str", numpy's "only 0-dimensional arrays can be converted") does not say
-                # which argument.
-                known("keyword of a wrong type: TypeError names no argument (open)", f"{what}: {msg}")
-                return
+            # A scalar keyword of another type names itself and the type expected
+            # ("mass: expected a real number (float or int), got str"): PyO3's own
+            # extraction ("must be real number, not str") is a finding.
             if what.startswith("resolve_lab") and CONVERSION.search(msg):
                 # numpy's own conversion of a non-numeric array-like.
                 known("array of non-numbers: numpy's error names no argument", f"{what}: {msg}")

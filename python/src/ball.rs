@@ -19,7 +19,11 @@ pub struct Ball {
 impl Ball {
     #[new]
     #[pyo3(signature = (mass, radius, alpha = 0.4))]
-    fn new(mass: f64, radius: f64, alpha: f64) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::mass)] mass: f64,
+        #[pyo3(from_py_with = crate::args::radius)] radius: f64,
+        #[pyo3(from_py_with = crate::args::alpha)] alpha: f64,
+    ) -> PyResult<Self> {
         let ball =
             billiard_contact::Ball::in_section("ball", mass, radius, alpha).map_err(to_py)?;
         Ok(Ball { ball })

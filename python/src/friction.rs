@@ -43,8 +43,15 @@ pub struct SpeedDependentFriction {
 #[pymethods]
 impl SpeedDependentFriction {
     #[new]
-    #[pyo3(signature = (a, b, c, evaluate = "along-contact"))]
-    fn new(a: f64, b: f64, c: f64, evaluate: &str) -> PyResult<Self> {
+    #[pyo3(signature = (a, b, c, evaluate = "along-contact".to_string()),
+           text_signature = "(a, b, c, evaluate='along-contact')")]
+    fn new(
+        #[pyo3(from_py_with = crate::args::a_real)] a: f64,
+        #[pyo3(from_py_with = crate::args::b_real)] b: f64,
+        #[pyo3(from_py_with = crate::args::c_real)] c: f64,
+        #[pyo3(from_py_with = crate::args::evaluate)] evaluate: String,
+    ) -> PyResult<Self> {
+        let evaluate = evaluate.as_str();
         let friction = Friction::speed_dependent(a, b, c).map_err(to_py)?;
         let Some(&(_, evaluate)) = EVALUATE_NAMES.iter().find(|(name, _)| *name == evaluate) else {
             let accepted: Vec<String> = EVALUATE_NAMES
@@ -77,7 +84,7 @@ impl SpeedDependentFriction {
     }
 
     /// mu at sliding speed `s` (m/s).
-    fn mu(&self, s: f64) -> f64 {
+    fn mu(&self, #[pyo3(from_py_with = crate::args::s)] s: f64) -> f64 {
         self.friction.mu(s)
     }
 

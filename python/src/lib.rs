@@ -1,6 +1,7 @@
 //! The Python extension `billiard_contact._core` (PyO3): scenes as the command line runs
 //! them, and batches of lab-frame collisions from numpy arrays.
 
+mod args;
 mod ball;
 mod errors;
 mod friction;

@@ -61,25 +61,28 @@ impl BallBall {
 impl BallBall {
     #[new]
     #[pyo3(signature = (*, mass = None, radius = None, alpha = None, a = None, b = None, mu,
-                        restitution = 1.0, profile = "half-sine", duration = 2.5e-4,
-                        friction = true, stick = true))]
+                        restitution = 1.0, profile = "half-sine".to_string(), duration = 2.5e-4,
+                        friction = true, stick = true),
+           text_signature = "(*, mass=None, radius=None, alpha=None, a=None, b=None, mu, \
+                             restitution=1.0, profile='half-sine', duration=0.00025, \
+                             friction=True, stick=True)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        mass: Option<f64>,
-        radius: Option<f64>,
-        alpha: Option<f64>,
-        a: Option<&Bound<'_, Ball>>,
-        b: Option<&Bound<'_, Ball>>,
+        #[pyo3(from_py_with = crate::args::mass_or_none)] mass: Option<f64>,
+        #[pyo3(from_py_with = crate::args::radius_or_none)] radius: Option<f64>,
+        #[pyo3(from_py_with = crate::args::alpha_or_none)] alpha: Option<f64>,
+        #[pyo3(from_py_with = crate::args::a_ball)] a: Option<Ball>,
+        #[pyo3(from_py_with = crate::args::b_ball)] b: Option<Ball>,
         mu: Mu,
-        restitution: f64,
-        profile: &str,
-        duration: f64,
-        friction: bool,
-        stick: bool,
+        #[pyo3(from_py_with = crate::args::restitution)] restitution: f64,
+        #[pyo3(from_py_with = crate::args::profile)] profile: String,
+        #[pyo3(from_py_with = crate::args::duration)] duration: f64,
+        #[pyo3(from_py_with = crate::args::friction)] friction: bool,
+        #[pyo3(from_py_with = crate::args::stick)] stick: bool,
     ) -> PyResult<Self> {
+        let profile = profile.as_str();
         // The model is a scene (with a placeholder incoming state): the library's scene
         // builder validates every parameter and names it as a scene file does.
-        let (a, b) = (a.map(|x| *x.get()), b.map(|x| *x.get()));
         let balls = SceneBuilder::balls(
             [mass, radius, alpha],
             a.map(|x| Ok(x.ball)),
@@ -162,10 +165,11 @@ impl BallBall {
         vb: &Bound<'py, PyAny>,
         wb: &Bound<'py, PyAny>,
         up: Option<&Bound<'py, PyAny>>,
-        method: Option<&str>,
-        rtol: Option<f64>,
-        time_transform: Option<bool>,
+        #[pyo3(from_py_with = crate::args::method)] method: Option<String>,
+        #[pyo3(from_py_with = crate::args::rtol)] rtol: Option<f64>,
+        #[pyo3(from_py_with = crate::args::time_transform)] time_transform: Option<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let method = method.as_deref();
         let arrays = [
             Some(float_array("pa", pa)?),
             Some(float_array("va", va)?),

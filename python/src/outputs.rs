@@ -381,7 +381,7 @@ pub(crate) static PER_CHUNK: AtomicBool = AtomicBool::new(true);
 /// (True, the default) or in one pass after every row is written (False, the earlier way);
 /// returns the previous choice. For the benchmark: both give the same results and errors.
 #[pyfunction]
-pub(crate) fn _check_outputs_per_chunk(on: bool) -> bool {
+pub(crate) fn _check_outputs_per_chunk(#[pyo3(from_py_with = crate::args::on)] on: bool) -> bool {
     PER_CHUNK.swap(on, Ordering::Relaxed)
 }
 

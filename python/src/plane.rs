@@ -296,7 +296,13 @@ fn failure_error(i: usize, f: Failure, single: bool) -> PyErr {
 impl BallPlane {
     #[new]
     #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0))]
-    fn new(mass: f64, radius: f64, alpha: f64, mu: f64, restitution: f64) -> PyResult<Self> {
+    fn new(
+        #[pyo3(from_py_with = crate::args::mass)] mass: f64,
+        #[pyo3(from_py_with = crate::args::radius)] radius: f64,
+        #[pyo3(from_py_with = crate::args::alpha)] alpha: f64,
+        #[pyo3(from_py_with = crate::args::mu)] mu: f64,
+        #[pyo3(from_py_with = crate::args::restitution)] restitution: f64,
+    ) -> PyResult<Self> {
         let ball = Ball::in_section("ball", mass, radius, alpha)
             .map_err(|e| to_py(renamed(e, "ball.", "")))?;
         let friction = Friction::constant(mu).map_err(|e| to_py(renamed(e, "contact.", "")))?;
@@ -331,9 +337,10 @@ impl BallPlane {
         v: &Bound<'py, PyAny>,
         w: &Bound<'py, PyAny>,
         normal: &Bound<'py, PyAny>,
-        method: Option<&str>,
-        rtol: Option<f64>,
+        #[pyo3(from_py_with = crate::args::method)] method: Option<String>,
+        #[pyo3(from_py_with = crate::args::rtol)] rtol: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let method = method.as_deref();
         let arrays = [
             Some(float_array("v", v)?),
             Some(float_array("w", w)?),

@@ -192,14 +192,14 @@ fn run_py<'py>(py: Python<'py>, source: Source, o: Options) -> PyResult<Bound<'p
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
-    path: PathBuf,
-    method: Option<String>,
-    rtol: Option<f64>,
-    samples: Option<i64>,
-    atol: Option<f64>,
-    steps: Option<i64>,
-    trace: bool,
-    time_transform: Option<bool>,
+    #[pyo3(from_py_with = crate::args::scene_path)] path: PathBuf,
+    #[pyo3(from_py_with = crate::args::method)] method: Option<String>,
+    #[pyo3(from_py_with = crate::args::rtol)] rtol: Option<f64>,
+    #[pyo3(from_py_with = crate::args::samples)] samples: Option<i64>,
+    #[pyo3(from_py_with = crate::args::atol)] atol: Option<f64>,
+    #[pyo3(from_py_with = crate::args::steps)] steps: Option<i64>,
+    #[pyo3(from_py_with = crate::args::trace)] trace: bool,
+    #[pyo3(from_py_with = crate::args::time_transform)] time_transform: Option<bool>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = Options {
         method,
@@ -220,15 +220,15 @@ pub fn run<'py>(
 #[allow(clippy::too_many_arguments)]
 pub fn run_toml<'py>(
     py: Python<'py>,
-    text: String,
-    base_dir: PathBuf,
-    method: Option<String>,
-    rtol: Option<f64>,
-    samples: Option<i64>,
-    atol: Option<f64>,
-    steps: Option<i64>,
-    trace: bool,
-    time_transform: Option<bool>,
+    #[pyo3(from_py_with = crate::args::scene_text)] text: String,
+    #[pyo3(from_py_with = crate::args::base_dir)] base_dir: PathBuf,
+    #[pyo3(from_py_with = crate::args::method)] method: Option<String>,
+    #[pyo3(from_py_with = crate::args::rtol)] rtol: Option<f64>,
+    #[pyo3(from_py_with = crate::args::samples)] samples: Option<i64>,
+    #[pyo3(from_py_with = crate::args::atol)] atol: Option<f64>,
+    #[pyo3(from_py_with = crate::args::steps)] steps: Option<i64>,
+    #[pyo3(from_py_with = crate::args::trace)] trace: bool,
+    #[pyo3(from_py_with = crate::args::time_transform)] time_transform: Option<bool>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let o = Options {
         method,

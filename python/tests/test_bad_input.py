@@ -280,3 +280,69 @@ def test_the_first_bad_row_is_named_whether_it_overflows_or_is_refused(n, output
     va[1030, 0], va[1020, 0] = 1.0, np.inf
     with pytest.raises(ValueError, match=r"^row 1020: va\[0\] = inf: a finite number"):
         model.resolve_lab(pa, va, zeros, pb, zeros, zeros)
+
+
+_MODEL = dict(mass=M, radius=R, mu=0.06)
+_PLANE = dict(mass=M, radius=R, mu=0.2)
+_ONE = (TOUCHING[0], [1.0, 0, 0], [0, 0, 0], TOUCHING[1], [0, 0, 0], [0, 0, 0])
+_REAL = "a real number (float or int)"
+
+
+@pytest.mark.parametrize(
+    "call,name,expected,got",
+    [
+        (lambda: bc.Ball(mass="x", radius=R), "mass", _REAL, "str"),
+        (lambda: bc.Ball(M, [R]), "radius", _REAL, "list"),
+        (lambda: bc.Ball(M, R, alpha=None), "alpha", _REAL, "NoneType"),
+        (lambda: bc.SpeedDependentFriction(a="0.01", b=0.1, c=1.0), "a", _REAL, "str"),
+        (lambda: bc.SpeedDependentFriction(a=0.01, b=None, c=1.0), "b", _REAL, "NoneType"),
+        (lambda: bc.SpeedDependentFriction(a=0.01, b=0.1, c=1j), "c", _REAL, "complex"),
+        (lambda: bc.SpeedDependentFriction(0.01, 0.1, 1.0, evaluate=0), "evaluate", "a string", "int"),
+        (lambda: bc.SpeedDependentFriction(0.01, 0.1, 1.0).mu("fast"), "s", _REAL, "str"),
+        (lambda: bc.BallBall(mass="heavy", radius=R, mu=0.06), "mass", _REAL + " or None", "str"),
+        (lambda: bc.BallBall(mass=M, radius=b"R", mu=0.06), "radius", _REAL + " or None", "bytes"),
+        (lambda: bc.BallBall(alpha="0.4", **_MODEL), "alpha", _REAL + " or None", "str"),
+        (lambda: bc.BallBall(a=(M, R), b=bc.Ball(M, R), mu=0.06), "a", "a Ball or None", "tuple"),
+        (lambda: bc.BallBall(a=bc.Ball(M, R), b=M, mu=0.06), "b", "a Ball or None", "float"),
+        (lambda: bc.BallBall(restitution="1", **_MODEL), "restitution", _REAL, "str"),
+        (lambda: bc.BallBall(profile=1, **_MODEL), "profile", "a string", "int"),
+        (lambda: bc.BallBall(duration="2e-4", **_MODEL), "duration", _REAL, "str"),
+        (lambda: bc.BallBall(friction=1, **_MODEL), "friction", "True or False (a bool)", "int"),
+        (lambda: bc.BallBall(stick="yes", **_MODEL), "stick", "True or False (a bool)", "str"),
+        (lambda: bc.BallBall(**_MODEL).resolve_lab(*_ONE, method=4), "method", "a string or None", "int"),
+        (lambda: bc.BallBall(**_MODEL).resolve_lab(*_ONE, rtol="1e-9"), "rtol", _REAL + " or None", "str"),
+        (lambda: bc.BallBall(**_MODEL).resolve_lab(*_ONE, time_transform=1), "time_transform",
+         "True, False or None", "int"),
+        (lambda: bc.BallPlane(mass="x", radius=R, mu=0.2), "mass", _REAL, "str"),
+        (lambda: bc.BallPlane(mass=M, radius=None, mu=0.2), "radius", _REAL, "NoneType"),
+        (lambda: bc.BallPlane(alpha=[0.4], **_PLANE), "alpha", _REAL, "list"),
+        (lambda: bc.BallPlane(mass=M, radius=R, mu="0.2"), "mu", _REAL, "str"),
+        (lambda: bc.BallPlane(restitution="e", **_PLANE), "restitution", _REAL, "str"),
+        (lambda: bc.BallPlane(**_PLANE).resolve([0, 0, -1], [0, 0, 0], [0, 0, 1], method=1), "method",
+         "a string or None", "int"),
+        (lambda: bc.BallPlane(**_PLANE).resolve([0, 0, -1], [0, 0, 0], [0, 0, 1], rtol=[1]), "rtol",
+         _REAL + " or None", "list"),
+        (lambda: bc.run(3), "path", "a path (str or os.PathLike)", "int"),
+        (lambda: bc.run_toml(b"x"), "text", "a string", "bytes"),
+        (lambda: bc.run_toml("", base_dir=1), "base_dir", "a path (str or os.PathLike)", "int"),
+        (lambda: bc.run_toml("", samples=2.5), "samples", "an integer or None", "float"),
+        (lambda: bc.run_toml("", steps="9"), "steps", "an integer or None", "str"),
+        (lambda: bc.run_toml("", atol="x"), "atol", _REAL + " or None", "str"),
+        (lambda: bc.run_toml("", trace=None), "trace", "True or False (a bool)", "NoneType"),
+        (lambda: bc.run_toml("", time_transform="on"), "time_transform", "True, False or None", "str"),
+    ],
+)
+def test_a_wrongly_typed_scalar_names_the_argument_and_the_type(call, name, expected, got):
+    with pytest.raises(TypeError) as e:
+        call()
+    assert str(e.value) == f"{name}: expected {expected}, got {got}"
+
+
+def test_numbers_of_other_types_are_taken():
+    """numpy scalars, ints and bools of numpy are real numbers and flags as before."""
+    ball = bc.Ball(np.float32(M), np.int64(1), alpha=np.float64(0.4))
+    assert ball.mass == float(np.float32(M)) and ball.radius == 1.0
+    model = bc.BallBall(mass=np.float64(M), radius=R, mu=np.float64(0.06), friction=np.bool_(True),
+                        stick=np.True_, duration=np.float32(2e-4))
+    model.resolve_lab(*_ONE, rtol=np.float64(1e-9), time_transform=np.False_, method="rk4")
+    bc.BallPlane(mass=1, radius=1, mu=0, restitution=np.int8(1))
