@@ -448,3 +448,70 @@ fn hard_cases_hold() {
     }
     println!("largest closed-form error {worst:e}");
 }
+
+/// A damping past the law's bound is refused naming the coefficient, on both sides of the
+/// bound: Hunt-Crossley c v <= 1e6 (v = 2 U(0) the approach speed), Kuwabara-Kono gamma <=
+/// 1e12 tau_0 (tau_0 the elastic contact time); just inside, the run ends with the restitution
+/// of the energy relation (Hunt-Crossley: e = y / x, y -> 1 for x = c v = 1e6, so e = 1/x).
+/// Past the bounds, Hunt-Crossley was refused as never ending from c v ~ 2e7 yet ran again
+/// from 1e20 (the separation function lost in rounding), and Kuwabara-Kono failed with a
+/// step-size underflow from gamma ~ 1e17 s: now one refusal for all of them. A calibration
+/// to a restitution below the bound's is refused naming the restitution.
+#[test]
+fn damping_past_its_bound_is_refused() {
+    let k = pool_stiffness();
+    let u0 = 0.5;
+    let v = 2.0 * u0;
+    let (_, tau0) = elastic_hertz(k, v);
+    let c = CollisionSpec::ball(M, R, 0.4)
+        .mu(0.06)
+        .impulse(ImpulseRule::ELASTIC)
+        .incoming(CmState::new(
+            Vector3::new(u0, 0.2, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ))
+        .build();
+    let settings = SolverSettings::default();
+    let inside = ContactLaw::new(k, Damping::HuntCrossley, 0.999e6 / v).unwrap();
+    let e = solve_law(&c, &inside, &settings, None)
+        .unwrap()
+        .law
+        .unwrap()
+        .restitution;
+    let expected = hunt_crossley_e(0.999e6);
+    assert!((e - expected).abs() < 1e-3 * expected, "{e} vs {expected}");
+    let inside = ContactLaw::new(k, Damping::KuwabaraKono, 0.999e12 * tau0).unwrap();
+    let o = solve_law(&c, &inside, &settings, None).unwrap();
+    assert!(o.law.unwrap().duration < 1e-7 * tau0, "{:?}", o.law);
+    for (damping, coefficient) in [
+        (Damping::HuntCrossley, 1.001e6 / v),
+        (Damping::HuntCrossley, 1e9),
+        (Damping::HuntCrossley, 1e22),
+        (Damping::HuntCrossley, 1e300),
+        (Damping::KuwabaraKono, 1.001e12 * tau0),
+        (Damping::KuwabaraKono, 1e17),
+        (Damping::KuwabaraKono, 1e300),
+    ] {
+        let law = ContactLaw::new(k, damping, coefficient).unwrap();
+        match solve_law(&c, &law, &settings, None) {
+            Err(e @ Error::InvalidParameter { .. }) => {
+                let text = e.to_string();
+                assert!(
+                    text.starts_with("contact.law.coefficient = ") && text.contains("at most"),
+                    "{damping} {coefficient:e}: {text}"
+                );
+            }
+            other => panic!("{damping} {coefficient:e}: {other:?}"),
+        }
+    }
+    // Hunt-Crossley's restitution is bounded below by about 1/(c v) = 1e-6 (Kuwabara-Kono's
+    // falls to 0 well inside its bound: any restitution in (0, 1] is reached).
+    match ContactLaw::calibrated(k, Damping::HuntCrossley, 1e-7, v, M / 2.0) {
+        Err(Error::InvalidParameter { field, .. }) => assert_eq!(field, "contact.law.restitution"),
+        other => panic!("{other:?}"),
+    }
+    let law = ContactLaw::calibrated(k, Damping::HuntCrossley, 2e-6, v, M / 2.0).unwrap();
+    let x = law.coefficient() * v;
+    assert!((hunt_crossley_e(x) - 2e-6).abs() < 1e-3 * 2e-6, "{x:e}");
+}

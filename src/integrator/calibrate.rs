@@ -5,7 +5,7 @@
 use crate::base::error::Error;
 use crate::base::root::{illinois_update, Bound, Side};
 use crate::base::validate::{finite, positive};
-use crate::integrator::law::{head_on, HeadOn};
+use crate::integrator::law::{head_on, largest_coefficient, HeadOn};
 use crate::model::contact_law::{ContactLaw, Damping, AT_SPEED_FIELD, RESTITUTION_FIELD};
 use crate::model::material::elastic_impact;
 
@@ -71,8 +71,11 @@ impl ContactLaw {
             let law = ContactLaw::new(stiffness, damping, c)?;
             Ok(head_on(&law, reduced_mass, at_speed, CALIBRATION_RTOL)?.restitution)
         };
+        // The law's damping bound (integrator::law): the bracket stops at it.
+        let (_, tau0) = elastic_impact(stiffness, reduced_mass, at_speed);
+        let c_max = largest_coefficient(damping, at_speed, tau0);
         let c0 = elastic.small_damping_estimate(restitution, at_speed, reduced_mass);
-        let (lo, hi) = bracket(&e_of, restitution, c0)?;
+        let (lo, hi) = bracket(&e_of, restitution, c0.min(c_max), c_max)?;
         solve_bracketed(&e_of, restitution, lo, hi)
             .and_then(|c| ContactLaw::new(stiffness, damping, c))
     }
@@ -103,19 +106,34 @@ impl ContactLaw {
 }
 
 /// A coefficient bracket [lo, hi] with e(lo) >= target > e(hi): from 0 (e = 1) and
-/// doubling `c0` until e falls below the target.
+/// doubling `c0` until e falls below the target, up to the largest coefficient `c_max`
+/// (a target below e(c_max) is refused).
 fn bracket(
     e_of: &dyn Fn(f64) -> Result<f64, Error>,
     target: f64,
     c0: f64,
+    c_max: f64,
 ) -> Result<(f64, f64), Error> {
     let (mut lo, mut hi) = (0.0, c0.max(f64::MIN_POSITIVE));
     for _ in 0..CALIBRATION_MAX_TRIALS {
-        if e_of(hi)? < target {
+        let e = e_of(hi)?;
+        if e < target {
             return Ok((lo, hi));
         }
+        if hi >= c_max {
+            return Err(Error::invalid(
+                RESTITUTION_FIELD,
+                target,
+                format!(
+                    "at least {} at this speed: a smaller one needs a damping past the law's \
+                     bound (contact.law.coefficient at most {})",
+                    crate::base::number::sci(e, 3),
+                    crate::base::number::sci(c_max, 4),
+                ),
+            ));
+        }
         lo = hi;
-        hi *= 2.0;
+        hi = (hi * 2.0).min(c_max);
     }
     Err(Error::invalid(
         RESTITUTION_FIELD,

@@ -32,7 +32,7 @@ use crate::base::method::Method;
 use crate::base::root::{illinois_update, Bound, Side};
 use crate::base::settings::{Sampling, SolverSettings, Stats};
 use crate::model::collision::Collision;
-use crate::model::contact_law::{ContactLaw, STIFFNESS_FIELD};
+use crate::model::contact_law::{ContactLaw, Damping, STIFFNESS_FIELD};
 use crate::model::material::elastic_impact;
 use crate::model::trace::{TraceRow, TraceSink};
 use crate::profile::force::ForceProfile;
@@ -48,6 +48,18 @@ const NORMAL_LAW_DIM: usize = 3;
 /// The longest contact a law may have, in elastic contact times tau_0: a contact still on
 /// after it is an error (a damping so strong that the balls hardly separate).
 pub(crate) const LAW_SPAN: f64 = 1e4;
+
+/// Largest Hunt-Crossley damping number c v (c the coefficient, v = 2 U(0) the approach
+/// speed): the restitution is then about 2 / (c v) = 2e-6, and the contact's last part, where
+/// the balls creep apart at the speed 1/c, lasts a few thousand elastic contact times (c v =
+/// 1e6: 1.8e3 tau_0 for pool balls). Past about 2e7 it outlasts [`LAW_SPAN`], and far past it
+/// the separation function is lost in rounding, so the bound is a number, not a run that fails.
+pub(crate) const HUNT_CROSSLEY_MAX_DAMPING: f64 = 1e6;
+
+/// Largest Kuwabara-Kono damping number gamma / tau_0 (tau_0 the elastic contact time): the
+/// contact then lasts about 3.4 (gamma / tau_0)^(-2/3) tau_0 = 3e-8 tau_0 with a restitution
+/// of 0 to every printed digit; far past it (gamma / tau_0 ~ 1e20) the steps underflow.
+pub(crate) const KUWABARA_KONO_MAX_DAMPING: f64 = 1e12;
 
 /// Bracket width in the scaled time at which an event is located: a few ulps of 1.
 const X_TOL: f64 = 1e-14;
@@ -113,6 +125,7 @@ impl LawScales {
                  time are normal positive numbers",
             ));
         }
+        damping_within_bound(law, 2.0 * u0, tau0)?;
         Ok(LawScales {
             law: *law,
             pair_mass,
@@ -294,6 +307,49 @@ fn locate<const N: usize, R: ScaledRhs<N>>(
         side = illinois_update(&mut lo, &mut hi, side, x, g);
     }
     Ok(best)
+}
+
+/// The largest coefficient of `damping` for an approach at `speed` (m/s) with the elastic
+/// contact time `tau0` (s): [`HUNT_CROSSLEY_MAX_DAMPING`] / v, [`KUWABARA_KONO_MAX_DAMPING`]
+/// tau_0, unbounded without damping.
+pub(crate) fn largest_coefficient(damping: Damping, speed: f64, tau0: f64) -> f64 {
+    match damping {
+        Damping::None => f64::INFINITY,
+        Damping::HuntCrossley => HUNT_CROSSLEY_MAX_DAMPING / speed,
+        Damping::KuwabaraKono => KUWABARA_KONO_MAX_DAMPING * tau0,
+    }
+}
+
+/// Refuses a damping past [`HUNT_CROSSLEY_MAX_DAMPING`] or [`KUWABARA_KONO_MAX_DAMPING`] for
+/// an approach at `speed` (m/s) with the elastic contact time `tau0` (s), naming the
+/// coefficient and its largest value for this collision.
+fn damping_within_bound(law: &ContactLaw, speed: f64, tau0: f64) -> Result<(), Error> {
+    use crate::base::number::{decimal, si};
+    let largest = largest_coefficient(law.damping(), speed, tau0);
+    if law.coefficient() <= largest {
+        return Ok(());
+    }
+    let expected = match law.damping() {
+        Damping::HuntCrossley => format!(
+            "at most {} s/m for this collision (c v <= {HUNT_CROSSLEY_MAX_DAMPING:e} at the \
+             approach speed v = {}): past it the restitution is below 2e-6 and the balls \
+             creep apart for longer than the contact may last",
+            decimal(largest, 4),
+            si(speed, "m/s", 4),
+        ),
+        _ => format!(
+            "at most {} s for this collision (gamma / tau_0 <= {KUWABARA_KONO_MAX_DAMPING:e}, \
+             tau_0 = {} the elastic contact time): past it the contact ends within 3e-8 tau_0 \
+             with a restitution of 0",
+            decimal(largest, 4),
+            si(tau0, "s", 4),
+        ),
+    };
+    Err(Error::invalid(
+        crate::model::contact_law::COEFFICIENT_FIELD,
+        law.coefficient(),
+        expected,
+    ))
 }
 
 /// The error of a contact that is still on after [`LAW_SPAN`] elastic contact times.
