@@ -87,6 +87,7 @@ mod base;
 #[cfg(feature = "cli")]
 pub mod cli;
 mod closed_form;
+mod cushion;
 mod integrator;
 mod model;
 #[cfg_attr(not(feature = "cli"), allow(dead_code))]
@@ -106,6 +107,11 @@ pub use base::error::Error;
 pub use base::method::Method;
 pub use base::settings::{Sampling, SolverSettings, Stats};
 pub use closed_form::kernel::ClosedForm;
+pub use cushion::impact::resolve_cushion;
+pub use cushion::outcome::{
+    CushionContact, CushionOutcome, CushionPhase, CushionTraceRow, SlipChange, SlipEvent,
+};
+pub use cushion::params::{Cushion, CushionRestitution};
 pub use model::collision::Collision;
 pub use model::contact_law::{ContactLaw, Damping};
 pub use model::effects::Effects;

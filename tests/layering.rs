@@ -14,7 +14,10 @@ use std::path::Path;
 const LAYERS: [(&str, &[&str]); 8] = [
     ("base", &["base"]),
     ("model", &["profile", "model"]),
-    ("kernels", &["closed_form", "integrator", "table_phase"]),
+    (
+        "kernels",
+        &["closed_form", "cushion", "integrator", "table_phase"],
+    ),
     ("solve", &["solve"]),
     ("scene", &["scene"]),
     ("outputs", &["outputs"]),

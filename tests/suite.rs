@@ -33,6 +33,7 @@ mod closed_form_paper;
 mod contact_law_checks;
 mod contact_law_scenes;
 mod convergence_profiles;
+mod cushion;
 mod effects_switches;
 mod examples_checks;
 mod friction_speed_dependent;
