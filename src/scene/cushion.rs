@@ -114,6 +114,31 @@ impl CushionScene {
 
     /// Parses cushion scene text; `source` names the file in errors and gives the default
     /// name.
+    ///
+    /// ```
+    /// use billiard_contact::CushionScene;
+    ///
+    /// let scene = CushionScene::parse(
+    ///     r#"
+    ///     [balls]
+    ///     mass = 0.17
+    ///     radius = 0.028575
+    ///     [cushion]
+    ///     height = 0.04
+    ///     mu_cushion = 0.0
+    ///     mu_table = 0.0
+    ///     restitution = 0.8
+    ///     [incoming.cushion]
+    ///     velocity = [0.5, 1.0, 0.0]
+    ///     "#,
+    ///     None,
+    /// )?;
+    /// let out = scene.run(&scene.solver, None)?;
+    /// // Without friction only the normal part changes: the cloth takes the vertical part of
+    /// // the cushion's push, so v_y' = -e v_y and v_x is kept.
+    /// assert!((out.v.y + 0.8).abs() < 1e-9 && (out.v.x - 0.5).abs() < 1e-12);
+    /// # Ok::<(), billiard_contact::Error>(())
+    /// ```
     pub fn parse(text: &str, source: Option<&Path>) -> Result<Self, Error> {
         let shown = source
             .map(Path::to_path_buf)
