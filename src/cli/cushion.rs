@@ -10,7 +10,8 @@ use crate::cli::run::RunArgs;
 use crate::cushion::outcome::CushionTraceRow;
 use crate::outputs::atomic_file::AtomicFile;
 use crate::outputs::cushion::{cushion_summary, CushionCsv, CushionReport};
-use crate::scene::cushion::{is_cushion_scene, CushionScene};
+use crate::scene::cushion::CushionScene;
+use crate::scene::file::is_cushion_scene;
 use std::io::Write;
 use std::path::Path;
 

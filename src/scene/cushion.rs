@@ -25,7 +25,6 @@ use crate::cushion::outcome::{CushionOutcome, CushionTraceRow};
 use crate::cushion::params::{Cushion, CushionRestitution};
 use crate::model::params::{Ball, ALPHA_SOLID};
 use crate::scene::file::explain_toml_error;
-pub(crate) use crate::scene::file::is_cushion_scene;
 use crate::scene::overrides::SolverOverrides;
 use nalgebra::Vector3;
 use serde::Deserialize;
