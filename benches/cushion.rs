@@ -37,6 +37,18 @@ fn shots() -> Vec<(String, Vector3<f64>, Vector3<f64>)> {
     out
 }
 
+/// CPU time of this thread (s) from /proc/thread-self/stat (Linux; utime + stime in clock
+/// ticks of 10 ms), or None elsewhere: on a shared machine the wall-clock time of a loop
+/// includes the time the thread waited for a core.
+fn thread_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    let after = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
 fn settings(method: Method, tol: f64) -> SolverSettings {
     SolverSettings::default()
         .with_method(method)
@@ -97,17 +109,23 @@ fn bench(c: &mut Criterion) {
         }
         let name = format!("{method} tol {tol:e}");
         let t0 = std::time::Instant::now();
+        let cpu0 = thread_cpu_seconds();
         let mut n = 0;
-        while t0.elapsed() < Duration::from_secs(1) {
+        while t0.elapsed() < Duration::from_secs(3) {
             for (_, v, w) in &shots {
                 black_box(resolve_cushion(&ball, &cushion, *v, *w, &s, None).unwrap());
             }
             n += 1;
         }
-        let per = t0.elapsed().as_secs_f64() / (n * shots.len()) as f64;
+        let impacts = (n * shots.len()) as f64;
+        let per = t0.elapsed().as_secs_f64() / impacts;
+        let cpu = match (cpu0, thread_cpu_seconds()) {
+            (Some(a), Some(b)) => format!("{:7.2} us CPU", (b - a) / impacts * 1e6),
+            _ => "CPU time n/a".to_string(),
+        };
         rows.push(format!(
-            "{name:>18}: {:7.2} us an impact (mean over {} shots), {:6.0} evaluations an \
-             impact, largest error {:.1e} ({}), slowest {:.0} us ({})",
+            "{name:>18}: {:7.2} us an impact wall, {cpu} (mean over {} shots), {:6.0} \
+             evaluations an impact, largest error {:.1e} ({}), slowest {:.0} us ({})",
             per * 1e6,
             shots.len(),
             evals as f64 / shots.len() as f64,

@@ -89,6 +89,9 @@ const MAX_SETTLE: usize = 8;
 /// (docs/cushion.md#slip-growing-from-zero).
 const SEED_FLOOR: f64 = 1e-2;
 
+/// Bisections of the Hermite interpolant for a phase's end: to 1e-12 of the step.
+const HERMITE_BISECTIONS: usize = 40;
+
 /// Most trials of the event location (Illinois regula falsi on the step size).
 const MAX_TRIALS: usize = 100;
 
@@ -501,6 +504,16 @@ fn deriv(rhs: &Rhs, modes: &Modes, var: Var, z: &Z) -> (Z, Eval) {
     (dz, e)
 }
 
+/// Forces for the event functions that do not use them (the phases' ends).
+fn rhs_free_eval() -> Eval {
+    Eval {
+        dy: [0.0; 8],
+        f_i: [0.0; 2],
+        f_c: [0.0; 2],
+        n_c: 0.0,
+    }
+}
+
 impl Run<'_> {
     fn z(&self) -> Z {
         let mut z = [0.0; DIM];
@@ -748,7 +761,7 @@ impl Run<'_> {
                 continue;
             };
             if g0 > 0.0 && g1 <= 0.0 {
-                let at = self.locate(ev, &z0, k0, (h_try, stp.y), g0, g1);
+                let at = self.locate(ev, &z0, k0, (h_try, stp.y, &k1), g0, g1);
                 if first.is_none_or(|(z, _)| at[DIM - 1] < z[DIM - 1]) {
                     first = Some((at, ev));
                 }
@@ -852,8 +865,43 @@ impl Run<'_> {
     /// (derivative `k0`) of size `h` to `z1`: regula falsi with the Illinois modification
     /// on the step size, each trial one step from `z0`, until the bracket is narrower than
     /// the event tolerance in P_I.
-    fn locate(&mut self, ev: Smooth, z0: &Z, k0: &Z, (h, z1): (f64, Z), g0: f64, g1: f64) -> Z {
+    fn locate(
+        &mut self,
+        ev: Smooth,
+        z0: &Z,
+        k0: &Z,
+        (h, z1, k1): (f64, Z, &Z),
+        g0: f64,
+        g1: f64,
+    ) -> Z {
         let st = self.stepping;
+        // The phases' ends depend on the state alone: their first trial is the zero of g on
+        // the cubic Hermite interpolant of the step (no evaluations), close enough that the
+        // secant steps that follow converge in one or two trials.
+        let mut guess = None;
+        if matches!(ev, Smooth::CompressionEnd | Smooth::RestitutionEnd) {
+            let e = rhs_free_eval();
+            let at = |theta: f64| {
+                let (t2, t3) = (theta * theta, theta * theta * theta);
+                let (h00, h10) = (2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + theta);
+                let (h01, h11) = (-2.0 * t3 + 3.0 * t2, t3 - t2);
+                let mut z = [0.0; DIM];
+                for i in 0..DIM {
+                    z[i] = h00 * z0[i] + h10 * h * k0[i] + h01 * z1[i] + h11 * h * k1[i];
+                }
+                z
+            };
+            let (mut a, mut b) = (0.0, 1.0);
+            for _ in 0..HERMITE_BISECTIONS {
+                let m = 0.5 * (a + b);
+                if self.smooth_value(ev, &at(m), &e).unwrap_or(0.0) > 0.0 {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            guess = Some(0.5 * (a + b) * h);
+        }
         let (modes, var, rhs) = (self.modes, self.var, self.rhs);
         let mut f = |z: &Z| deriv(&rhs, &modes, var, z).0;
         let (mut lo, mut lo_g, mut lo_p) = (0.0, g0, z0[DIM - 1]);
@@ -864,7 +912,10 @@ impl Run<'_> {
             if hi_z[DIM - 1] - lo_p <= EVENT_TOL * self.p_scale || -hi_g <= g_tol {
                 break;
             }
-            let mut t = lo + (hi - lo) * (lo_g / (lo_g - hi_g));
+            let mut t = match guess.take() {
+                Some(t) => t,
+                None => lo + (hi - lo) * (lo_g / (lo_g - hi_g)),
+            };
             if !(t > lo && t < hi) {
                 t = 0.5 * (lo + hi);
             }
