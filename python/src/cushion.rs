@@ -11,7 +11,7 @@ use billiard_contact::{
     resolve_cushion, Ball, Cushion, CushionContact, CushionOutcome, CushionRestitution, Error,
     Method, SlipChange, SolverOverrides, SolverSettings,
 };
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::intern;
 use pyo3::prelude::*;
@@ -63,7 +63,11 @@ fn renamed(e: Error, from: &str, to: &str) -> Error {
 
 /// The library's error for a row, with the arguments' names (`ball.v` is `v`, ...).
 fn named(e: Error) -> Error {
-    renamed(renamed(renamed(e, "ball.", ""), "cushion.", ""), "solver.", "")
+    renamed(
+        renamed(renamed(e, "ball.", ""), "cushion.", ""),
+        "solver.",
+        "",
+    )
 }
 
 fn contact_name(c: CushionContact) -> &'static str {
@@ -168,8 +172,20 @@ fn cushion_settings(
     let steps = steps
         .map(|s| u32::try_from(s).map_err(|_| Error::invalid("steps", s, "in [1, 1e7]")))
         .transpose()?;
+    let method = method
+        .map(settings::method)
+        .transpose()?
+        .unwrap_or(Method::Dop853);
+    if method == Method::ClosedForm {
+        return Err(Error::invalid(
+            "method",
+            "\"closed-form\"",
+            "\"dop853\", \"dopri5\" or \"rk4\": the cushion impact has no closed form (the \
+             slip directions turn)",
+        ));
+    }
     SolverOverrides {
-        method: Some(method.map(settings::method).transpose()?.unwrap_or(Method::Dop853)),
+        method: Some(method),
         rtol,
         atol: None,
         steps,
@@ -305,14 +321,19 @@ impl BallCushion {
         drop(borrows);
         drop(arrays);
         let outcomes = outcomes.map_err(|(i, f)| failure_error(i, f, false))?;
-        let vs: Vec<[f64; 3]> = outcomes.iter().map(|o| o.v.into()).collect();
-        let ws: Vec<[f64; 3]> = outcomes.iter().map(|o| o.w.into()).collect();
+        let rows = |f: fn(&CushionOutcome) -> Vector3<f64>| {
+            let flat: Vec<f64> = outcomes
+                .iter()
+                .flat_map(|o| <[f64; 3]>::from(f(o)))
+                .collect();
+            PyArray1::from_vec(py, flat).reshape([n, 3])
+        };
         let column = |f: fn(&CushionOutcome) -> f64| {
             PyArray1::from_iter(py, outcomes.iter().map(f)).into_any()
         };
         let d = PyDict::new(py);
-        d.set_item(intern!(py, "v"), PyArray2::from_vec2(py, &to_rows(vs))?)?;
-        d.set_item(intern!(py, "w"), PyArray2::from_vec2(py, &to_rows(ws))?)?;
+        d.set_item(intern!(py, "v"), rows(|o| o.v)?)?;
+        d.set_item(intern!(py, "w"), rows(|o| o.w)?)?;
         d.set_item("impulse", column(|o| o.impulse_cushion))?;
         d.set_item("impulse_compression", column(|o| o.impulse_compression))?;
         d.set_item("impulse_table", column(|o| o.impulse_table))?;
@@ -418,8 +439,4 @@ impl BallCushion {
             self.rule()
         )
     }
-}
-
-fn to_rows(v: Vec<[f64; 3]>) -> Vec<Vec<f64>> {
-    v.into_iter().map(|r| r.to_vec()).collect()
 }
