@@ -336,6 +336,8 @@ class CushionResult(TypedDict):
     change "sticks", "reverses", "restarts", "lifts-off" or "touches-down"."""
     steps: Union[npt.NDArray[np.uint64], int]
     """Accepted steps of the integration."""
+    evaluations: Union[npt.NDArray[np.uint64], int]
+    """Evaluations of the right-hand side, event location included."""
 
 class BallCushion:
     """A ball on the cloth against a cushion (Mathavan, Jackson and Parkin 2010), in the

@@ -265,7 +265,8 @@ impl BallCushion {
     /// cloth during the impact), "events" (the slip events in order, tuples (contact,
     /// change, P_I): contact "cushion" or "table", change "sticks", "reverses",
     /// "restarts", "lifts-off", "touches-down"; a list of such lists for N rows),
-    /// "steps" (accepted steps); (N,) arrays, or numpy scalars for one impact.
+    /// "steps" (accepted steps), "evaluations" (of the right-hand side, event location
+    /// included); (N,) arrays, or numpy scalars for one impact.
     #[pyo3(signature = (v, w, method = None, rtol = None, steps = None))]
     fn resolve<'py>(
         &self,
@@ -299,6 +300,7 @@ impl BallCushion {
             d.set_item(intern!(py, "lifts_off"), bool_(py, o.lifts_off)?)?;
             d.set_item(intern!(py, "events"), events_list(py, &o)?)?;
             d.set_item(intern!(py, "steps"), o.stats.accepted_steps)?;
+            d.set_item(intern!(py, "evaluations"), o.stats.rhs_evaluations)?;
             return Ok(d);
         }
         let borrows = arrays
@@ -352,6 +354,10 @@ impl BallCushion {
         d.set_item(
             "steps",
             PyArray1::from_iter(py, outcomes.iter().map(|o| o.stats.accepted_steps)),
+        )?;
+        d.set_item(
+            "evaluations",
+            PyArray1::from_iter(py, outcomes.iter().map(|o| o.stats.rhs_evaluations)),
         )?;
         Ok(d)
     }
