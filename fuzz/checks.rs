@@ -15,7 +15,10 @@ use billiard_contact::batch::{run_csv, BatchSetup};
 use billiard_contact::profile::{parse_table, ForceProfile, Profile, Tabulated};
 use billiard_contact::sweep::{self, parse_list, Grid, Spin};
 use billiard_contact::work_precision::{self, StudyForce, StudyOptions};
-use billiard_contact::{run_scene, Error, Method, Report, Scene, SceneOutcome, SolverSettings};
+use billiard_contact::{
+    run_scene, CushionRestitution, CushionScene, Error, Method, Report, Scene, SceneOutcome,
+    SolverSettings,
+};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -178,6 +181,85 @@ pub fn check_scene(data: &[u8]) -> Verdict {
             Verdict::Ran
         }
     }
+}
+
+/// Target `cushion_toml`: cushion scene text through `CushionScene::parse` and the impact,
+/// with the scene's own (bounded) method and, if it is another, dop853. Promises beyond
+/// finite numbers: the impulses are not negative and the cloth's is at most the cushion's
+/// (it balances the vertical part of the cushion's push); the compression's impulse is at
+/// most the total; every event lies within the impact; the energy lost is not negative
+/// (to 1e-9 of the kinetic energy brought in); Stronge's rule gives back e^2 times the work of
+/// compression (to 1e-6 of it).
+pub fn check_cushion(data: &[u8]) -> Verdict {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return Verdict::Skipped;
+    };
+    if data.len() > MAX_LEN {
+        return Verdict::Skipped;
+    }
+    let scene = match CushionScene::parse(text, None) {
+        Err(e) => return refused(&e, "cushion scene", names_scene_field),
+        Ok(scene) => scene,
+    };
+    let own = bounded(&scene.solver);
+    let mut runs = vec![own];
+    if own.method() != Method::Dop853 {
+        runs.push(own.with_method(Method::Dop853));
+    }
+    let (m, r, alpha) = (scene.ball.mass(), scene.ball.radius(), scene.ball.alpha());
+    let energy_in = 0.5 * m * scene.velocity.norm_squared()
+        + 0.5 * alpha * m * r * r * scene.spin.norm_squared();
+    for settings in runs {
+        let what = format!("cushion ({})", settings.method());
+        let out = match scene.run(&settings, None) {
+            Ok(out) => out,
+            Err(e) => {
+                refused(&e, &what, names_scene_field);
+                continue;
+            }
+        };
+        assert!(
+            out.v.iter().chain(out.w.iter()).all(|x| x.is_finite()),
+            "{what}: {out:?}"
+        );
+        let p = out.impulse_cushion;
+        for (name, x) in [
+            ("impulse_cushion", p),
+            ("impulse_compression", out.impulse_compression),
+            ("impulse_table", out.impulse_table),
+            ("work_compression", out.work_compression),
+            ("work_restitution", out.work_restitution),
+        ] {
+            assert!(x.is_finite() && x >= 0.0, "{what}: {name} = {x}");
+        }
+        assert!(
+            out.impulse_compression <= p * (1.0 + 1e-12),
+            "{what}: {out:?}"
+        );
+        assert!(out.impulse_table <= p * (1.0 + 1e-9), "{what}: {out:?}");
+        for e in &out.events {
+            assert!(
+                e.impulse.is_finite() && e.impulse >= 0.0 && e.impulse <= p * (1.0 + 1e-12),
+                "{what}: event {e:?} outside the impact (P_I = {p})"
+            );
+        }
+        assert!(
+            out.energy_lost.is_finite() && out.energy_lost >= -1e-9 * energy_in,
+            "{what}: energy lost {} of {energy_in}",
+            out.energy_lost
+        );
+        if scene.cushion.rule() == CushionRestitution::Stronge {
+            let e2 = scene.cushion.restitution().powi(2);
+            let wc = out.work_compression;
+            assert!(
+                (out.work_restitution - e2 * wc).abs() <= 1e-6 * wc + 1e-300,
+                "{what}: work of restitution {} against e^2 W_c = {}",
+                out.work_restitution,
+                e2 * wc
+            );
+        }
+    }
+    Verdict::Ran
 }
 
 /// A stun cut, the scene a table is run in.
@@ -526,8 +608,9 @@ pub fn check_work_precision(data: &[u8]) -> Verdict {
 pub type Check = fn(&[u8]) -> Verdict;
 
 /// Every target by name, in the order of `fuzz/campaign`.
-pub const TARGETS: [(&str, Check); 6] = [
+pub const TARGETS: [(&str, Check); 7] = [
     ("scene_toml", check_scene),
+    ("cushion_toml", check_cushion),
     ("profile_csv", check_profile_csv),
     ("batch_cm", check_batch_cm),
     ("batch_lab", check_batch_lab),

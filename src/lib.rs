@@ -128,6 +128,7 @@ pub use nalgebra;
 pub use outputs::report::Report;
 pub use outputs::trace_csv::CsvTrace;
 pub use scene::builder::{ForceSpec, LawSpec, SceneBuilder};
+pub use scene::cushion::CushionScene;
 pub use scene::overrides::SolverOverrides;
 pub use scene::run::{run_scene, SceneOutcome};
 pub use scene::types::{Incoming, PlaneIncoming, Scene};

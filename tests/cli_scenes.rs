@@ -165,6 +165,8 @@ fn scenes() -> Vec<PathBuf> {
         .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[balls.a]"))
         // Scenes of a ball against a plane ([plane]) have theirs in tests/plane_scenes.rs.
         .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[plane]"))
+        // Cushion scenes ([cushion]) have theirs in tests/cushion_scenes.rs.
+        .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[cushion]"))
         .collect();
     v.sort();
     // The documented scenes must be there.

@@ -34,6 +34,7 @@ mod contact_law_checks;
 mod contact_law_scenes;
 mod convergence_profiles;
 mod cushion;
+mod cushion_scenes;
 mod effects_switches;
 mod examples_checks;
 mod friction_speed_dependent;

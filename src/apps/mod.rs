@@ -4,5 +4,6 @@
 pub mod batch;
 #[cfg(feature = "plots")]
 pub mod plot;
+pub(crate) mod rebound;
 pub mod sweep;
 pub mod work_precision;

@@ -33,6 +33,9 @@ enum Command {
     /// Throw chart: one scene over a grid of cut angles, speeds and spins; writes
     /// DIR/sweep.csv, sweep.svg and sweep.png.
     Sweep(crate::cli::sweep::SweepArgs),
+    /// Cushion rebound chart: a cushion scene's ball over a grid of incidence angles,
+    /// speeds, spins and side spins; writes DIR/rebound.csv, rebound.svg and rebound.png.
+    Rebound(crate::cli::rebound::ReboundArgs),
 }
 
 /// Runs the command with the process's arguments; the exit code is 0 on success, 1 when the
@@ -61,11 +64,12 @@ pub fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Some(Command::Run(args)) => crate::cli::run::run(&args),
+        Some(Command::Run(args)) => run(&args),
         Some(Command::WorkPrecision(args)) => crate::cli::work_precision::work_precision(&args),
         Some(Command::Batch(args)) => crate::cli::batch::batch(&args),
         Some(Command::Sweep(args)) => crate::cli::sweep::sweep(&args),
-        None => crate::cli::run::run(&cli.run),
+        Some(Command::Rebound(args)) => crate::cli::rebound::rebound(&args),
+        None => run(&cli.run),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -78,6 +82,16 @@ pub fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// `run`: a cushion scene ([cushion]) by `cli::cushion`, any other by `cli::run`.
+fn run(args: &crate::cli::run::RunArgs) -> Result<(), crate::base::error::Error> {
+    if let Some(path) = &args.scene {
+        if let Some(scene) = crate::cli::cushion::cushion_scene(path)? {
+            return crate::cli::cushion::run(args, &scene);
+        }
+    }
+    crate::cli::run::run(args)
 }
 
 /// The command line, with `help --help` read as `help` (clap's `help` subcommand takes no

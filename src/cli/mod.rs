@@ -8,6 +8,8 @@ mod app;
 mod batch;
 mod choice;
 mod common;
+mod cushion;
+mod rebound;
 mod run;
 mod sweep;
 mod work_precision;

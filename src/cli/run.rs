@@ -29,37 +29,37 @@ use std::path::{Path, PathBuf};
 #[derive(Args, Clone, Default)]
 pub(super) struct RunArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
-    scene: Option<PathBuf>,
+    pub(super) scene: Option<PathBuf>,
     /// Print one JSON object on stdout instead of the summary.
     #[arg(long)]
-    json: bool,
+    pub(super) json: bool,
     /// Write a CSV trace (centre-of-mass frame) to this file.
     #[arg(long, value_name = "FILE.csv")]
-    trace: Option<PathBuf>,
+    pub(super) trace: Option<PathBuf>,
     /// Trace rows at t = i duration / N, i = 0..N (plus the stop of sliding), instead of a
     /// row per step of the integrator (needs --trace).
     #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u64>)]
-    samples: Option<u64>,
+    pub(super) samples: Option<u64>,
     /// Method (overrides the scene).
     #[arg(long, value_name = "M")]
-    method: Option<MethodChoice>,
+    pub(super) method: Option<MethodChoice>,
     /// Relative tolerance of dopri5 and dop853 (overrides the scene).
     #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
-    rtol: Option<f64>,
+    pub(super) rtol: Option<f64>,
     /// Absolute tolerance of dopri5 and dop853 on the scaled variables (default: rtol).
     #[arg(long, value_name = "X", allow_hyphen_values = true, value_parser = number)]
-    atol: Option<f64>,
+    pub(super) atol: Option<f64>,
     /// RK4 steps over the contact (overrides the scene; only with the method rk4).
     #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = whole::<u32>)]
-    steps: Option<u32>,
+    pub(super) steps: Option<u32>,
     /// Integrate hertz and fractional sine-power pulses in a smoothed time variable
     /// (default true; false: steps graded toward the ends instead). Overrides the scene.
     #[arg(long, value_name = "BOOL")]
-    time_transform: Option<bool>,
+    pub(super) time_transform: Option<bool>,
     /// Write both balls' paths on the table (lab frame, until both roll) to this CSV
     /// (needs `[effects] table = true`).
     #[arg(long = "path", value_name = "FILE.csv")]
-    ball_paths: Option<PathBuf>,
+    pub(super) ball_paths: Option<PathBuf>,
     /// Uniform intervals of the path CSV (plus every change of phase; default 200; needs
     /// --path).
     #[arg(
@@ -68,20 +68,20 @@ pub(super) struct RunArgs {
         allow_hyphen_values = true,
         value_parser = whole::<u64>
     )]
-    ball_path_samples: Option<u64>,
+    pub(super) ball_path_samples: Option<u64>,
     /// Draw a top view of both balls' paths with the line of centres (`.svg` or `.png`;
     /// needs `[effects] table = true`).
     #[arg(long, value_name = "FILE.svg|png")]
-    plot: Option<PathBuf>,
+    pub(super) plot: Option<PathBuf>,
     /// Draw the run's trace against time (`.svg` or `.png`): force and impulse, slip speed,
     /// slip direction, velocity, spins, sliding heat; the rows of --trace (with --samples).
     #[arg(long, value_name = "FILE.svg|png")]
-    plot_trace: Option<PathBuf>,
+    pub(super) plot_trace: Option<PathBuf>,
 }
 
 impl RunArgs {
     /// The options that override the scene's `[solver]`.
-    fn solver_overrides(&self) -> SolverOverrides {
+    pub(super) fn solver_overrides(&self) -> SolverOverrides {
         SolverOverrides {
             method: self.method.map(|m| m.0),
             rtol: self.rtol,

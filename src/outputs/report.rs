@@ -41,7 +41,7 @@ impl Serialize for Num {
     }
 }
 
-fn v3(v: &Vector3<f64>) -> [Num; 3] {
+pub(crate) fn v3(v: &Vector3<f64>) -> [Num; 3] {
     [Num(v.x), Num(v.y), Num(v.z)]
 }
 

@@ -434,6 +434,13 @@ struct RawLabBall {
     spin: Option<[f64; 3]>,
 }
 
+/// Whether scene text is a cushion scene (`scene::cushion`): it has a top-level `[cushion]`
+/// table. Text that is not TOML is not (the two-ball reader then explains what is wrong).
+pub(crate) fn is_cushion_scene(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .is_ok_and(|t| t.get("cushion").is_some_and(toml::Value::is_table))
+}
+
 impl Scene {
     /// Reads and validates a scene file; relative profile files resolve beside it.
     pub fn load(path: &Path) -> Result<Self, Error> {
@@ -454,6 +461,15 @@ impl Scene {
         let shown = source
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from("<built-in scene>"));
+        if is_cushion_scene(text) {
+            return Err(Error::Scene {
+                path: shown,
+                message: "a cushion scene ([cushion], docs/cushion.md): `run` resolves it, \
+                          `rebound` sweeps its incidence, `batch --scene` runs its rows; \
+                          this needs a scene of two balls or a plane"
+                    .into(),
+            });
+        }
         let raw: RawScene = serde_path_to_error::deserialize(toml::Deserializer::new(text))
             .map_err(|e| Error::Scene {
                 path: shown.clone(),
@@ -566,7 +582,10 @@ fn lab_ball(field: &str, b: &RawLabBall) -> Result<LabBall, Error> {
 /// The TOML error in one line: where (line, column), which field (its dotted path, as in
 /// the scene file), what is wrong and what is accepted, with a suggestion for a misspelt
 /// key or name at any depth.
-fn explain_toml_error(text: &str, e: &serde_path_to_error::Error<toml::de::Error>) -> String {
+pub(crate) fn explain_toml_error(
+    text: &str,
+    e: &serde_path_to_error::Error<toml::de::Error>,
+) -> String {
     let inner = e.inner();
     let plain = inner
         .message()

@@ -3,6 +3,7 @@
 //! which fills a builder), and run.
 
 pub(crate) mod builder;
+pub(crate) mod cushion;
 pub(crate) mod file;
 pub(crate) mod overrides;
 pub(crate) mod run;

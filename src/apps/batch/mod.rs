@@ -41,6 +41,7 @@
 
 mod columns;
 mod crlf;
+pub(crate) mod cushion;
 mod engine;
 mod lab_rows;
 mod stream;

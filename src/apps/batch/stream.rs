@@ -32,7 +32,7 @@ pub struct BatchSummary {
 /// Reads up to `chunk_rows` records into the reused buffers `records`, with their input
 /// lines in `lines`; returns how many it read (fewer at the end of the input). `bad` makes
 /// the error of a line.
-fn read_chunk<R: Read>(
+pub(crate) fn read_chunk<R: Read>(
     rd: &mut csv::Reader<R>,
     records: &mut Vec<csv::StringRecord>,
     lines: &mut Vec<u64>,

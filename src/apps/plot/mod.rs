@@ -1,7 +1,9 @@
 //! Figures (SVG and PNG) drawn with `plotters` without system fonts: the DejaVu Sans font is
 //! embedded and registered once under the family name `sans-serif`.
 
+pub(crate) mod cushion;
 pub(crate) mod paths;
+pub(crate) mod rebound;
 pub(crate) mod style;
 pub(crate) mod sweep;
 pub(crate) mod trace;

@@ -39,10 +39,10 @@ const DESC_FONT: u32 = 18;
 const TICK_FONT: u32 = 16;
 const LEGEND_FONT: u32 = 16;
 /// With at most this many rows the rows are marked with dots.
-const MARKED_ROWS: usize = 80;
+pub(crate) const MARKED_ROWS: usize = 80;
 
 /// Colours of the x, y and z components (and of single curves: the first).
-const XYZ: [RGBColor; 3] = [
+pub(crate) const XYZ: [RGBColor; 3] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -122,6 +122,12 @@ pub(crate) struct TraceFigure {
     pub duration: f64,
     /// When sliding stops (time axis' unit); `None` when it does not.
     pub stick_time: Option<f64>,
+    /// The name of the horizontal axis' variable (`t`; `P_I` for a cushion impact, whose
+    /// [`TimeAxis`] then holds an impulse unit).
+    pub x_name: &'static str,
+    /// Other events marked like the stop of sliding (the slip events of a cushion impact),
+    /// in the horizontal axis' unit.
+    pub marks: Vec<f64>,
     /// The panels, row by row.
     pub panels: Vec<Panel>,
     /// Whether the rows are marked with dots (few rows).
@@ -131,7 +137,7 @@ pub(crate) struct TraceFigure {
 impl Panel {
     /// A panel titled `title` with the left axis `y_desc` and `curves`: no right axis, no
     /// note, no least span.
-    fn new(title: &str, y_desc: &str, curves: Vec<Curve>) -> Self {
+    pub(crate) fn new(title: &str, y_desc: &str, curves: Vec<Curve>) -> Self {
         Panel {
             title: title.into(),
             y_desc: y_desc.into(),
@@ -333,6 +339,8 @@ impl TraceFigure {
             time,
             duration: duration * time.per_second,
             stick_time: stick.map(|t| t * time.per_second),
+            x_name: "t",
+            marks: Vec::new(),
             panels: columns.panels(slip_note, no_slip),
             marked: columns.marked,
         }
@@ -428,7 +436,7 @@ impl TraceFigure {
         let dy = decimals_for((left.end - left.start) / 6.0);
         chart
             .configure_mesh()
-            .x_desc(format!("t ({})", self.time.unit))
+            .x_desc(format!("{} ({})", self.x_name, self.time.unit))
             .y_desc(panel.y_desc.clone())
             .x_labels(9)
             .y_labels(7)
@@ -450,9 +458,9 @@ impl TraceFigure {
                 .axis_desc_style((FONT, DESC_FONT))
                 .draw()?;
         }
-        if let Some(t) = self.stick_time {
+        for t in self.stick_time.iter().chain(&self.marks) {
             let stop = Swatch::line(STOP, 2).with_line(Line::Dashed);
-            stop.draw_line(chart.plotting_area(), &[(t, left.start), (t, left.end)])?;
+            stop.draw_line(chart.plotting_area(), &[(*t, left.start), (*t, left.end)])?;
         }
         for c in &panel.curves {
             let pts = c.points.iter().map(|p| (*p, false));
