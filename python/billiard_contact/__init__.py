@@ -13,7 +13,11 @@ SI units throughout (kg, m, s, m/s, rad/s, N s, J).
 - ``SpeedDependentFriction(a=, b=, c=)``: mu(S) = a + b exp(-c S).
 - ``BallPlane(mass=, radius=, alpha=0.4, mu=, restitution=1.0)``: a ball against a plane;
   ``plane.resolve(v, w, normal)`` resolves one impact or N (arrays of shape (3,) or (N, 3)).
-- ``billiard_contact.pooltool``: a ball-ball model for pooltool's ``Resolver.ball_ball``.
+- ``BallCushion(mass=, radius=, alpha=0.4, height=, mu_cushion=, mu_table=, restitution=)``:
+  a ball on the cloth against a cushion (Mathavan 2010), ``cushion.resolve(v, w)`` in the
+  cushion's frame (x along it, y towards it, z up).
+- ``billiard_contact.pooltool``: ball-ball and ball-linear-cushion models for pooltool's
+  ``Resolver``.
 
 Bad input raises ``ValueError`` with the command line's one-line message (the field, the
 value, what is accepted); a failed run raises ``RuntimeError``.
@@ -23,6 +27,7 @@ from billiard_contact._core import (
     TRACE_COLUMNS,
     Ball,
     BallBall,
+    BallCushion,
     BallPlane,
     SpeedDependentFriction,
     __version__,
@@ -34,6 +39,7 @@ __all__ = [
     "TRACE_COLUMNS",
     "Ball",
     "BallBall",
+    "BallCushion",
     "BallPlane",
     "SpeedDependentFriction",
     "__version__",

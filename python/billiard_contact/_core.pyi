@@ -307,3 +307,100 @@ class BallPlane:
         a non-zero, finite direction ...", "row 7: v[1] = NaN: a finite number"), also when
         a result would not be finite ("row 2: v[0] = NaN: the result is not finite ...").
         """
+
+class CushionResult(TypedDict):
+    """Outgoing state of BallCushion.resolve, in the cushion's frame (x along the cushion, y
+    towards it, z up). For N impacts: arrays of shape (N, 3) and (N,), "events" a list of N
+    lists; for one: arrays of shape (3,), numpy scalars and one list."""
+
+    v: npt.NDArray[np.float64]
+    """Velocity after the impact (m/s)."""
+    w: npt.NDArray[np.float64]
+    """Spin after the impact (rad/s)."""
+    impulse: Union[npt.NDArray[np.float64], np.float64]
+    """The cushion's normal impulse P_I (N s)."""
+    impulse_compression: Union[npt.NDArray[np.float64], np.float64]
+    """P_I at the end of compression (N s)."""
+    impulse_table: Union[npt.NDArray[np.float64], np.float64]
+    """The cloth's normal impulse P_C (N s)."""
+    work_compression: Union[npt.NDArray[np.float64], np.float64]
+    """Work of the ball on the cushion's normal force during compression, >= 0 (J)."""
+    work_restitution: Union[npt.NDArray[np.float64], np.float64]
+    """Work the cushion's normal force gives back during restitution, >= 0 (J)."""
+    energy_lost: Union[npt.NDArray[np.float64], np.float64]
+    """Kinetic energy in minus out, translation and spin (J)."""
+    lifts_off: Union[npt.NDArray[np.bool_], np.bool_]
+    """Whether the ball left the cloth during the impact."""
+    events: Union[list[tuple[str, str, float]], list[list[tuple[str, str, float]]]]
+    """The slip events in order: (contact, change, P_I at it): contact "cushion" or "table",
+    change "sticks", "reverses", "restarts", "lifts-off" or "touches-down"."""
+    steps: Union[npt.NDArray[np.uint64], int]
+    """Accepted steps of the integration."""
+    evaluations: Union[npt.NDArray[np.uint64], int]
+    """Evaluations of the right-hand side, event location included."""
+
+class BallCushion:
+    """A ball on the cloth against a cushion (Mathavan, Jackson and Parkin 2010), in the
+    cushion's frame: x along the cushion, y towards it, z up.
+
+    mass (kg), radius (m), alpha (I = alpha m r^2, in [1e-12, 2/3]; 0.4 a solid ball);
+    height (m) of the cushion's contact above the cloth, in (radius, 2 radius);
+    mu_cushion and mu_table (>= 0): friction of the ball on the cushion and on the cloth;
+    restitution e in [0, 1]; rule "stronge" (the work of restitution e^2 that of
+    compression, as pooltool's mathavan_2010) or "newton" (the normal velocity at the
+    cushion ends at -e times its start).
+
+    Bad values raise ValueError naming the keyword, e.g. "height = 0.02: in (radius,
+    2 radius) = ...".
+    """
+
+    def __init__(
+        self,
+        *,
+        mass: float,
+        radius: float,
+        alpha: float = 0.4,
+        height: float,
+        mu_cushion: float,
+        mu_table: float,
+        restitution: float,
+        rule: Literal["stronge", "newton"] = "stronge",
+    ) -> None: ...
+    @property
+    def mass(self) -> float:
+        """Mass (kg)."""
+    @property
+    def radius(self) -> float:
+        """Radius (m)."""
+    @property
+    def alpha(self) -> float:
+        """I = alpha m r^2."""
+    @property
+    def height(self) -> float:
+        """Height of the cushion's contact above the cloth (m)."""
+    @property
+    def mu_cushion(self) -> float: ...
+    @property
+    def mu_table(self) -> float: ...
+    @property
+    def restitution(self) -> float: ...
+    @property
+    def rule(self) -> Literal["stronge", "newton"]: ...
+    def resolve(
+        self,
+        v: ArrayLike3,
+        w: ArrayLike3,
+        method: Optional[Literal["dop853", "dopri5", "rk4"]] = None,
+        rtol: Optional[float] = None,
+        steps: Optional[int] = None,
+    ) -> CushionResult:
+        """Resolves impacts on the cushion, in its frame.
+
+        v, w: velocity (m/s) and spin (rad/s) before, each (3,) or (N, 3) (a (3,) input is
+        used for every row; dtypes as resolve_lab's). The ball must be on the cloth
+        (v_z = 0) and approach the cushion (v_y > 0): else ValueError naming the row and v.
+
+        method "dop853" (default), "dopri5" or "rk4" (the impact has no closed form); rtol
+        (default 1e-10, atol with it); steps of rk4. 64 rows or more run on all cores
+        without the GIL.
+        """

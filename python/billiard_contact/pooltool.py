@@ -1,4 +1,4 @@
-"""A pooltool ball-ball collision model backed by billiard-contact.
+"""pooltool ball-ball and ball-cushion collision models backed by billiard-contact.
 
 Install it into an engine (one line), or into pooltool's default engine, the one
 ``pt.simulate`` uses without ``engine=`` and the one the GUI uses::
@@ -68,9 +68,20 @@ whole normal impulse, the paper's model); the two agree when e = 1 (the tests co
 to 1e-12). The library stops sliding when the contact points stop slipping (the same rule
 as pooltool's no-slip branch).
 
-This model is not registered with pooltool's serialisation (its registry of ball-ball
-models is a closed enumeration), so a resolver using it cannot be saved to
-``resolver.yaml``; install it in code.
+The ball-cushion model, ``BilliardContactCushion``, which ``install(engine, cushion=True)``
+also puts in place, resolves impacts on linear cushion segments with the library's
+``BallCushion`` (Mathavan, Jackson and Parkin 2010): the ball's velocity and spin are mapped
+into Mathavan's frame (y along the segment's normal, turned to point along the ball's
+velocity as pooltool's ``mathavan_2010`` turns it; z up; x = y x z), resolved there with the
+ball's ``e_c``, ``f_c``, ``u_s`` and the segment's ``height`` (or the model's own values),
+and mapped back; the ball leaves ``sliding``. A cushion outside R < height < 2R, a ball that
+does not approach the cushion or one in the air goes to ``fallback`` (``install`` keeps the
+engine's previous model there); circular segments (the pockets' jaws) keep the engine's
+model.
+
+These models are not registered with pooltool's serialisation (its registries of models
+are closed enumerations), so a resolver using them cannot be saved to ``resolver.yaml``;
+install them in code.
 """
 
 from __future__ import annotations
@@ -83,9 +94,10 @@ import numpy as np
 import pooltool.constants as const
 from pooltool.objects.ball.datatypes import Ball, BallState
 from pooltool.physics.resolve.ball_ball.core import CoreBallBallCollision
+from pooltool.physics.resolve.ball_cushion.core import CoreBallLCushionCollision
 
 from billiard_contact import Ball as _LibBall
-from billiard_contact import BallBall, SpeedDependentFriction
+from billiard_contact import BallBall, BallCushion, SpeedDependentFriction
 
 
 def _first_found(*names: str) -> Any:
@@ -107,7 +119,7 @@ Dim = _first_found("pooltool.physics.dimensionality:Dim")
 #: pooltool after 0.6: the motion state of a ball off the table (None: 0.6, all on it).
 _AIRBORNE = getattr(const, "airborne", None)
 
-__all__ = ["BilliardContact", "install", "MODEL_NAME"]
+__all__ = ["BilliardContact", "BilliardContactCushion", "install", "MODEL_NAME", "CUSHION_MODEL_NAME"]
 
 MODEL_NAME = "billiard_contact"
 """The value of ``BilliardContact.model`` (pooltool identifies models by this attribute)."""
@@ -289,6 +301,109 @@ class BilliardContact(CoreBallBallCollision):
         return const.sliding
 
 
+#: The ball-cushion model's name (``BilliardContactCushion.model``).
+CUSHION_MODEL_NAME = "billiard_contact_cushion"
+
+
+@attrs.define
+class BilliardContactCushion(CoreBallLCushionCollision):
+    """Ball-linear-cushion impacts resolved by billiard-contact (Mathavan, Jackson and
+    Parkin 2010, the library's ``BallCushion``), for pooltool.
+
+    The ball's state is mapped into the cushion's frame of Mathavan's paper: y along the
+    segment's normal towards the cushion (``cushion.get_normal_xy``, turned to point along
+    the ball's velocity, as pooltool's own ``mathavan_2010`` does), z up, x = y x z along the
+    cushion; the library resolves the impact there, and the outgoing velocity and spin are
+    mapped back.
+
+    Attributes:
+        restitution: e in [0, 1]; ``None``: the ball's ``params.e_c``.
+        mu_cushion: friction of the ball on the cushion; ``None``: ``params.f_c``.
+        mu_table: friction of the ball on the cloth; ``None``: ``params.u_s``.
+        height: the cushion's contact height above the cloth (m); ``None``: the segment's
+            ``height``. It must lie between R and 2R; a cushion outside that range (or a
+            ball that does not approach it) is left to ``fallback``.
+        alpha: I = alpha m R^2 (0.4: solid ball).
+        rule: "stronge" (the work of restitution e^2 that of compression, as pooltool's
+            ``mathavan_2010``) or "newton".
+        method, rtol: the library's integrator ("dop853" by default, "dopri5", "rk4") and
+            its tolerance (default 1e-10).
+        is_3d: keep the vertical velocity the impact gives (a 3D engine); in a 2D engine
+            (pooltool 0.6) it is zeroed, as the ball-ball model does.
+        fallback: the strategy for impacts the library does not model (``install`` keeps
+            the engine's previous one); ``None`` raises instead.
+    """
+
+    restitution: Optional[float] = None
+    mu_cushion: Optional[float] = None
+    mu_table: Optional[float] = None
+    height: Optional[float] = None
+    alpha: float = 0.4
+    rule: str = "stronge"
+    method: Optional[str] = None
+    rtol: Optional[float] = None
+    is_3d: bool = False
+    fallback: Any = None
+
+    if Dim is not None:
+        dim: Dim = attrs.field(default=Dim.BOTH, init=False, repr=False)
+    model: str = attrs.field(default=CUSHION_MODEL_NAME, init=False, repr=False)
+    _models: dict = attrs.field(factory=dict, init=False, repr=False, eq=False)
+
+    def _ball_cushion(self, m: float, R: float, h: float, e: float, mu_i: float, mu_c: float):
+        key = (m, R, h, e, mu_i, mu_c)
+        model = self._models.get(key)
+        if model is None:
+            model = BallCushion(
+                mass=m, radius=R, alpha=self.alpha, height=h, mu_cushion=mu_i,
+                mu_table=mu_c, restitution=e, rule=self.rule,
+            )
+            self._models[key] = model
+        return model
+
+    def solve(self, ball: Ball, cushion: Any) -> tuple[Ball, Any]:
+        """Resolves the impact of a ball touching (or 1e-6 m from) a linear cushion."""
+        p = ball.params
+        h = cushion.height if self.height is None else self.height
+        rvw = ball.state.rvw
+        v, w = rvw[1], rvw[2]
+        normal = np.asarray(cushion.get_normal_xy(ball.xyz), dtype=float)
+        if normal[0] * v[0] + normal[1] * v[1] < 0:
+            normal = -normal
+        ny = math.hypot(normal[0], normal[1])
+        y = (normal[0] / ny, normal[1] / ny)
+        x = (y[1], -y[0])  # x = y x z
+        vc = (x[0] * v[0] + x[1] * v[1], y[0] * v[0] + y[1] * v[1], 0.0)
+        on_cloth = v[2] == 0.0 and (_AIRBORNE is None or ball.state.s != _AIRBORNE)
+        if not (vc[1] > 0.0 and p.R < h < 2 * p.R and on_cloth):
+            if self.fallback is None:
+                raise ValueError(
+                    f"ball {ball.id!r} on cushion {cushion.id!r}: not an impact the library "
+                    f"models (normal speed {vc[1]} m/s, height {h} m for R = {p.R} m, vertical "
+                    f"velocity {v[2]} m/s) and no fallback"
+                )
+            return self.fallback.solve(ball, cushion)
+        wc = (x[0] * w[0] + x[1] * w[1], y[0] * w[0] + y[1] * w[1], float(w[2]))
+        e = p.e_c if self.restitution is None else self.restitution
+        mu_i = p.f_c if self.mu_cushion is None else self.mu_cushion
+        mu_c = p.u_s if self.mu_table is None else self.mu_table
+        out = self._ball_cushion(p.m, p.R, h, e, mu_i, mu_c).resolve(
+            vc, wc, method=self.method, rtol=self.rtol
+        )
+        (a, b, c), (wa, wb, wz) = out["v"], out["w"]
+        v_out = np.array([a * x[0] + b * y[0], a * x[1] + b * y[1], c if self.is_3d else 0.0])
+        w_out = np.array([wa * x[0] + wb * y[0], wa * x[1] + wb * y[1], wz])
+        state = const.sliding
+        if self.is_3d and _AIRBORNE is not None and v_out[2] > 0.0:
+            state = _AIRBORNE
+        ball.state = BallState(np.array([rvw[0], v_out, w_out]), state)
+        return ball, cushion
+
+    def __attrs_post_init__(self) -> None:
+        if self.rule not in ("stronge", "newton"):
+            raise ValueError(f'rule = "{self.rule}": "stronge" or "newton"')
+
+
 def _time_to_distance(c: np.ndarray, b: np.ndarray, target: float) -> Optional[float]:
     """The time t of least |t| at which |c + t b| = target (c: the centres' offset, b: the
     relative velocity), or None when there is none (no relative motion, or the paths never
@@ -305,12 +420,26 @@ def _time_to_distance(c: np.ndarray, b: np.ndarray, target: float) -> Optional[f
     return min(roots, key=abs)
 
 
-def install(engine: Any = None, **options: Any) -> BilliardContact:
+def install(
+    engine: Any = None,
+    *,
+    cushion: bool = False,
+    cushion_options: Optional[dict] = None,
+    **options: Any,
+) -> BilliardContact:
     """Makes ``BilliardContact(**options)`` the ball-ball model of ``engine`` (pooltool
     0.6's ``pooltool.physics.PhysicsEngine`` or, after 0.6, a
     ``pooltool.evolution.SimulationEngine``), or of pooltool's default engine when
     ``engine`` is None (used by ``pt.simulate`` without ``engine=`` and by the GUI).
     Returns the model.
+
+    With ``cushion=True`` the ball-linear-cushion model becomes
+    ``BilliardContactCushion(**cushion_options)``, which leaves what the library does not
+    model (a cushion outside R < height < 2R, a ball in the air) to the engine's previous
+    model (its ``fallback``); circular cushion segments (the pockets' jaws) keep the
+    engine's model. By default (``cushion=False``) the cushions stay the engine's: the
+    library's cushion integrator still stalls on a few impacts at some tolerances (a
+    RuntimeError that would stop the simulation).
 
     ``is_3d`` is the engine's (``engine.is_3d``; False for 0.6's engine, which has none):
     in a 3D engine the vertical velocity is kept unless ``keep_vertical_velocity=False``
@@ -331,4 +460,12 @@ def install(engine: Any = None, **options: Any) -> BilliardContact:
         options.setdefault("min_bounce_height", float(settle))
     model = BilliardContact(**options)
     resolver.ball_ball = model
+    if cushion and hasattr(resolver, "ball_linear_cushion"):
+        previous = resolver.ball_linear_cushion
+        if isinstance(previous, BilliardContactCushion):
+            previous = previous.fallback
+        cushion_kwargs = dict(cushion_options or {})
+        cushion_kwargs.setdefault("is_3d", options["is_3d"])
+        cushion_kwargs.setdefault("fallback", previous)
+        resolver.ball_linear_cushion = BilliardContactCushion(**cushion_kwargs)
     return model

@@ -119,6 +119,10 @@ named! {
     mu: real -> f64;
     restitution: real -> f64;
     duration: real -> f64;
+    height: real -> f64;
+    mu_cushion: real -> f64;
+    mu_table: real -> f64;
+    rule: text -> String;
     s: real -> f64;
     friction: flag -> bool;
     stick: flag -> bool;

@@ -11,7 +11,7 @@ use billiard_contact::{
     resolve_cushion, Ball, Cushion, CushionContact, CushionOutcome, CushionRestitution, Error,
     Method, SlipChange, SolverOverrides, SolverSettings,
 };
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::intern;
 use pyo3::prelude::*;
@@ -63,7 +63,11 @@ fn renamed(e: Error, from: &str, to: &str) -> Error {
 
 /// The library's error for a row, with the arguments' names (`ball.v` is `v`, ...).
 fn named(e: Error) -> Error {
-    renamed(renamed(renamed(e, "ball.", ""), "cushion.", ""), "solver.", "")
+    renamed(
+        renamed(renamed(e, "ball.", ""), "cushion.", ""),
+        "solver.",
+        "",
+    )
 }
 
 fn contact_name(c: CushionContact) -> &'static str {
@@ -168,8 +172,20 @@ fn cushion_settings(
     let steps = steps
         .map(|s| u32::try_from(s).map_err(|_| Error::invalid("steps", s, "in [1, 1e7]")))
         .transpose()?;
+    let method = method
+        .map(settings::method)
+        .transpose()?
+        .unwrap_or(Method::Dop853);
+    if method == Method::ClosedForm {
+        return Err(Error::invalid(
+            "method",
+            "\"closed-form\"",
+            "\"dop853\", \"dopri5\" or \"rk4\": the cushion impact has no closed form (the \
+             slip directions turn)",
+        ));
+    }
     SolverOverrides {
-        method: Some(method.map(settings::method).transpose()?.unwrap_or(Method::Dop853)),
+        method: Some(method),
         rtol,
         atol: None,
         steps,
@@ -249,7 +265,8 @@ impl BallCushion {
     /// cloth during the impact), "events" (the slip events in order, tuples (contact,
     /// change, P_I): contact "cushion" or "table", change "sticks", "reverses",
     /// "restarts", "lifts-off", "touches-down"; a list of such lists for N rows),
-    /// "steps" (accepted steps); (N,) arrays, or numpy scalars for one impact.
+    /// "steps" (accepted steps), "evaluations" (of the right-hand side, event location
+    /// included); (N,) arrays, or numpy scalars for one impact.
     #[pyo3(signature = (v, w, method = None, rtol = None, steps = None))]
     fn resolve<'py>(
         &self,
@@ -283,6 +300,7 @@ impl BallCushion {
             d.set_item(intern!(py, "lifts_off"), bool_(py, o.lifts_off)?)?;
             d.set_item(intern!(py, "events"), events_list(py, &o)?)?;
             d.set_item(intern!(py, "steps"), o.stats.accepted_steps)?;
+            d.set_item(intern!(py, "evaluations"), o.stats.rhs_evaluations)?;
             return Ok(d);
         }
         let borrows = arrays
@@ -305,14 +323,19 @@ impl BallCushion {
         drop(borrows);
         drop(arrays);
         let outcomes = outcomes.map_err(|(i, f)| failure_error(i, f, false))?;
-        let vs: Vec<[f64; 3]> = outcomes.iter().map(|o| o.v.into()).collect();
-        let ws: Vec<[f64; 3]> = outcomes.iter().map(|o| o.w.into()).collect();
+        let rows = |f: fn(&CushionOutcome) -> Vector3<f64>| {
+            let flat: Vec<f64> = outcomes
+                .iter()
+                .flat_map(|o| <[f64; 3]>::from(f(o)))
+                .collect();
+            PyArray1::from_vec(py, flat).reshape([n, 3])
+        };
         let column = |f: fn(&CushionOutcome) -> f64| {
             PyArray1::from_iter(py, outcomes.iter().map(f)).into_any()
         };
         let d = PyDict::new(py);
-        d.set_item(intern!(py, "v"), PyArray2::from_vec2(py, &to_rows(vs))?)?;
-        d.set_item(intern!(py, "w"), PyArray2::from_vec2(py, &to_rows(ws))?)?;
+        d.set_item(intern!(py, "v"), rows(|o| o.v)?)?;
+        d.set_item(intern!(py, "w"), rows(|o| o.w)?)?;
         d.set_item("impulse", column(|o| o.impulse_cushion))?;
         d.set_item("impulse_compression", column(|o| o.impulse_compression))?;
         d.set_item("impulse_table", column(|o| o.impulse_table))?;
@@ -331,6 +354,10 @@ impl BallCushion {
         d.set_item(
             "steps",
             PyArray1::from_iter(py, outcomes.iter().map(|o| o.stats.accepted_steps)),
+        )?;
+        d.set_item(
+            "evaluations",
+            PyArray1::from_iter(py, outcomes.iter().map(|o| o.stats.rhs_evaluations)),
         )?;
         Ok(d)
     }
@@ -418,8 +445,4 @@ impl BallCushion {
             self.rule()
         )
     }
-}
-
-fn to_rows(v: Vec<[f64; 3]>) -> Vec<Vec<f64>> {
-    v.into_iter().map(|r| r.to_vec()).collect()
 }

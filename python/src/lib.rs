@@ -3,6 +3,7 @@
 
 mod args;
 mod ball;
+mod cushion;
 mod errors;
 mod friction;
 mod inputs;
@@ -20,6 +21,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::BallBall>()?;
     m.add_class::<friction::SpeedDependentFriction>()?;
     m.add_class::<plane::BallPlane>()?;
+    m.add_class::<cushion::BallCushion>()?;
     m.add_function(wrap_pyfunction!(outputs::_check_outputs_per_chunk, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;

@@ -284,6 +284,7 @@ def test_the_first_bad_row_is_named_whether_it_overflows_or_is_refused(n, output
 
 _MODEL = dict(mass=M, radius=R, mu=0.06)
 _PLANE = dict(mass=M, radius=R, mu=0.2)
+_CUSHION = dict(mass=M, radius=R, mu_cushion=0.2, mu_table=0.2, restitution=0.85)
 _ONE = (TOUCHING[0], [1.0, 0, 0], [0, 0, 0], TOUCHING[1], [0, 0, 0], [0, 0, 0])
 _REAL = "a real number (float or int)"
 
@@ -322,6 +323,14 @@ _REAL = "a real number (float or int)"
          "a string or None", "int"),
         (lambda: bc.BallPlane(**_PLANE).resolve([0, 0, -1], [0, 0, 0], [0, 0, 1], rtol=[1]), "rtol",
          _REAL + " or None", "list"),
+        (lambda: bc.BallCushion(height="4 cm", **_CUSHION), "height", _REAL, "str"),
+        (lambda: bc.BallCushion(mass=M, radius=R, height=0.037, mu_cushion=None, mu_table=0.2,
+                                restitution=0.85), "mu_cushion", _REAL, "NoneType"),
+        (lambda: bc.BallCushion(mass=M, radius=R, height=0.037, mu_cushion=0.2, mu_table="0.2",
+                                restitution=0.85), "mu_table", _REAL, "str"),
+        (lambda: bc.BallCushion(height=0.037, rule=1, **_CUSHION), "rule", "a string", "int"),
+        (lambda: bc.BallCushion(height=0.037, **_CUSHION).resolve([0, 1, 0], [0, 0, 0], steps=1.5),
+         "steps", "an integer or None", "float"),
         (lambda: bc.run(3), "path", "a path (str or os.PathLike)", "int"),
         (lambda: bc.run_toml(b"x"), "text", "a string", "bytes"),
         (lambda: bc.run_toml("", base_dir=1), "base_dir", "a path (str or os.PathLike)", "int"),
