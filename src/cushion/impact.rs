@@ -95,6 +95,10 @@ const HERMITE_BISECTIONS: usize = 40;
 /// Most trials of the event location (Illinois regula falsi on the step size).
 const MAX_TRIALS: usize = 100;
 
+/// A cushion impulse past this many times the frictionless impact's (the impulse scale) is
+/// a jam (Run::jammed): realistic impacts stay below about twice it.
+const JAM_IMPULSE: f64 = 100.0;
+
 /// Most steps (accepted and rejected) of one impact.
 const MAX_STEPS: u32 = 100_000;
 
@@ -175,6 +179,9 @@ struct Run<'a> {
     trace: Option<&'a mut dyn FnMut(&CushionTraceRow)>,
     /// While the initial state is classified, zero slips are no events.
     initial: bool,
+    /// The changes of state at one impulse cycled without settling ([`MAX_SETTLE`]): the
+    /// contacts have no consistent state.
+    inconsistent: bool,
     /// The independent variable.
     var: Var,
     /// Rate of decrease of the running-out slip when its run-out began.
@@ -246,7 +253,48 @@ fn vector_text(v: &Vector3<f64>) -> String {
 /// assert!((out.impulse_cushion - p).abs() < 1e-10 * p);
 /// # Ok::<(), billiard_contact::Error>(())
 /// ```
+///
+/// An adaptive run whose steps stall (more than 100 000 of them, as happens on a few
+/// impacts at some tolerances where a slip hovers about zero) is run again at a tolerance
+/// a hundred times tighter, down to [`STALL_RETRY_TIGHTEST`]; the outcome's `stats` are the
+/// run that succeeded. With a trace, the tolerance that succeeds is found first without it,
+/// so the trace holds one run.
 pub fn resolve_cushion(
+    ball: &Ball,
+    cushion: &Cushion,
+    v: Vector3<f64>,
+    w: Vector3<f64>,
+    settings: &SolverSettings,
+    trace: Option<&mut dyn FnMut(&CushionTraceRow)>,
+) -> Result<CushionOutcome, Error> {
+    let mut s = *settings;
+    loop {
+        match (attempt(ball, cushion, v, w, &s, None), stall_retry(&s)) {
+            (Err(Error::TooManySteps { .. }), Some(tighter)) => s = tighter,
+            (Ok(out), _) if trace.is_none() => return Ok(out),
+            (Ok(_), _) => return attempt(ball, cushion, v, w, &s, trace),
+            (Err(e), _) => return Err(e),
+        }
+    }
+}
+
+/// The tightest relative tolerance a stalled adaptive run is retried at.
+pub(crate) const STALL_RETRY_TIGHTEST: f64 = 1e-13;
+
+/// The settings a stalled run is retried with: an adaptive method's tolerances a hundred
+/// times tighter (not past [`STALL_RETRY_TIGHTEST`]); `None` for rk4 or when the
+/// tolerances are already that tight.
+fn stall_retry(s: &SolverSettings) -> Option<SolverSettings> {
+    if s.method() == Method::Rk4 || s.rtol() <= STALL_RETRY_TIGHTEST {
+        return None;
+    }
+    let rtol = (s.rtol() * 1e-2).max(STALL_RETRY_TIGHTEST);
+    let atol = (s.atol() * 1e-2).max(STALL_RETRY_TIGHTEST);
+    s.with_rtol(rtol).and_then(|t| t.with_atol(atol)).ok()
+}
+
+/// One run of [`resolve_cushion`] with `settings` as given.
+fn attempt(
     ball: &Ball,
     cushion: &Cushion,
     v: Vector3<f64>,
@@ -347,6 +395,7 @@ pub fn resolve_cushion(
         scale_w: v_ref / r,
         trace,
         initial: true,
+        inconsistent: false,
         var: Var::Impulse,
         rho_entry: 0.0,
         h_p: 0.0,
@@ -578,6 +627,12 @@ impl Run<'_> {
         let (mut k0, mut e0) = deriv(&self.rhs, &self.modes, self.var, &self.z());
         self.stats.rhs_evaluations += 1;
         for _ in 0..MAX_STEPS {
+            if self.inconsistent {
+                return Err(self.no_consistent_state());
+            }
+            if self.p > JAM_IMPULSE * self.p_scale {
+                return Err(self.jammed());
+            }
             match self.one_step(&mut k0, &mut e0)? {
                 StepEnd::Done => return Ok(()),
                 StepEnd::Accepted | StepEnd::Rejected => {}
@@ -1034,7 +1089,11 @@ impl Run<'_> {
     /// consistent: the ball leaves the cloth or lands, stuck contacts past their cone slide.
     fn settle(&mut self, zero: [bool; 2]) {
         let mut pending = zero;
-        for _ in 0..MAX_SETTLE {
+        for round in 0..=MAX_SETTLE {
+            if round == MAX_SETTLE {
+                self.inconsistent = true;
+                break;
+            }
             let mut changed = false;
             if pending[0] || pending[1] {
                 self.stick_or_slide(pending);
@@ -1125,7 +1184,48 @@ impl Run<'_> {
     }
 
     /// The outcome, in physical units.
+    /// The refusal of an impact whose contacts have no consistent state: a cloth that would
+    /// have to pull, or states that cycle at one impulse. Rigid contacts with friction this
+    /// large have no solution (Painlevé's paradox): the cushion's friction, pushing the ball
+    /// down onto the cloth while it lifts off, would have the cloth pull it back.
+    fn no_consistent_state(&self) -> Error {
+        Error::invalid(
+            "cushion.mu_cushion",
+            format!(
+                "{} (with cushion.mu_table = {})",
+                self.rhs.mu_i, self.rhs.mu_c
+            ),
+            "friction small enough for the rigid ball, cushion and cloth to have a \
+             consistent state: with this much, the ball lifting off the cloth would be \
+             pushed back onto it and the cloth would have to pull (Painleve's paradox of \
+             rigid contacts with friction); billiard cushions and cloths have mu of about 0.1 \
+             to 0.3",
+        )
+    }
+
+    /// The refusal of an impact whose cushion impulse passes [`JAM_IMPULSE`] times the
+    /// frictionless one: both contacts stuck with the ball no longer leaving the cushion, a
+    /// rigid ball wedged between cushion and cloth by friction this large.
+    fn jammed(&self) -> Error {
+        Error::invalid(
+            "cushion.mu_cushion",
+            format!(
+                "{} (with cushion.mu_table = {})",
+                self.rhs.mu_i, self.rhs.mu_c
+            ),
+            format!(
+                "friction small enough for the ball to leave the cushion: with this much the \
+                 rigid ball wedges between cushion and cloth (the cushion's impulse passed \
+                 {JAM_IMPULSE:e} times the frictionless one); billiard cushions and cloths \
+                 have mu of about 0.1 to 0.3"
+            ),
+        )
+    }
+
     fn outcome(&self, ball: &Ball) -> Result<CushionOutcome, Error> {
+        if self.inconsistent || self.y[PC] < -1e-12 * self.p {
+            return Err(self.no_consistent_state());
+        }
         let y = &self.y;
         let (sv, sp) = (self.scale_v, self.scale_p);
         let names = ["v.x", "v.y", "v.z", "w.x", "w.y", "w.z"];
