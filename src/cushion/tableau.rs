@@ -326,6 +326,9 @@ pub(crate) struct Step {
     pub(crate) err: f64,
     /// Evaluations of the right-hand side.
     pub(crate) evals: u64,
+    /// The derivative at the new state when the method computed it (DOPRI5's last stage,
+    /// first same as last).
+    pub(crate) last: Option<Z>,
 }
 
 /// Tolerances of the error norm.
@@ -372,6 +375,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: 0.0,
                 evals: 3,
+                last: None,
             }
         }
         Scheme::Dopri5 => {
@@ -396,6 +400,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: (sum / DIM as f64).sqrt(),
                 evals: 6,
+                last: Some(k[6]),
             }
         }
         Scheme::Dop853 => {
@@ -430,6 +435,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: h.abs() * err5 / (deno * DIM as f64).sqrt(),
                 evals: 11,
+                last: None,
             }
         }
     }
