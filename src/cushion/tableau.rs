@@ -326,6 +326,9 @@ pub(crate) struct Step {
     pub(crate) err: f64,
     /// Evaluations of the right-hand side.
     pub(crate) evals: u64,
+    /// The derivative at the new state when the method computed it (DOPRI5's last stage,
+    /// first same as last).
+    pub(crate) last: Option<Z>,
 }
 
 /// Tolerances of the error norm.
@@ -372,6 +375,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: 0.0,
                 evals: 3,
+                last: None,
             }
         }
         Scheme::Dopri5 => {
@@ -396,6 +400,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: (sum / DIM as f64).sqrt(),
                 evals: 6,
+                last: Some(k[6]),
             }
         }
         Scheme::Dop853 => {
@@ -430,6 +435,7 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
                 y,
                 err: h.abs() * err5 / (deno * DIM as f64).sqrt(),
                 evals: 11,
+                last: None,
             }
         }
     }
@@ -438,6 +444,79 @@ pub(crate) fn step<F: FnMut(&Z) -> Z>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cushion::rhs::{Friction, Modes, Rhs};
+
+    /// The cushion's right-hand side for a stun shot at 45 degrees, both contacts sliding
+    /// (their slips turn and neither stops before P_I = 0.3 in units of m v_ref), stepped
+    /// with n fixed steps of each scheme: the state at P_I = 0.3.
+    fn fixed_steps(scheme: Scheme, n: u32) -> Z {
+        let s = 0.4f64;
+        let rhs = Rhs {
+            c: (1.0 - s * s).sqrt(),
+            s,
+            alpha: 0.4,
+            mu_i: 0.2,
+            mu_c: 0.2,
+        };
+        let sliding = Friction::Sliding {
+            seed: [1.0, 0.0],
+            origin: [0.0, 0.0],
+            floor: 0.0,
+        };
+        let modes = Modes {
+            cushion: sliding,
+            table: sliding,
+            airborne: false,
+        };
+        let mut f = |z: &Z| {
+            let mut y = [0.0; 8];
+            y.copy_from_slice(&z[..8]);
+            let e = rhs.eval(&modes, &y);
+            let mut dz = [0.0; DIM];
+            dz[..8].copy_from_slice(&e.dy);
+            dz[DIM - 1] = 1.0;
+            dz
+        };
+        let r = 0.5f64.sqrt();
+        let mut z: Z = [r, r, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        let h = 0.3 / f64::from(n);
+        let tol = Tolerance {
+            rtol: 1e-10,
+            atol: 1e-10,
+        };
+        for _ in 0..n {
+            let k1 = f(&z);
+            z = step(scheme, &mut f, &z, &k1, h, tol).y;
+        }
+        z
+    }
+
+    /// Each scheme converges at its order on a right-hand side whose slip directions turn:
+    /// halving the step divides the error by about 2^order (4, 5, 8).
+    #[test]
+    fn orders() {
+        let reference = fixed_steps(Scheme::Dop853, 256);
+        let err = |scheme, n| {
+            let z = fixed_steps(scheme, n);
+            (0..6)
+                .map(|i| (z[i] - reference[i]).abs())
+                .fold(0.0, f64::max)
+        };
+        for (scheme, n, order) in [
+            (Scheme::Rk4, 8, 4.0),
+            (Scheme::Dopri5, 4, 5.0),
+            (Scheme::Dop853, 2, 8.0),
+        ] {
+            let (e1, e2) = (err(scheme, n), err(scheme, 2 * n));
+            let observed = (e1 / e2).log2();
+            // At least the order (DOPRI5's error falls as h^5.8 here: the leading term of
+            // its global error is small on this right-hand side).
+            assert!(
+                observed > order - 0.5 && observed < order + 1.0,
+                "{scheme:?}: {e1:e} {e2:e}, order {observed}"
+            );
+        }
+    }
 
     /// Each row of a sums to its node (the tableaux are copied right).
     #[test]
