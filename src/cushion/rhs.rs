@@ -106,7 +106,7 @@ pub(crate) fn normal_velocity(rhs: &Rhs, y: &State) -> f64 {
 /// The unit vector along `s`, or `seed` when `s` has no direction.
 fn direction(s: [f64; 2], seed: [f64; 2], origin: [f64; 2]) -> [f64; 2] {
     let s = [s[0] - origin[0], s[1] - origin[1]];
-    let n = s[0].hypot(s[1]);
+    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
     if n > DIRECTION_FLOOR {
         [s[0] / n, s[1] / n]
     } else {
@@ -244,7 +244,7 @@ impl Rhs {
                     slip_table(y)
                 };
                 let rel = [s[0] - origin[0], s[1] - origin[1]];
-                if floor > 0.0 && rel[0].hypot(rel[1]) <= floor {
+                if floor > 0.0 && rel[0] * rel[0] + rel[1] * rel[1] <= floor * floor {
                     self.quasi_static_direction(modes, y, k, seed)
                 } else {
                     direction(s, seed, origin)
