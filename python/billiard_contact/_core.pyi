@@ -51,6 +51,10 @@ def run(
     the scene's own warnings (a mass, radius or duration far outside any ball game, with the
     likely unit slip; ``[solver] time_transform`` under a contact law).
 
+    A cushion scene (a ``[cushion]`` table) gives the command's cushion report
+    (``target`` "cushion", ``ball_out``, the impulses, works and events); samples and
+    trace are refused for it, steps is for rk4 only.
+
     Raises ValueError (bad input, the command's one-line message) or RuntimeError (the run
     failed: the integrator gave up, a non-finite result).
     """

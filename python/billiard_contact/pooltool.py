@@ -68,8 +68,8 @@ whole normal impulse, the paper's model); the two agree when e = 1 (the tests co
 to 1e-12). The library stops sliding when the contact points stop slipping (the same rule
 as pooltool's no-slip branch).
 
-The ball-cushion model, ``BilliardContactCushion``, which ``install(engine, cushion=True)``
-also puts in place, resolves impacts on linear cushion segments with the library's
+The ball-cushion model, ``BilliardContactCushion``, which ``install`` also puts in place
+(``cushion=False`` does not), resolves impacts on linear cushion segments with the library's
 ``BallCushion`` (Mathavan, Jackson and Parkin 2010): the ball's velocity and spin are mapped
 into Mathavan's frame (y along the segment's normal, turned to point along the ball's
 velocity as pooltool's ``mathavan_2010`` turns it; z up; x = y x z), resolved there with the
@@ -423,7 +423,7 @@ def _time_to_distance(c: np.ndarray, b: np.ndarray, target: float) -> Optional[f
 def install(
     engine: Any = None,
     *,
-    cushion: bool = False,
+    cushion: bool = True,
     cushion_options: Optional[dict] = None,
     **options: Any,
 ) -> BilliardContact:
@@ -433,13 +433,11 @@ def install(
     ``engine`` is None (used by ``pt.simulate`` without ``engine=`` and by the GUI).
     Returns the model.
 
-    With ``cushion=True`` the ball-linear-cushion model becomes
+    With ``cushion=True`` (the default) the ball-linear-cushion model becomes
     ``BilliardContactCushion(**cushion_options)``, which leaves what the library does not
     model (a cushion outside R < height < 2R, a ball in the air) to the engine's previous
     model (its ``fallback``); circular cushion segments (the pockets' jaws) keep the
-    engine's model. By default (``cushion=False``) the cushions stay the engine's: the
-    library's cushion integrator still stalls on a few impacts at some tolerances (a
-    RuntimeError that would stop the simulation).
+    engine's model. ``cushion=False`` leaves the cushions to the engine.
 
     ``is_3d`` is the engine's (``engine.is_3d``; False for 0.6's engine, which has none):
     in a 3D engine the vertical velocity is kept unless ``keep_vertical_velocity=False``

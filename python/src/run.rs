@@ -2,7 +2,10 @@
 
 use crate::errors::{to_py, unwrap_scene_message};
 use crate::settings;
-use billiard_contact::{run_scene, Error, Report, Sampling, Scene, TraceRow, TraceSink};
+use billiard_contact::{
+    is_cushion_scene, run_scene, CushionReport, CushionScene, Error, Method, Report, Sampling,
+    Scene, TraceRow, TraceSink,
+};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -108,6 +111,19 @@ struct RunOutput {
 /// The report's JSON, the trace columns and the warnings (the command line's, on stderr
 /// there).
 fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
+    let cushion = match &source {
+        Source::File(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| Error::io_doing(p, "cannot read the scene file", e))?;
+            is_cushion_scene(&text).then(|| CushionScene::parse(&text, Some(p)))
+        }
+        Source::Text { text, .. } => {
+            is_cushion_scene(text).then(|| CushionScene::parse(text, None))
+        }
+    };
+    if let Some(scene) = cushion {
+        return run_cushion(&scene?, o);
+    }
     let scene = match source {
         Source::File(p) => Scene::load(&p)?,
         Source::Text { text, base } => {
@@ -141,6 +157,64 @@ fn run_json(source: Source, o: &Options) -> Result<RunOutput, Error> {
     Ok(RunOutput {
         json,
         columns: want_trace.then_some(columns),
+        warnings,
+    })
+}
+
+/// A cushion scene ([cushion]), as `billiard-contact run SCENE --json` runs it: its report,
+/// the options checked as the command checks them (`samples` and `trace` have no meaning
+/// for an impact stepped in the impulse from Python; `steps` only with rk4).
+fn run_cushion(scene: &CushionScene, o: &Options) -> Result<RunOutput, Error> {
+    if let Some(n) = o.samples {
+        return Err(Error::invalid(
+            "samples",
+            n,
+            "not for a cushion scene: its trace has a row at the start, after every step, at \
+             every slip event and at the end (it is stepped in the impulse, not in time)",
+        ));
+    }
+    if o.trace {
+        return Err(Error::invalid(
+            "trace",
+            "True",
+            "False for a cushion scene (its trace CSV: `billiard-contact run SCENE --trace \
+             FILE`; BallCushion resolves the impact from arrays)",
+        ));
+    }
+    let steps = match o.steps {
+        None => None,
+        Some(s) => {
+            Some(u32::try_from(s).map_err(|_| Error::invalid("solver.steps", s, "in [1, 1e7]"))?)
+        }
+    };
+    let overrides = settings::overrides(o.method.as_deref(), o.rtol, o.atol, steps, None)?;
+    let settings = overrides.apply(&scene.solver)?;
+    if let Some(n) = steps {
+        if settings.method() != Method::Rk4 {
+            return Err(Error::invalid(
+                "steps",
+                n,
+                format!(
+                    "only with the method rk4 (this run's is {}, which chooses its own steps \
+                     from rtol): add method=\"rk4\"",
+                    settings.method()
+                ),
+            ));
+        }
+    }
+    let mut warnings = Vec::new();
+    if o.time_transform.is_some() {
+        warnings.push(
+            "time_transform= has no effect on a cushion impact (stepped in the impulse)".into(),
+        );
+    }
+    if settings.method() == Method::Rk4 && (o.rtol.is_some() || o.atol.is_some()) {
+        warnings.push("rtol= and atol= have no effect with rk4 (fixed steps)".into());
+    }
+    let out = scene.run(&settings, None)?;
+    Ok(RunOutput {
+        json: CushionReport::new(scene, &settings, &out).to_json()?,
+        columns: None,
         warnings,
     })
 }

@@ -113,16 +113,18 @@ def test_energy_and_the_outputs():
         np.testing.assert_allclose(other["v"], out["v"], atol=1e-6)
 
 
-# The kernel's steps stalled on this impact at these tolerances; a stalled run is now
-# retried a hundred times tighter.
-@pytest.mark.parametrize("method,rtol", [("dopri5", 1e-10), ("dop853", 1e-8)])
+@pytest.mark.parametrize("method,rtol", [("dopri5", 1e-10), ("dopri5", 1e-8), ("dop853", 1e-8),
+                                         ("dop853", 1e-4), ("dopri5", 1e-4)])
 def test_every_tolerance_resolves_a_sticking_impact(method, rtol):
+    """An impact whose cushion contact sticks and slides again near the end of compression:
+    the adaptive methods stalled on it at some tolerances (more than 100,000 steps) before
+    the kernel's fix; every tolerance resolves it now, to its accuracy."""
     cushion = bc.BallCushion(mass=M, radius=R, height=H, mu_cushion=0.2, mu_table=0.2,
                              restitution=0.85)
     v, w = [-0.3, 1.0, 0.0], [-35.0, -10.0, 0.0]
     ref = cushion.resolve(v, w, rtol=1e-12)
     out = cushion.resolve(v, w, method=method, rtol=rtol)
-    np.testing.assert_allclose(out["v"], ref["v"], atol=1e-6)
+    np.testing.assert_allclose(out["v"], ref["v"], atol=max(1e-6, 100 * rtol))
 
 
 def test_rows_in_parallel_equal_single_calls():

@@ -117,7 +117,7 @@ def test_install_puts_the_cushion_model_and_keeps_the_previous_as_fallback():
     install(engine, cushion=True)  # again: the fallback stays pooltool's
     assert engine.resolver.ball_linear_cushion.fallback is previous
     other = pt.physics.PhysicsEngine()
-    install(other)  # the default: the cushions stay pooltool's
+    install(other, cushion=False)
     assert not isinstance(other.resolver.ball_linear_cushion, BilliardContactCushion)
     assert isinstance(other.resolver.ball_ball, BilliardContact)
 

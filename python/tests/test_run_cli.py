@@ -121,3 +121,31 @@ def test_trace_true_gives_the_steps_trace(cli, tmp_path):
 def test_readme_example_throw_angle():
     report = bc.run(str(SCENES[0].parent / "default.toml"))
     assert abs(report["throw_angle_deg"] - 1.718) < 5e-4
+
+
+@pytest.mark.parametrize(
+    "options,args",
+    [
+        (dict(method="rk4", steps=400), ["--method", "rk4", "--steps", "400"]),
+        (dict(method="dopri5", rtol=1e-9), ["--method", "dopri5", "--rtol", "1e-9"]),
+        (dict(rtol=1e-11, atol=1e-12), ["--rtol", "1e-11", "--atol", "1e-12"]),
+    ],
+)
+def test_a_cushion_scene_with_options_equals_the_command(cli, options, args):
+    scene = next(s for s in SCENES if s.stem == "cushion_stun_45")
+    assert bc.run(str(scene), **options) == cli_json(cli, "run", str(scene), "--json", *args)
+
+
+def test_a_cushion_scene_refuses_what_it_has_no_use_for():
+    scene = str(next(s for s in SCENES if s.stem == "cushion_stun_45"))
+    assert bc.run(scene)["target"] == "cushion"
+    with pytest.raises(ValueError, match="^samples = 10: not for a cushion scene"):
+        bc.run(scene, samples=10)
+    with pytest.raises(ValueError, match="^trace = True: False for a cushion scene"):
+        bc.run(scene, trace=True)
+    with pytest.raises(ValueError, match="^steps = 50: only with the method rk4"):
+        bc.run(scene, steps=50)
+    with pytest.warns(UserWarning, match="time_transform= has no effect on a cushion impact"):
+        bc.run(scene, time_transform=False)
+    with pytest.warns(UserWarning, match="rtol= and atol= have no effect with rk4"):
+        bc.run(scene, method="rk4", rtol=1e-6)

@@ -149,7 +149,7 @@ struct EventJson {
 
 /// The JSON report of a cushion scene (docs/formats.md#the-cushion-report), keys in order.
 #[derive(Serialize)]
-pub(crate) struct CushionReport {
+pub struct CushionReport {
     name: String,
     target: &'static str,
     ball: BallJson,
@@ -179,11 +179,7 @@ pub(crate) fn contact_angle_deg(h: f64, r: f64) -> f64 {
 
 impl CushionReport {
     /// The report of `out`, the outcome of `scene` run with `settings`.
-    pub(crate) fn new(
-        scene: &CushionScene,
-        settings: &SolverSettings,
-        out: &CushionOutcome,
-    ) -> Self {
+    pub fn new(scene: &CushionScene, settings: &SolverSettings, out: &CushionOutcome) -> Self {
         let (b, c) = (&scene.ball, &scene.cushion);
         CushionReport {
             name: scene.name.clone(),
@@ -234,7 +230,7 @@ impl CushionReport {
     }
 
     /// Pretty JSON; fails naming the field when a number is not finite.
-    pub(crate) fn to_json(&self) -> Result<String, Error> {
+    pub fn to_json(&self) -> Result<String, Error> {
         let mut out = Vec::new();
         let mut ser = serde_json::Serializer::pretty(&mut out);
         serde_path_to_error::serialize(self, &mut ser).map_err(|e| Error::NonFinite {

@@ -436,7 +436,7 @@ struct RawLabBall {
 
 /// Whether scene text is a cushion scene (`scene::cushion`): it has a top-level `[cushion]`
 /// table. Text that is not TOML is not (the two-ball reader then explains what is wrong).
-pub(crate) fn is_cushion_scene(text: &str) -> bool {
+pub fn is_cushion_scene(text: &str) -> bool {
     text.parse::<toml::Table>()
         .is_ok_and(|t| t.get("cushion").is_some_and(toml::Value::is_table))
 }
