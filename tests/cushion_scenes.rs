@@ -298,70 +298,66 @@ fn cushion_scene_refusals() {
     );
 }
 
-/// Two impacts whose adaptive steps stalled (more than 100 000 steps) at some tolerances,
-/// found by the `cushion_toml` fuzz target and a Python test: the cushion's slip sticking
-/// near the end of compression (mu 0.2 for both, h = 1.28 r, the ball drawn and sliding
-/// back along the cushion), and mu = 5 at both contacts. Every adaptive method and
-/// tolerance now resolves them (a stalled run is retried a hundred times tighter), the
-/// answers agree to 1e-6 of the speed, and Stronge's rule holds: the work of restitution is
-/// e^2 times that of compression.
+/// An impact whose adaptive steps stalled (more than 100 000 steps) at some tolerances,
+/// found by a Python test: the cushion's slip sticking near the end of compression (mu 0.2
+/// for both, h = 1.28 r, the ball drawn and sliding back along the cushion). Every adaptive
+/// method and tolerance resolves it, the answers agree to 1e-6 of the speed, and Stronge's
+/// rule holds: the work of restitution is e^2 times that of compression.
 #[test]
-fn impacts_that_stalled_resolve_at_every_tolerance() {
+fn an_impact_that_stalled_resolves_at_every_tolerance() {
     let dir = fresh_dir("cushion_stalls");
-    let cases = [
-        (
-            "sticking",
-            0.036576,
-            0.2,
-            0.2,
-            0.85,
-            [-0.3, 1.0, 0.0],
-            [-35.0, -10.0, 0.0],
+    let (h, mu, e, v, w) = (0.036576, 0.2, 0.85, [-0.3, 1.0, 0.0], [-35.0, -10.0, 0.0]);
+    let path = dir.join("sticking.toml");
+    std::fs::write(
+        &path,
+        format!(
+            "[balls]\nmass = 0.170097\nradius = {R}\n[cushion]\nheight = {h}\nmu_cushion = \
+             {mu}\nmu_table = {mu}\nrestitution = {e}\n[incoming.cushion]\nvelocity = \
+             {v:?}\nspin = {w:?}\n"
         ),
-        (
-            "mu_5",
-            0.040005,
-            5.0,
-            5.0,
-            0.98,
-            [std::f64::consts::SQRT_2, std::f64::consts::SQRT_2, 0.0],
-            [0.0; 3],
-        ),
-    ];
-    for (name, h, mu_i, mu_c, e, v, w) in cases {
-        let path = dir.join(format!("{name}.toml"));
-        std::fs::write(
-            &path,
-            format!(
-                "[balls]\nmass = 0.170097\nradius = {R}\n[cushion]\nheight = {h}\nmu_cushion = \
-                 {mu_i}\nmu_table = {mu_c}\nrestitution = {e}\n[incoming.cushion]\nvelocity = \
-                 {v:?}\nspin = {w:?}\n"
-            ),
-        )
-        .unwrap();
-        let path = path.to_string_lossy().into_owned();
-        let speed = Vector3::from(v).norm();
-        let mut first: Option<Vector3<f64>> = None;
-        for (method, rtol) in [
-            ("dop853", "1e-12"),
-            ("dopri5", "1e-10"),
-            ("dopri5", "1e-8"),
-            ("dop853", "1e-8"),
-            ("dop853", "1e-10"),
-        ] {
-            let j = json(&["run", &path, "--method", method, "--rtol", rtol, "--json"]);
-            let out = vector3(&j["ball_out"]["velocity"]);
-            let reference = *first.get_or_insert(out);
-            assert!(
-                (out - reference).amax() < 1e-6 * speed,
-                "{name} {method} {rtol}: {out} vs {reference}"
-            );
-            let wc = j["work_compression"].as_f64().unwrap();
-            let wr = j["work_restitution"].as_f64().unwrap();
-            assert!(
-                (wr - e * e * wc).abs() < 1e-6 * wc,
-                "{name} {method} {rtol}"
-            );
-        }
+    )
+    .unwrap();
+    let path = path.to_string_lossy().into_owned();
+    let speed = Vector3::from(v).norm();
+    let mut first: Option<Vector3<f64>> = None;
+    for (method, rtol) in [
+        ("dop853", "1e-12"),
+        ("dopri5", "1e-10"),
+        ("dopri5", "1e-8"),
+        ("dop853", "1e-8"),
+        ("dop853", "1e-10"),
+    ] {
+        let j = json(&["run", &path, "--method", method, "--rtol", rtol, "--json"]);
+        let out = vector3(&j["ball_out"]["velocity"]);
+        let reference = *first.get_or_insert(out);
+        assert!(
+            (out - reference).amax() < 1e-6 * speed,
+            "{method} {rtol}: {out} vs {reference}"
+        );
+        let wc = j["work_compression"].as_f64().unwrap();
+        let wr = j["work_restitution"].as_f64().unwrap();
+        assert!((wr - e * e * wc).abs() < 1e-6 * wc, "{method} {rtol}");
+    }
+}
+
+/// Friction so large that rigid contacts have no consistent state or jam, found by the
+/// `cushion_toml` fuzz target: at mu = 5 for both contacts the ball lifting off the cloth
+/// was pushed back onto it (lift-off and touch-down cycling at one impulse, then a cloth
+/// impulse of -0.0088 N s that created 0.029 J); at mu = 1 both contacts stuck with the ball
+/// wedged, and the impulse ran to 1.5e7 N s. Both are refused naming cushion.mu_cushion.
+#[test]
+fn friction_that_jams_the_rigid_contacts_is_refused() {
+    let good = std::fs::read_to_string(scene("cushion_stun_45.toml")).unwrap();
+    let dir = fresh_dir("cushion_jams");
+    for mu in ["5.0", "1.0"] {
+        let text = good
+            .replace("mu_cushion = 0.14", &format!("mu_cushion = {mu}"))
+            .replace("mu_table = 0.21", &format!("mu_table = {mu}"));
+        let path = dir.join(format!("mu_{mu}.toml"));
+        std::fs::write(&path, text).unwrap();
+        refused(
+            &bin(&["run", path.to_str().unwrap()]),
+            &["cushion.mu_cushion", "billiard cushions"],
+        );
     }
 }
