@@ -276,3 +276,68 @@ fn tangential_refuses_bad_inputs() {
         }
     }
 }
+
+/// The plane's frame: the same impact on a plane of another normal, with the velocity and
+/// spin turned by the rotation that carries +y to it, gives the turned outcome (to 1e-9),
+/// and the scalars (contact time, normalised rebound) agree. The rotation's axis is
+/// oblique, so the incoming slip has a component along every axis.
+#[test]
+fn tangential_outcome_turns_with_the_plane() {
+    use billiard_contact::nalgebra::{Rotation3, Unit};
+    let (ball, mat) = alumina();
+    let v = 3.9 * Vector3::new(0.4, -0.8, 0.3).normalize();
+    let w = Vector3::new(300.0, -100.0, 800.0);
+    let base = run(&ball, mat, None, 0.092, v, w);
+    let rot = Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(1.0, 2.0, -0.5)), 1.1);
+    let turned = resolve_sphere_plane_compliant(
+        &ball,
+        mat,
+        None,
+        0.092,
+        rot * v,
+        rot * w,
+        rot * Vector3::y(),
+        &tight(),
+    )
+    .unwrap();
+    assert!((turned.velocity - rot * base.velocity).norm() < 1e-9 * v.norm());
+    assert!((turned.spin - rot * base.spin).norm() < 1e-9 * base.spin.norm());
+    assert!((turned.contact_time / base.contact_time - 1.0).abs() < 1e-9);
+    assert!((turned.normalised_rebound - base.normalised_rebound).abs() < 1e-8);
+    // The forces and the spring stay in the turned tangent plane.
+    let n = rot * Vector3::y();
+    for row in &turned.trace {
+        assert!(row.tangential_force.dot(&n).abs() <= 1e-12 * turned.max_normal_force);
+        assert!(row.displacement.dot(&n).abs() <= 1e-12 * turned.max_compression);
+    }
+}
+
+/// The stepping converges: at rtol = atol = 1e-7 the outgoing state agrees with the one at
+/// 1e-11 to 1e-5 of the speed, in the regime where the spring sticks and slides in turn
+/// (alumina at 20 degrees, Psi_1 = 3.4).
+#[test]
+fn tangential_tolerance_converges() {
+    let (ball, mat) = alumina();
+    let v = incoming(3.9, 20.0);
+    let fine = run(&ball, mat, None, 0.092, v, Vector3::zeros());
+    let loose = SolverSettings::default()
+        .with_rtol(1e-7)
+        .unwrap()
+        .with_atol(1e-7)
+        .unwrap();
+    let coarse = resolve_sphere_plane_compliant(
+        &ball,
+        mat,
+        None,
+        0.092,
+        v,
+        Vector3::zeros(),
+        Vector3::y(),
+        &loose,
+    )
+    .unwrap();
+    assert!((coarse.velocity - fine.velocity).norm() < 1e-5 * v.norm());
+    let r = ball.radius();
+    assert!((coarse.spin - fine.spin).norm() * r < 1e-5 * v.norm());
+    assert!(coarse.steps < fine.steps, "{} {}", coarse.steps, fine.steps);
+}
