@@ -341,3 +341,58 @@ fn tangential_tolerance_converges() {
     assert!((coarse.spin - fine.spin).norm() * r < 1e-5 * v.norm());
     assert!(coarse.steps < fine.steps, "{} {}", coarse.steps, fine.steps);
 }
+
+/// An independent integration in the DEM codes' way: fixed steps of 1/400000 of Hertz's
+/// contact time, each moving the compression, then updating the spring's force from the new
+/// stiffness (scaled by k_new / k_old while the contact shrinks, then -k_t u dt), clipping it
+/// to mu F_n, and moving the velocities and the spin (first order at the switches, so its
+/// error is about 1e-5 here). For a spin-free alumina sphere at 3.9 m/s, at incidences where
+/// the spring sticks and slides in turn, the kernel's normalised rebound agrees with it to
+/// 5e-5 (Psi_2 is of order 1).
+#[test]
+fn tangential_agrees_with_a_fixed_step_dem_integration() {
+    let (ball, mat) = alumina();
+    let (mu, nu, e) = (0.092, 0.23, 3.8e11);
+    let (m, r, inertia) = (ball.mass(), ball.radius(), ball.inertia());
+    let es = e / (1.0 - nu * nu);
+    let gs = e / (2.0 * (1.0 + nu)) / (2.0 - nu);
+    let kn = 4.0 / 3.0 * es * r.sqrt();
+    let chi = 4.0 * gs / (mu * es);
+    let dem = |deg: f64| {
+        let a = deg.to_radians();
+        let (mut vn, mut vt, mut w) = (3.9 * a.cos(), 3.9 * a.sin(), 0.0);
+        let v_in = vn;
+        let dmax = (15.0 * m * vn * vn / (16.0 * es * r.sqrt())).powf(0.4);
+        let dt = 2.9433 * dmax / vn / 400_000.0;
+        let (mut d, mut f) = (0.0f64, 0.0f64);
+        loop {
+            let u = vt + r * w; // the slip along +x: v_x - R (w x y)_x, w along z
+            let d_new = d + vn * dt;
+            if d_new <= 0.0 {
+                break;
+            }
+            let (k, k_new) = (8.0 * gs * (r * d).sqrt(), 8.0 * gs * (r * d_new).sqrt());
+            if d_new < d && k > 0.0 {
+                f *= k_new / k;
+            }
+            f -= k_new * u * dt;
+            let cap = mu * kn * d_new.powf(1.5);
+            f = f.clamp(-cap, cap);
+            vn -= kn * d_new.powf(1.5) / m * dt;
+            vt += f / m * dt;
+            w += r * f / inertia * dt;
+            d = d_new;
+        }
+        (chi * 3.9 * a.sin() / v_in, chi * (vt + r * w) / (-vn))
+    };
+    for deg in [5.0, 10.0, 20.0, 30.0] {
+        let out = run(&ball, mat, None, mu, incoming(3.9, deg), Vector3::zeros());
+        let (psi1, psi2) = dem(deg);
+        assert!((out.normalised_incidence - psi1).abs() < 1e-12 * psi1);
+        assert!(
+            (out.normalised_rebound - psi2).abs() < 5e-5,
+            "{deg}: {} vs {psi2}",
+            out.normalised_rebound
+        );
+    }
+}
