@@ -96,6 +96,7 @@ pub mod profile;
 mod scene;
 mod solve;
 pub mod table_phase;
+mod tangential;
 
 pub use apps::batch;
 #[cfg(feature = "plots")]
@@ -137,6 +138,8 @@ pub use scene::types::{Incoming, PlaneIncoming, Scene};
 pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
 pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
+pub use tangential::impact::resolve_sphere_plane_compliant;
+pub use tangential::outcome::{CompliantOutcome, CompliantTraceRow};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who

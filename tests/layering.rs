@@ -16,7 +16,13 @@ const LAYERS: [(&str, &[&str]); 8] = [
     ("model", &["profile", "model"]),
     (
         "kernels",
-        &["closed_form", "cushion", "integrator", "table_phase"],
+        &[
+            "closed_form",
+            "cushion",
+            "integrator",
+            "table_phase",
+            "tangential",
+        ],
     ),
     ("solve", &["solve"]),
     ("scene", &["scene"]),

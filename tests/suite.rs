@@ -53,6 +53,7 @@ mod plot_trace;
 mod properties_invariants;
 mod stick_half_sine;
 mod table_closed_forms;
+mod tangential;
 mod theta_constant_states;
 mod throw_stun_cuts;
 mod throw_sweep;

@@ -1,0 +1,64 @@
+//! What a compliant sphere-plane impact returns: the outgoing motion, the impulses, the
+//! normalised incidence and rebound of Maw, Barber and Fawcett, and the time history.
+
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// One accepted step of a compliant impact (lab-frame vectors, in the tangent plane).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CompliantTraceRow {
+    /// Time since first touch (s).
+    pub time: f64,
+    /// Normal compression delta (m).
+    pub compression: f64,
+    /// Hertz's normal force F_n = (4/3) E* sqrt(R) delta^1.5 (N).
+    pub normal_force: f64,
+    /// Tangential force on the ball at the contact F_t (N): |F_t| <= mu F_n.
+    pub tangential_force: Vector3<f64>,
+    /// The tangential spring's elastic displacement xi = -F_t / k_t (m), k_t = 8 G* a.
+    pub displacement: Vector3<f64>,
+    /// Slip velocity of the contact point, u = v_t - R (w x n) (m/s).
+    pub slip: Vector3<f64>,
+    /// True while the spring slides (|F_t| = mu F_n).
+    pub sliding: bool,
+}
+
+/// The result of [`crate::resolve_sphere_plane_compliant`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CompliantOutcome {
+    /// The ball's velocity after the contact (m/s).
+    pub velocity: Vector3<f64>,
+    /// The ball's spin after the contact (rad/s).
+    pub spin: Vector3<f64>,
+    /// Time from first touch until F_n returns to 0 (s).
+    pub contact_time: f64,
+    /// Normal impulse of the plane on the ball (N s).
+    pub normal_impulse: f64,
+    /// Tangential impulse of the plane on the ball (N s, in the tangent plane).
+    pub tangential_impulse: Vector3<f64>,
+    /// Largest normal force (N), at the largest compression.
+    pub max_normal_force: f64,
+    /// Largest compression (m).
+    pub max_compression: f64,
+    /// Angle of incidence of the contact point: atan(|u(0)| / |v.n(0)|) (rad), u the slip.
+    pub incidence_angle: f64,
+    /// Rebound angle of the contact point: atan2(u'.s, v'.n) (rad), s = u(0)/|u(0)| the
+    /// incoming slip's direction: negative when the contact point's tangential velocity has
+    /// reversed. 0 when the ball arrives without slip.
+    pub rebound_angle: f64,
+    /// Maw, Barber and Fawcett's normalised incidence Psi_1 = chi |u(0)| / |v.n(0)|, with
+    /// chi = 4 G* / (mu E*) (= 2 (1 - nu) / (mu (2 - nu)) on a rigid plane); NaN when mu = 0.
+    pub normalised_incidence: f64,
+    /// The normalised rebound Psi_2 = chi (u'.s) / v'.n; NaN when mu = 0.
+    pub normalised_rebound: f64,
+    /// Kinetic energy before the contact (J).
+    pub kinetic_energy_in: f64,
+    /// Kinetic energy after the contact (J).
+    pub kinetic_energy_out: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps (error too large, or shortened to land on an event).
+    pub rejected: u64,
+    /// Every accepted step, from first touch to the end of the contact.
+    pub trace: Vec<CompliantTraceRow>,
+}
