@@ -56,6 +56,12 @@
 //! # Ok::<(), billiard_contact::Error>(())
 //! ```
 //!
+//! **The other contacts of a ball**: a plane (a wall, the table's bed) with
+//! [`PlaneCollision`] and [`solve_plane`] (`docs/plane.md`); a cushion, touching the cloth at
+//! the same time, with [`resolve_cushion`] or a cushion scene file, [`CushionScene`]
+//! (`docs/cushion.md`); a plane with an elastic tangential compliance instead of the stick
+//! rule, [`resolve_sphere_plane_compliant`] (`docs/tangential.md`).
+//!
 //! Expert pieces (the integrator driver, the closed-form batch kernel, the checks) are in
 //! [`details`]; many collisions at once in [`batch`]; the cost of accuracy in
 //! [`work_precision`]; the balls' motion on the cloth after the contact in [`table_phase`].

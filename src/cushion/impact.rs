@@ -256,7 +256,7 @@ fn vector_text(v: &Vector3<f64>) -> String {
 ///
 /// An adaptive run whose steps stall (more than 100 000 of them, as happens on a few
 /// impacts at some tolerances where a slip hovers about zero) is run again at a tolerance
-/// a hundred times tighter, down to [`STALL_RETRY_TIGHTEST`]; the outcome's `stats` are the
+/// a hundred times tighter, down to rtol = atol = 1e-13; the outcome's `stats` are the
 /// run that succeeded. With a trace, the tolerance that succeeds is found first without it,
 /// so the trace holds one run.
 pub fn resolve_cushion(
