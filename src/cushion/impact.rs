@@ -258,7 +258,9 @@ fn vector_text(v: &Vector3<f64>) -> String {
 /// impacts at some tolerances where a slip hovers about zero) is run again at a tolerance
 /// a hundred times tighter, down to rtol = atol = 1e-13; the outcome's `stats` are the
 /// run that succeeded. With a trace, the tolerance that succeeds is found first without it,
-/// so the trace holds one run.
+/// so the trace holds one run. An rk4 run that stalls where the contacts jam or have no
+/// consistent state (friction far beyond a billiard table's) gives the refusal an adaptive
+/// run gives.
 pub fn resolve_cushion(
     ball: &Ball,
     cushion: &Cushion,
@@ -271,6 +273,15 @@ pub fn resolve_cushion(
     loop {
         match (attempt(ball, cushion, v, w, &s, None), stall_retry(&s)) {
             (Err(Error::TooManySteps { .. }), Some(tighter)) => s = tighter,
+            // rk4's fixed steps can stall where an adaptive run finds that the contacts jam
+            // or have no consistent state: that refusal is the answer.
+            (Err(e @ Error::TooManySteps { .. }), None) if s.method() == Method::Rk4 => {
+                let probe = SolverSettings::default().with_method(Method::Dop853);
+                return match attempt(ball, cushion, v, w, &probe, None) {
+                    Err(refusal) if refusal.is_bad_input() => Err(refusal),
+                    _ => Err(e),
+                };
+            }
             (Ok(out), _) if trace.is_none() => return Ok(out),
             (Ok(_), _) => return attempt(ball, cushion, v, w, &s, trace),
             (Err(e), _) => return Err(e),
