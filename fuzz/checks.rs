@@ -187,9 +187,10 @@ pub fn check_scene(data: &[u8]) -> Verdict {
 /// with the scene's own (bounded) method and, if it is another, dop853. Promises beyond
 /// finite numbers: the impulses are not negative and the cloth's is at most the cushion's
 /// (it balances the vertical part of the cushion's push); the compression's impulse is at
-/// most the total; every event lies within the impact; the energy lost is not negative
-/// (to 1e-9 of the kinetic energy brought in); Stronge's rule gives back e^2 times the work of
-/// compression (to 1e-6 of it).
+/// most the total; every event lies within the impact; with Stronge's rule the energy lost
+/// is not negative (to 1e-9 of the kinetic energy brought in) and the work given back is
+/// e^2 times the work of compression (to 1e-6 of it). Newton's rule may create energy with
+/// friction (Kane and Levinson's paradox), so its energy is only checked finite.
 pub fn check_cushion(data: &[u8]) -> Verdict {
     let Ok(text) = std::str::from_utf8(data) else {
         return Verdict::Skipped;
@@ -243,12 +244,15 @@ pub fn check_cushion(data: &[u8]) -> Verdict {
                 "{what}: event {e:?} outside the impact (P_I = {p})"
             );
         }
-        assert!(
-            out.energy_lost.is_finite() && out.energy_lost >= -1e-9 * energy_in,
-            "{what}: energy lost {} of {energy_in}",
-            out.energy_lost
-        );
+        assert!(out.energy_lost.is_finite(), "{what}: energy lost {}", out.energy_lost);
+        // Newton's kinematic rule can create energy with friction (Kane and Levinson's
+        // paradox; docs/cushion.md): the promise is Stronge's.
         if scene.cushion.rule() == CushionRestitution::Stronge {
+            assert!(
+                out.energy_lost >= -1e-9 * energy_in,
+                "{what}: energy lost {} of {energy_in}",
+                out.energy_lost
+            );
             let e2 = scene.cushion.restitution().powi(2);
             let wc = out.work_compression;
             assert!(
