@@ -15,9 +15,9 @@ mu_s the cloth's, ee the restitution (Stronge's energetic rule in both). pooltoo
 dP = M v_y / steps in compression (`max_steps`; its `delta_p` floor set to 1e-15 here), and
 its restitution step target_work / steps (its own choice of units).
 
-Run with a Python that has pooltool-billiards 0.6.0 and matplotlib, e.g.
-/work/venv-pt/bin/python scripts/compare_mathavan.py (pooltool is imported in a child
-process, of --python when given).
+Run with a Python that has pooltool-billiards 0.6.0 and matplotlib (docs/python.md says how
+to install pooltool 0.6.0): `python scripts/compare_mathavan.py` (pooltool is imported in a
+child process, of --python when given).
 """
 
 import argparse
