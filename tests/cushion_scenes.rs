@@ -277,6 +277,26 @@ fn cushion_scene_refusals() {
         ),
     );
     refused(&bin(&["run", &away]), &["ball.v"]);
+    // A vector of five numbers (serde's arrays took the first three; found by the fuzz
+    // target), and a two-ball scene's u of four.
+    let five = write(
+        "five.toml",
+        good.replace("spin = [0.0, 0.0, 0.0]", "spin = [0.0, 0.0, 0.0, 1.0, 2.0]"),
+    );
+    refused(
+        &bin(&["run", &five]),
+        &["incoming.cushion.spin", "invalid length 5"],
+    );
+    let two_ball = std::fs::read_to_string(scene("paper_special_case.toml")).unwrap();
+    assert!(two_ball.contains("u = [0.5, 0.25, 0.0]"));
+    let four = write(
+        "four.toml",
+        two_ball.replace("u = [0.5, 0.25, 0.0]", "u = [0.5, 0.25, 0.0, 7.0]"),
+    );
+    refused(
+        &bin(&["run", &four]),
+        &["incoming.cm.u", "invalid length 4"],
+    );
     let path = scene("cushion_stun_45.toml");
     refused(
         &bin(&["run", &path, "--samples", "10", "--trace", "x.csv"]),
@@ -349,7 +369,7 @@ fn an_impact_that_stalled_resolves_at_every_tolerance() {
 fn friction_that_jams_the_rigid_contacts_is_refused() {
     let good = std::fs::read_to_string(scene("cushion_stun_45.toml")).unwrap();
     let dir = fresh_dir("cushion_jams");
-    for mu in ["5.0", "1.0"] {
+    for mu in ["5.0", "1.0", "1.2"] {
         let text = good
             .replace("mu_cushion = 0.14", &format!("mu_cushion = {mu}"))
             .replace("mu_table = 0.21", &format!("mu_table = {mu}"));

@@ -24,7 +24,7 @@ use crate::cushion::impact::resolve_cushion;
 use crate::cushion::outcome::{CushionOutcome, CushionTraceRow};
 use crate::cushion::params::{Cushion, CushionRestitution};
 use crate::model::params::{Ball, ALPHA_SOLID};
-use crate::scene::file::explain_toml_error;
+use crate::scene::file::{explain_toml_error, V3};
 use crate::scene::overrides::SolverOverrides;
 use nalgebra::Vector3;
 use serde::Deserialize;
@@ -85,8 +85,8 @@ struct RawCushionIncoming {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCushionState {
-    velocity: [f64; 3],
-    spin: Option<[f64; 3]>,
+    velocity: V3,
+    spin: Option<V3>,
 }
 
 /// The restitution rule by its scene name (`cushion.rule`).
@@ -175,8 +175,8 @@ impl CushionScene {
             }),
             ball,
             cushion,
-            velocity: vector("incoming.cushion.velocity", state.velocity)?,
-            spin: vector("incoming.cushion.spin", state.spin.unwrap_or_default())?,
+            velocity: vector("incoming.cushion.velocity", state.velocity.0)?,
+            spin: vector("incoming.cushion.spin", state.spin.unwrap_or_default().0)?,
             solver: raw
                 .solver
                 .unwrap_or_default()

@@ -91,7 +91,7 @@ struct RawScene {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawPlane {
-    normal: [f64; 3],
+    normal: V3,
     youngs_modulus: Option<f64>,
     poisson_ratio: Option<f64>,
 }
@@ -336,8 +336,8 @@ struct RawIncoming {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawPlaneBall {
-    velocity: [f64; 3],
-    spin: Option<[f64; 3]>,
+    velocity: V3,
+    spin: Option<V3>,
 }
 
 impl RawIncoming {
@@ -358,7 +358,7 @@ impl RawIncoming {
                 if !(length > 0.0 && length.is_finite()) {
                     return Err(Error::invalid(
                         "plane.normal",
-                        format!("{:?}", p.normal),
+                        format!("{:?}", p.normal.0),
                         "a non-zero direction, out of the plane towards the ball",
                     ));
                 }
@@ -394,7 +394,7 @@ impl RawIncoming {
             (None, Some(lab)) => Ok(Incoming::Lab(LabScene {
                 a: lab_ball("incoming.lab.a", &lab.a)?,
                 b: lab_ball("incoming.lab.b", &lab.b)?,
-                up: vec3("incoming.lab.up", lab.up.unwrap_or([0.0, 0.0, 1.0]))?,
+                up: vec3("incoming.lab.up", lab.up.unwrap_or(V3([0.0, 0.0, 1.0])))?,
             })),
             (Some(_), Some(_)) => Err(Error::invalid(
                 "incoming",
@@ -413,9 +413,9 @@ impl RawIncoming {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCm {
-    u: [f64; 3],
-    omega_a: Option<[f64; 3]>,
-    omega_b: Option<[f64; 3]>,
+    u: V3,
+    omega_a: Option<V3>,
+    omega_b: Option<V3>,
 }
 
 #[derive(Deserialize)]
@@ -423,15 +423,30 @@ struct RawCm {
 struct RawLab {
     a: RawLabBall,
     b: RawLabBall,
-    up: Option<[f64; 3]>,
+    up: Option<V3>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLabBall {
-    position: [f64; 3],
-    velocity: [f64; 3],
-    spin: Option<[f64; 3]>,
+    position: V3,
+    velocity: V3,
+    spin: Option<V3>,
+}
+
+/// Three numbers of a scene file (a vector, x y z): exactly three. serde's own arrays take
+/// the first three of a longer list and drop the rest without a word (`u = [0.5, 0.25, 0,
+/// 7]` ran as (0.5, 0.25, 0)).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct V3(pub(crate) [f64; 3]);
+
+impl<'de> Deserialize<'de> for V3 {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v: Vec<f64> = Vec::deserialize(d)?;
+        <[f64; 3]>::try_from(v.as_slice())
+            .map(V3)
+            .map_err(|_| de::Error::invalid_length(v.len(), &"an array of length 3, [x, y, z]"))
+    }
 }
 
 /// Whether scene text is a cushion scene (`scene::cushion`): it has a top-level `[cushion]`
@@ -558,7 +573,8 @@ fn plane_material(p: &RawPlane) -> Result<Option<Material>, Error> {
     }
 }
 
-fn vec3(field: &str, v: [f64; 3]) -> Result<Vector3<f64>, Error> {
+fn vec3(field: &str, v: V3) -> Result<Vector3<f64>, Error> {
+    let v = v.0;
     for (i, x) in v.iter().enumerate() {
         if !x.is_finite() {
             return Err(Error::invalid(
