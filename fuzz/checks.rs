@@ -244,7 +244,11 @@ pub fn check_cushion(data: &[u8]) -> Verdict {
                 "{what}: event {e:?} outside the impact (P_I = {p})"
             );
         }
-        assert!(out.energy_lost.is_finite(), "{what}: energy lost {}", out.energy_lost);
+        assert!(
+            out.energy_lost.is_finite(),
+            "{what}: energy lost {}",
+            out.energy_lost
+        );
         // Newton's kinematic rule can create energy with friction (Kane and Levinson's
         // paradox; docs/cushion.md): the promise is Stronge's.
         if scene.cushion.rule() == CushionRestitution::Stronge {
