@@ -2,7 +2,7 @@
 //! thread pool, with a progress bar and a one-line account on stderr.
 
 use crate::apps::batch::cushion::run_cushion_csv;
-use crate::apps::batch::{run_csv, BatchSetup, DEFAULT_CHUNK_ROWS, MAX_CHUNK_ROWS};
+use crate::apps::batch::{run_csv, BatchSetup, BatchSummary, DEFAULT_CHUNK_ROWS, MAX_CHUNK_ROWS};
 use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::number::count;
@@ -13,6 +13,8 @@ use crate::outputs::atomic_file::AtomicFile;
 use crate::scene::cushion::CushionScene;
 use crate::scene::overrides::SolverOverrides;
 use clap::Args;
+use std::fs::File;
+use std::io::BufReader;
 use std::path::PathBuf;
 
 /// The options of `batch`.
@@ -80,33 +82,9 @@ pub(super) fn batch(args: &BatchArgs) -> Result<(), Error> {
         ));
     }
     let setup = BatchSetup::from_scene(&scene, settings);
-    let input = std::fs::File::open(&args.input)
-        .map_err(|e| Error::io_doing(&args.input, "cannot read the batch input", e))?;
-    let size = input.metadata().map(|m| m.len()).unwrap_or(0);
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = args.threads {
-        pool = pool.num_threads(n);
-    }
-    let pool = pool.build()?;
-    let bar = progress_bar(size, "{elapsed:>4} [{bar:40}] {bytes}/{total_bytes} {msg}");
-    let start = std::time::Instant::now();
-    let out = AtomicFile::create(&args.out)?;
-    let (out, summary) = pool.install(|| {
-        run_csv(
-            &setup,
-            std::io::BufReader::with_capacity(1 << 16, input),
-            &args.input,
-            out,
-            args.chunk,
-            |rows, bytes| {
-                bar.set_position(bytes);
-                bar.set_message(count(rows, "row", "rows"));
-            },
-        )
+    let (summary, secs, threads) = streamed(args, "row", "rows", |input, out, progress| {
+        run_csv(&setup, input, &args.input, out, args.chunk, progress)
     })?;
-    out.commit()?;
-    bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64();
     eprintln!(
         "{} ({}, {} stick) in {:.2} s ({:.0} rows/s, {}, {}) -> {}",
         count(summary.rows, "row", "rows"),
@@ -114,7 +92,7 @@ pub(super) fn batch(args: &BatchArgs) -> Result<(), Error> {
         summary.sticks,
         secs,
         summary.rows as f64 / secs.max(1e-9),
-        count(pool.current_num_threads() as u64, "thread", "threads"),
+        count(threads as u64, "thread", "threads"),
         method,
         args.out.display()
     );
@@ -167,7 +145,50 @@ fn cushion_batch(args: &BatchArgs, scene: &CushionScene) -> Result<(), Error> {
     if args.time_transform.is_some() {
         warn("--time-transform has no effect on a cushion impact (stepped in the impulse)");
     }
-    let input = std::fs::File::open(&args.input)
+    let (summary, secs, threads) = streamed(
+        args,
+        "cushion impact",
+        "cushion impacts",
+        |input, out, progress| {
+            run_cushion_csv(
+                scene,
+                &settings,
+                input,
+                &args.input,
+                out,
+                args.chunk,
+                progress,
+            )
+        },
+    )?;
+    eprintln!(
+        "{} ({} leave the cloth) in {:.2} s ({:.0} impacts/s, {}, {}) -> {}",
+        count(summary.rows, "cushion impact", "cushion impacts"),
+        summary.sticks,
+        secs,
+        summary.rows as f64 / secs.max(1e-9),
+        count(threads as u64, "thread", "threads"),
+        settings.method(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// The streaming shared by both kinds of batch: opens the input, runs `stream` (input,
+/// output, progress) on a pool of `--threads` with a progress bar counting `one`/`many`,
+/// and commits the output. Returns the summary, the seconds taken and the threads used.
+fn streamed(
+    args: &BatchArgs,
+    one: &str,
+    many: &str,
+    stream: impl FnOnce(
+            BufReader<File>,
+            AtomicFile,
+            &mut dyn FnMut(u64, u64),
+        ) -> Result<(AtomicFile, BatchSummary), Error>
+        + Send,
+) -> Result<(BatchSummary, f64, usize), Error> {
+    let input = File::open(&args.input)
         .map_err(|e| Error::io_doing(&args.input, "cannot read the batch input", e))?;
     let size = input.metadata().map(|m| m.len()).unwrap_or(0);
     let mut pool = rayon::ThreadPoolBuilder::new();
@@ -178,32 +199,17 @@ fn cushion_batch(args: &BatchArgs, scene: &CushionScene) -> Result<(), Error> {
     let bar = progress_bar(size, "{elapsed:>4} [{bar:40}] {bytes}/{total_bytes} {msg}");
     let start = std::time::Instant::now();
     let out = AtomicFile::create(&args.out)?;
-    let (out, summary) = pool.install(|| {
-        run_cushion_csv(
-            scene,
-            &settings,
-            std::io::BufReader::with_capacity(1 << 16, input),
-            &args.input,
-            out,
-            args.chunk,
-            |rows, bytes| {
-                bar.set_position(bytes);
-                bar.set_message(count(rows, "row", "rows"));
-            },
-        )
-    })?;
+    let mut progress = |rows: u64, bytes: u64| {
+        bar.set_position(bytes);
+        bar.set_message(count(rows, one, many));
+    };
+    let (out, summary) =
+        pool.install(|| stream(BufReader::with_capacity(1 << 16, input), out, &mut progress))?;
     out.commit()?;
     bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64();
-    eprintln!(
-        "{} ({} leave the cloth) in {:.2} s ({:.0} impacts/s, {}, {}) -> {}",
-        count(summary.rows, "cushion impact", "cushion impacts"),
-        summary.sticks,
-        secs,
-        summary.rows as f64 / secs.max(1e-9),
-        count(pool.current_num_threads() as u64, "thread", "threads"),
-        settings.method(),
-        args.out.display()
-    );
-    Ok(())
+    Ok((
+        summary,
+        start.elapsed().as_secs_f64(),
+        pool.current_num_threads(),
+    ))
 }

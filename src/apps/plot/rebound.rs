@@ -4,6 +4,8 @@
 //! incidence), the bottom row the rebound speed over the incoming speed; one line per speed
 //! and side spin.
 
+use super::style::Drawn;
+use super::sweep::colour;
 use super::FONT;
 use crate::apps::rebound::{curves, spin_name, ReboundRow};
 use crate::base::error::Error;
@@ -17,9 +19,6 @@ const PANEL: (u32, u32) = (460, 400);
 const MIN_WIDTH: u32 = 1000;
 /// Height (px) of the title strip.
 const HEADER: u32 = 64;
-
-/// What a drawing step returns.
-type Drawn<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// The spin kinds in order of first appearance (one column each).
 fn spin_kinds(rows: &[ReboundRow]) -> Vec<String> {
@@ -37,21 +36,6 @@ fn spin_kinds(rows: &[ReboundRow]) -> Vec<String> {
 pub(crate) fn size(rows: &[ReboundRow]) -> (u32, u32) {
     let columns = spin_kinds(rows).len().max(1) as u32;
     ((PANEL.0 * columns).max(MIN_WIDTH), HEADER + 2 * PANEL.1)
-}
-
-/// A curve's colour by its index among the curves of one panel.
-fn colour(i: usize) -> RGBColor {
-    const PALETTE: [RGBColor; 8] = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-        RGBColor(148, 103, 189),
-        RGBColor(255, 127, 14),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(23, 190, 207),
-    ];
-    PALETTE[i % PALETTE.len()]
 }
 
 /// One quantity drawn against the incidence angle.

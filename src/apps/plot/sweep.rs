@@ -57,8 +57,8 @@ pub(crate) fn size(rows: &[SweepRow]) -> (u32, u32) {
     ((PANEL.0 * columns).max(MIN_WIDTH), HEADER + 2 * PANEL.1)
 }
 
-/// A curve's colour: by its index among the curves of one panel.
-fn colour(i: usize) -> RGBColor {
+/// A curve's colour: by its index among the curves of one panel (also the rebound chart's).
+pub(crate) fn colour(i: usize) -> RGBColor {
     const PALETTE: [RGBColor; 8] = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),
