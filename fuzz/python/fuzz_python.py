@@ -1,17 +1,20 @@
 #!/usr/bin/env python
 """Coverage-guided fuzzing (atheris, libFuzzer) of the Python package's input surface.
 
-The constructors ``Ball``, ``SpeedDependentFriction`` and ``BallBall`` get keywords drawn
-from the input (mass, radius, alpha, a=/b= balls, mu as a number or a speed-dependent
+The constructors ``Ball``, ``SpeedDependentFriction``, ``BallBall``, ``BallPlane`` and
+``BallCushion`` get keywords drawn from the input (mass, radius, alpha, a=/b= balls, mu as a number or a speed-dependent
 friction, restitution, profile, duration, friction, stick; plausible values, edge values,
 wrong types), then ``BallBall.resolve_lab`` gets arrays of arbitrary dtypes (every float and
 integer width, bool, complex, object, strings, byte-swapped), shapes ((3,), (N, 3), wrong
 ones, empty), memory layouts (Fortran order, strided, negative strides), lists and scalars,
-with a method, rtol and time_transform. The promise checked on every call:
+with a method, rtol and time_transform; ``BallPlane.resolve`` and ``BallCushion.resolve`` get
+velocities, spins (and normals) the same way. The promise checked on every call:
 
 - it returns, and every output is finite (``throw_angle_deg`` may be NaN where the library
   documents it has none), ``sticks`` is boolean, the shapes are (N, 3) and (N,) or (3,)
-  and scalars; or
+  and scalars; a plane's or a cushion's impulses are >= 0, the plane's friction impulse at
+  most mu times its normal impulse, and neither creates kinetic energy (the cushion with
+  Stronge's rule; Newton's may, with friction: Kane and Levinson's paradox); or
 - it raises ValueError or TypeError whose message names the argument (a keyword of the
   call, or ``row i:`` and a field of the row).
 
@@ -100,8 +103,9 @@ def names_an_argument(msg: str, names: list[str]) -> bool:
     `argument 'rtol'`, `va[1]`, ...): the name as a word, dots and brackets as separators."""
     for n in names:
         if re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", msg):
-            # A single letter must be a field (`contact.mu.a`, `balls.b`) or quoted.
-            if len(n) > 1 or re.search(rf"(\.{n}\b|'{n}'|\b{n} =|^{n}: )", msg):
+            # A single letter must be a field (`contact.mu.a`, `balls.b`), quoted, the first
+            # word (`v has shape (3, 1)`) or an array's element (`row 3: w[0] = inf`).
+            if len(n) > 1 or re.search(rf"(\.{n}\b|'{n}'|\b{n} =|^{n}\b|\b{n}\[)", msg):
                 return True
     return False
 
@@ -377,6 +381,194 @@ def resolve(fdp: atheris.FuzzedDataProvider, model) -> None:
     check_outputs(out, multi[0] if multi else 1, not multi, what)
 
 
+PLANE_ARGS = ["mass", "radius", "alpha", "mu", "restitution"]
+PLANE_OUT = {"v": 3, "w": 3, "impulse": 0, "tangential_impulse": 0, "sticks": 0,
+             "stick_impulse": 0}
+CUSHION_ARGS = ["mass", "radius", "alpha", "height", "mu_cushion", "mu_table", "restitution",
+                "rule"]
+CUSHION_OUT = {"v": 3, "w": 3, "impulse": 0, "impulse_compression": 0, "impulse_table": 0,
+               "work_compression": 0, "work_restitution": 0, "energy_lost": 0, "lifts_off": 0,
+               "events": None, "steps": 0, "evaluations": 0}
+RULES = ["stronge", "newton", "Stronge", "poisson", ""]
+
+
+def draw_keywords(fdp: atheris.FuzzedDataProvider, plausible: dict, optional: set) -> dict:
+    """Keywords near their plausible values; an optional one sometimes left out, a required
+    one rarely (the refusal must name it)."""
+    kw = {}
+    for name, p in plausible.items():
+        if name in optional and fdp.ConsumeBool():
+            continue
+        if fdp.ConsumeIntInRange(0, 31) == 0:
+            continue
+        kw[name] = draw_value(fdp, p)
+    return kw
+
+
+def kinetic(m: float, r: float, alpha: float, v, w) -> np.ndarray:
+    v, w = np.asarray(v, float), np.asarray(w, float)
+    return 0.5 * m * np.sum(v * v, axis=-1) + 0.5 * alpha * m * r * r * np.sum(w * w, axis=-1)
+
+
+def check_shapes(out, spec: dict, n: int, single: bool, what: str) -> None:
+    if not isinstance(out, dict) or set(out) != set(spec):
+        raise Finding(f"{what}: keys {sorted(out) if isinstance(out, dict) else type(out)}")
+    for name, width in spec.items():
+        if width is None:
+            continue
+        v = np.asarray(out[name])
+        want = ((3,) if single else (n, 3)) if width == 3 else (() if single else (n,))
+        if v.shape != want:
+            raise Finding(f"{what}: {name} has shape {v.shape}, expected {want}")
+        if width == 3 and v.dtype != np.float64:
+            raise Finding(f"{what}: {name} is {v.dtype}")
+
+
+def draw_rows(fdp: atheris.FuzzedDataProvider, n: int, names: list, plausible) -> dict:
+    """n plausible rows of each named (n, 3) argument, some entries then spoiled."""
+    s = {name: np.array([plausible(fdp, name) for _ in range(n)]) for name in names}
+    for _ in range(fdp.ConsumeIntInRange(0, 3)):
+        name = pick(fdp, names)
+        i, k = fdp.ConsumeIntInRange(0, n - 1), fdp.ConsumeIntInRange(0, 2)
+        s[name][i, k] = draw_float(fdp, s[name][i, k])
+    return s
+
+
+def plane_row(fdp: atheris.FuzzedDataProvider, name: str) -> list:
+    if name == "normal":
+        return list(unit(fdp))
+    scale = 8.0 if name == "v" else 400.0
+    return [fdp.ConsumeFloatInRange(-scale, scale) for _ in range(3)]
+
+
+def cushion_row(fdp: atheris.FuzzedDataProvider, name: str) -> list:
+    if name == "v":  # on the cloth, towards the cushion (x along it, y towards it)
+        return [fdp.ConsumeFloatInRange(-6, 6), fdp.ConsumeFloatInRange(-0.5, 6), 0.0]
+    return [fdp.ConsumeFloatInRange(-300, 300) for _ in range(3)]
+
+
+def tolerance(call: dict, floor: float) -> float:
+    """The relative energy a run may gain by its stepping error: `floor`, or 100 times a
+    looser rtol the call asked for."""
+    r = call.get("rtol")
+    return max(floor, 100 * r) if isinstance(r, float) and math.isfinite(r) else floor
+
+
+def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
+    kw = draw_keywords(fdp, {"mass": M, "radius": R, "alpha": 0.4, "mu": 0.2,
+                             "restitution": 0.8}, {"alpha", "restitution"})
+    try:
+        model = bc.BallPlane(**kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, PLANE_ARGS, f"BallPlane({kw})")
+        return
+    repr(model)
+    method = pick(fdp, METHODS) if fdp.ConsumeIntInRange(0, 3) == 0 else None
+    stepping = method in ("rk4", "dopri5", "dop853", "closed-form")
+    n = fdp.ConsumeIntInRange(1, 4) if stepping else pick(fdp, [1, 2, 3, 7, 64, 2048])
+    single = n == 1 and fdp.ConsumeBool()
+    rows = draw_rows(fdp, n, ["v", "w", "normal"], plane_row)
+    args = {name: as_argument(fdp, a, single) for name, a in rows.items()}
+    call = {}
+    if method is not None:
+        call["method"] = method
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        r = draw_value(fdp, 1e-8)
+        if stepping and isinstance(r, float) and 0 < r < 1e-12:
+            r = 1e-12  # the work of one input stays bounded
+        call["rtol"] = r
+    what = f"BallPlane({kw}).resolve({args}, {call})"
+    try:
+        out = model.resolve(**args, **call)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["v", "w", "normal", "method", "rtol", "row"], what)
+        return
+    if any(complex_imaginary(a) for a in args.values()):
+        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
+    shapes = [np.shape(a) for a in args.values()]
+    multi = [sh[0] for sh in shapes if len(sh) == 2]
+    check_shapes(out, PLANE_OUT, multi[0] if multi else 1, not multi, what)
+    for name in ("v", "w", "impulse", "tangential_impulse"):
+        if not np.all(np.isfinite(out[name])):
+            raise Finding(f"{what}: {name} is not finite: {out[name]}")
+    p, j = np.asarray(out["impulse"]), np.asarray(out["tangential_impulse"])
+    if np.any(p < 0) or np.any(j < 0):
+        raise Finding(f"{what}: a negative impulse: {p}, {j}")
+    # Coulomb: J <= mu P (to rounding).
+    if np.any(j > model.mu * p * (1 + 1e-9) + 1e-300):
+        raise Finding(f"{what}: friction impulse {j} above mu P = {model.mu * p}")
+    # No energy created (e <= 1); both states as the call used them, rows broadcast.
+    try:
+        v0 = np.broadcast_to(np.asarray(args["v"], float), np.shape(out["v"]))
+        w0 = np.broadcast_to(np.asarray(args["w"], float), np.shape(out["w"]))
+    except (TypeError, ValueError):
+        return
+    k0 = kinetic(model.mass, model.radius, model.alpha, v0, w0)
+    k1 = kinetic(model.mass, model.radius, model.alpha, out["v"], out["w"])
+    if np.any(k1 > k0 * (1 + tolerance(call, 1e-9)) + 1e-300):
+        raise Finding(f"{what}: kinetic energy created: {k0} -> {k1}")
+
+
+def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
+    kw = draw_keywords(fdp, {"mass": M, "radius": R, "alpha": 0.4, "height": 1.4 * R,
+                             "mu_cushion": 0.2, "mu_table": 0.2, "restitution": 0.9},
+                       {"alpha"})
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        kw["rule"] = pick(fdp, RULES) if fdp.ConsumeIntInRange(0, 7) else 1.0
+    try:
+        model = bc.BallCushion(**kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, CUSHION_ARGS, f"BallCushion({kw})")
+        return
+    repr(model)
+    n = pick(fdp, [1, 1, 2, 3, 64]) if fdp.ConsumeIntInRange(0, 15) else 1
+    single = n == 1 and fdp.ConsumeBool()
+    rows = draw_rows(fdp, n, ["v", "w"], cushion_row)
+    args = {name: as_argument(fdp, a, single) for name, a in rows.items()}
+    call = {}
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        call["method"] = pick(fdp, [None, "dop853", "dopri5", "rk4", "closed-form", ""])
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        r = draw_value(fdp, 1e-8)
+        if isinstance(r, float) and 0 < r < 1e-12:
+            r = 1e-12
+        call["rtol"] = r
+    if fdp.ConsumeIntInRange(0, 7) == 0:
+        call["steps"] = pick(fdp, [None, 1, 10, 1000, 0, -1, 10**12, 2.5, "x"])
+    what = f"BallCushion({kw}).resolve({args}, {call})"
+    try:
+        out = model.resolve(**args, **call)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["v", "w", "method", "rtol", "steps", "row"], what)
+        return
+    if any(complex_imaginary(a) for a in args.values()):
+        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
+    shapes = [np.shape(a) for a in args.values()]
+    multi = [sh[0] for sh in shapes if len(sh) == 2]
+    rows_out = multi[0] if multi else 1
+    check_shapes(out, CUSHION_OUT, rows_out, not multi, what)
+    events = out["events"]
+    if not isinstance(events, list) or (multi and len(events) != rows_out):
+        raise Finding(f"{what}: events {events!r}")
+    for name in ("v", "w", "impulse", "impulse_compression", "impulse_table",
+                 "work_compression", "work_restitution", "energy_lost"):
+        if not np.all(np.isfinite(out[name])):
+            raise Finding(f"{what}: {name} is not finite: {out[name]}")
+    for name in ("impulse", "impulse_compression", "impulse_table", "work_compression",
+                 "work_restitution"):
+        if np.any(np.asarray(out[name]) < 0):
+            raise Finding(f"{what}: {name} < 0: {out[name]}")
+    if model.rule == "stronge":
+        try:
+            v0 = np.broadcast_to(np.asarray(args["v"], float), np.shape(out["v"]))
+            w0 = np.broadcast_to(np.asarray(args["w"], float), np.shape(out["w"]))
+        except (TypeError, ValueError):
+            return
+        k0 = kinetic(model.mass, model.radius, model.alpha, v0, w0)
+        if np.any(np.asarray(out["energy_lost"]) < -tolerance(call, 1e-7) * k0 - 1e-300):
+            raise Finding(f"{what}: energy created: lost {out['energy_lost']} of {k0}")
+
+
 def load_package() -> None:
     """Imports billiard_contact once libFuzzer runs (the first input): atheris loads its
     libFuzzer with local symbols, made global here (RTLD_NOLOAD only promotes the loaded
@@ -397,7 +589,13 @@ def test_one_input(data: bytes) -> None:
     if bc is None:
         load_package()
     fdp = atheris.FuzzedDataProvider(data)
-    surface = fdp.ConsumeIntInRange(0, 7)
+    surface = fdp.ConsumeIntInRange(0, 11)
+    if surface in (8, 9):
+        surface_plane(fdp)
+        return
+    if surface in (10, 11):
+        surface_cushion(fdp)
+        return
     if surface == 0:
         draw_ball(fdp)
         return

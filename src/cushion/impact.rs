@@ -188,6 +188,11 @@ struct Run<'a> {
     var: Var,
     /// Rate of decrease of the running-out slip when its run-out began.
     rho_entry: f64,
+    /// The impulse (scaled) at which a run-out was given up because its steps fell below
+    /// [`MIN_RUN_OUT_STEP`]: a slip that passes close to zero without reaching it (its rate
+    /// of decrease turns within any step of -ln |slip|). The run goes on in P_I from there
+    /// instead of starting the same run-out again, which cycled without end.
+    run_out_abandoned: Option<f64>,
     /// Next step in P_I, and in -ln |slip|.
     h_p: f64,
     h_nu: f64,
@@ -411,6 +416,7 @@ fn attempt(
         inconsistent: false,
         var: Var::Impulse,
         rho_entry: 0.0,
+        run_out_abandoned: None,
         h_p: 0.0,
         h_nu: 0.0,
         tail: settings.rtol().min(settings.atol()).min(TAIL_MAX),
@@ -734,7 +740,9 @@ impl Run<'_> {
                     return Ok(StepEnd::SlipZero);
                 }
                 let k = if stop[0] <= stop[1] { 0 } else { 1 };
-                if stop[k] < (RUN_OUT_TRIGGER * self.h_p).min(RUN_OUT_RANGE * self.p_scale) {
+                if stop[k] < (RUN_OUT_TRIGGER * self.h_p).min(RUN_OUT_RANGE * self.p_scale)
+                    && self.run_out_abandoned != Some(self.p)
+                {
                     self.start_run_out(k, rho[k]);
                     return Ok(StepEnd::Switch);
                 }
@@ -780,6 +788,7 @@ impl Run<'_> {
                 }
                 if self.h_nu < MIN_RUN_OUT_STEP {
                     self.var = Var::Impulse;
+                    self.run_out_abandoned = Some(self.p);
                     return Ok(StepEnd::Switch);
                 }
                 self.h_nu.min(remaining)
