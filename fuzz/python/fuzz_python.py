@@ -410,6 +410,17 @@ def kinetic(m: float, r: float, alpha: float, v, w) -> np.ndarray:
     return 0.5 * m * np.sum(v * v, axis=-1) + 0.5 * alpha * m * r * r * np.sum(w * w, axis=-1)
 
 
+def energy_in(model, args: dict, out: dict):
+    """The kinetic energy brought in, row by row as the call used the inputs (a (3,) input
+    serves every row), or None when the inputs are not real numbers."""
+    try:
+        v0 = np.broadcast_to(np.asarray(args["v"], float), np.shape(out["v"]))
+        w0 = np.broadcast_to(np.asarray(args["w"], float), np.shape(out["w"]))
+    except (TypeError, ValueError):
+        return None
+    return kinetic(model.mass, model.radius, model.alpha, v0, w0)
+
+
 def check_shapes(out, spec: dict, n: int, single: bool, what: str) -> None:
     if not isinstance(out, dict) or set(out) != set(spec):
         raise Finding(f"{what}: keys {sorted(out) if isinstance(out, dict) else type(out)}")
@@ -454,43 +465,68 @@ def tolerance(call: dict, floor: float) -> float:
     return max(floor, 100 * r) if isinstance(r, float) and math.isfinite(r) else floor
 
 
+def draw_rtol(fdp: atheris.FuzzedDataProvider, call: dict, bounded: bool) -> None:
+    """Sometimes an rtol in `call`; a stepping run's kept >= 1e-12 (bounded work)."""
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        r = draw_value(fdp, 1e-8)
+        if bounded and isinstance(r, float) and 0 < r < 1e-12:
+            r = 1e-12  # the work of one input stays bounded
+        call["rtol"] = r
+
+
+def resolved(model, args: dict, call: dict, names: list, spec: dict, what: str):
+    """`model.resolve(**args, **call)` checked: a refusal naming an argument (None), or the
+    outputs of the keys and shapes of `spec`, finite where `spec` gives a width, with the
+    number of rows (None for a single impact)."""
+    try:
+        out = model.resolve(**args, **call)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, names + ["method", "rtol", "row"], what)
+        return None
+    if any(complex_imaginary(a) for a in args.values()):
+        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
+    shapes = [np.shape(a) for a in args.values()]
+    multi = [sh[0] for sh in shapes if len(sh) == 2]
+    rows = multi[0] if multi else None
+    check_shapes(out, spec, rows or 1, rows is None, what)
+    for name, width in spec.items():
+        if width is not None and name not in ("sticks", "lifts_off", "steps", "evaluations",
+                                              "stick_impulse"):
+            if not np.all(np.isfinite(out[name])):
+                raise Finding(f"{what}: {name} is not finite: {out[name]}")
+    return out, rows
+
+
+def constructed(cls, kw: dict, names: list):
+    """`cls(**kw)` and its repr, or None after a refusal that names a keyword."""
+    try:
+        model = cls(**kw)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, names, f"{cls.__name__}({kw})")
+        return None
+    repr(model)
+    return model
+
+
 def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     kw = draw_keywords(fdp, {"mass": M, "radius": R, "alpha": 0.4, "mu": 0.2,
                              "restitution": 0.8}, {"alpha", "restitution"})
-    try:
-        model = bc.BallPlane(**kw)
-    except Exception as e:  # noqa: BLE001
-        refusal(e, PLANE_ARGS, f"BallPlane({kw})")
+    model = constructed(bc.BallPlane, kw, PLANE_ARGS)
+    if model is None:
         return
-    repr(model)
     method = pick(fdp, METHODS) if fdp.ConsumeIntInRange(0, 3) == 0 else None
     stepping = method in ("rk4", "dopri5", "dop853", "closed-form")
     n = fdp.ConsumeIntInRange(1, 4) if stepping else pick(fdp, [1, 2, 3, 7, 64, 2048])
     single = n == 1 and fdp.ConsumeBool()
     rows = draw_rows(fdp, n, ["v", "w", "normal"], plane_row)
     args = {name: as_argument(fdp, a, single) for name, a in rows.items()}
-    call = {}
-    if method is not None:
-        call["method"] = method
-    if fdp.ConsumeIntInRange(0, 3) == 0:
-        r = draw_value(fdp, 1e-8)
-        if stepping and isinstance(r, float) and 0 < r < 1e-12:
-            r = 1e-12  # the work of one input stays bounded
-        call["rtol"] = r
+    call = {} if method is None else {"method": method}
+    draw_rtol(fdp, call, stepping)
     what = f"BallPlane({kw}).resolve({args}, {call})"
-    try:
-        out = model.resolve(**args, **call)
-    except Exception as e:  # noqa: BLE001
-        refusal(e, ["v", "w", "normal", "method", "rtol", "row"], what)
+    got = resolved(model, args, call, ["v", "w", "normal"], PLANE_OUT, what)
+    if got is None:
         return
-    if any(complex_imaginary(a) for a in args.values()):
-        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
-    shapes = [np.shape(a) for a in args.values()]
-    multi = [sh[0] for sh in shapes if len(sh) == 2]
-    check_shapes(out, PLANE_OUT, multi[0] if multi else 1, not multi, what)
-    for name in ("v", "w", "impulse", "tangential_impulse"):
-        if not np.all(np.isfinite(out[name])):
-            raise Finding(f"{what}: {name} is not finite: {out[name]}")
+    out, _ = got
     p, j = np.asarray(out["impulse"]), np.asarray(out["tangential_impulse"])
     if np.any(p < 0) or np.any(j < 0):
         raise Finding(f"{what}: a negative impulse: {p}, {j}")
@@ -498,12 +534,9 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     if np.any(j > model.mu * p * (1 + 1e-9) + 1e-300):
         raise Finding(f"{what}: friction impulse {j} above mu P = {model.mu * p}")
     # No energy created (e <= 1); both states as the call used them, rows broadcast.
-    try:
-        v0 = np.broadcast_to(np.asarray(args["v"], float), np.shape(out["v"]))
-        w0 = np.broadcast_to(np.asarray(args["w"], float), np.shape(out["w"]))
-    except (TypeError, ValueError):
+    k0 = energy_in(model, args, out)
+    if k0 is None:
         return
-    k0 = kinetic(model.mass, model.radius, model.alpha, v0, w0)
     k1 = kinetic(model.mass, model.radius, model.alpha, out["v"], out["w"])
     if np.any(k1 > k0 * (1 + tolerance(call, 1e-9)) + 1e-300):
         raise Finding(f"{what}: kinetic energy created: {k0} -> {k1}")
@@ -515,12 +548,9 @@ def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
                        {"alpha"})
     if fdp.ConsumeIntInRange(0, 3) == 0:
         kw["rule"] = pick(fdp, RULES) if fdp.ConsumeIntInRange(0, 7) else 1.0
-    try:
-        model = bc.BallCushion(**kw)
-    except Exception as e:  # noqa: BLE001
-        refusal(e, CUSHION_ARGS, f"BallCushion({kw})")
+    model = constructed(bc.BallCushion, kw, CUSHION_ARGS)
+    if model is None:
         return
-    repr(model)
     n = pick(fdp, [1, 1, 2, 3, 64]) if fdp.ConsumeIntInRange(0, 15) else 1
     single = n == 1 and fdp.ConsumeBool()
     rows = draw_rows(fdp, n, ["v", "w"], cushion_row)
@@ -528,44 +558,24 @@ def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
     call = {}
     if fdp.ConsumeIntInRange(0, 3) == 0:
         call["method"] = pick(fdp, [None, "dop853", "dopri5", "rk4", "closed-form", ""])
-    if fdp.ConsumeIntInRange(0, 3) == 0:
-        r = draw_value(fdp, 1e-8)
-        if isinstance(r, float) and 0 < r < 1e-12:
-            r = 1e-12
-        call["rtol"] = r
+    draw_rtol(fdp, call, True)
     if fdp.ConsumeIntInRange(0, 7) == 0:
         call["steps"] = pick(fdp, [None, 1, 10, 1000, 0, -1, 10**12, 2.5, "x"])
     what = f"BallCushion({kw}).resolve({args}, {call})"
-    try:
-        out = model.resolve(**args, **call)
-    except Exception as e:  # noqa: BLE001
-        refusal(e, ["v", "w", "method", "rtol", "steps", "row"], what)
+    got = resolved(model, args, call, ["v", "w", "steps"], CUSHION_OUT, what)
+    if got is None:
         return
-    if any(complex_imaginary(a) for a in args.values()):
-        known("complex input accepted, imaginary part dropped (should be a TypeError)", what)
-    shapes = [np.shape(a) for a in args.values()]
-    multi = [sh[0] for sh in shapes if len(sh) == 2]
-    rows_out = multi[0] if multi else 1
-    check_shapes(out, CUSHION_OUT, rows_out, not multi, what)
+    out, rows = got
     events = out["events"]
-    if not isinstance(events, list) or (multi and len(events) != rows_out):
+    if not isinstance(events, list) or (rows is not None and len(events) != rows):
         raise Finding(f"{what}: events {events!r}")
-    for name in ("v", "w", "impulse", "impulse_compression", "impulse_table",
-                 "work_compression", "work_restitution", "energy_lost"):
-        if not np.all(np.isfinite(out[name])):
-            raise Finding(f"{what}: {name} is not finite: {out[name]}")
     for name in ("impulse", "impulse_compression", "impulse_table", "work_compression",
                  "work_restitution"):
         if np.any(np.asarray(out[name]) < 0):
             raise Finding(f"{what}: {name} < 0: {out[name]}")
     if model.rule == "stronge":
-        try:
-            v0 = np.broadcast_to(np.asarray(args["v"], float), np.shape(out["v"]))
-            w0 = np.broadcast_to(np.asarray(args["w"], float), np.shape(out["w"]))
-        except (TypeError, ValueError):
-            return
-        k0 = kinetic(model.mass, model.radius, model.alpha, v0, w0)
-        if np.any(np.asarray(out["energy_lost"]) < -tolerance(call, 1e-7) * k0 - 1e-300):
+        k0 = energy_in(model, args, out)
+        if k0 is not None and np.any(np.asarray(out["energy_lost"]) < -tolerance(call, 1e-7) * k0 - 1e-300):
             raise Finding(f"{what}: energy created: lost {out['energy_lost']} of {k0}")
 
 
