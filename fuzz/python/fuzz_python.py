@@ -530,8 +530,8 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     p, j = np.asarray(out["impulse"]), np.asarray(out["tangential_impulse"])
     if np.any(p < 0) or np.any(j < 0):
         raise Finding(f"{what}: a negative impulse: {p}, {j}")
-    # Coulomb: J <= mu P (to rounding).
-    if np.any(j > model.mu * p * (1 + 1e-9) + 1e-300):
+    # Coulomb: J <= mu P (to rounding; a stepping method to its tolerance).
+    if np.any(j > model.mu * p * (1 + tolerance(call, 1e-9)) + 1e-300):
         raise Finding(f"{what}: friction impulse {j} above mu P = {model.mu * p}")
     # No energy created (e <= 1); both states as the call used them, rows broadcast.
     k0 = energy_in(model, args, out)
