@@ -488,7 +488,7 @@ def resolved(model, args: dict, call: dict, names: list, spec: dict, what: str):
     shapes = [np.shape(a) for a in args.values()]
     multi = [sh[0] for sh in shapes if len(sh) == 2]
     rows = multi[0] if multi else None
-    check_shapes(out, spec, rows or 1, rows is None, what)
+    check_shapes(out, spec, 1 if rows is None else rows, rows is None, what)
     for name, width in spec.items():
         if width is not None and name not in ("sticks", "lifts_off", "steps", "evaluations",
                                               "stick_impulse"):
