@@ -224,7 +224,14 @@ impl BallPlane {
         settings: &SolverSettings,
     ) -> Result<Row, Error> {
         let [v, w, n] = Self::inputs(views, i)?;
-        let hit = PlaneCollision::new(self.ball, self.contact, n, v, w)?;
+        // The library names the vectors as a scene file does; here they are v and w.
+        let hit = PlaneCollision::new(self.ball, self.contact, n, v, w).map_err(|e| {
+            renamed(
+                renamed(e, "incoming.plane.velocity", "v"),
+                "incoming.plane.spin",
+                "w",
+            )
+        })?;
         let out = solve_plane(&hit, &HalfSine::new(DURATION)?, settings, None)?;
         let r = &out.outcome.result;
         Ok(Row {

@@ -273,6 +273,14 @@ def test_bad_arrays():
         assert f"row {2500 - (3000 - len(rows))}:" in str(e.value)
     with pytest.raises(ValueError, match=r"^v\[0\] = NaN: the result is not finite"):
         plane.resolve(huge[2500], np.zeros(3), [0, 0, 1])
+    # By a method, through the library's plane collision: a velocity whose length
+    # overflows (1.8e308, -1.5e308) is refused naming v (found by the Python fuzz target,
+    # which saw the library's own name for the equivalent pair's state).
+    for method in ("rk4", "dop853"):
+        with pytest.raises(ValueError, match=r"^v = \[.*\]: finite numbers with a finite length"):
+            plane.resolve([1.79769313e308, -5.74, -1.54390116e308], np.zeros(3), [1, 1, 1], method=method)
+        with pytest.raises(ValueError, match=r"^w = \[.*\]: finite numbers with a finite length"):
+            plane.resolve([-0.3, 0, -1], [1.79769313e308, -5.74, -1.54390116e308], [0, 0, 1], method=method)
 
 
 COPIES = [

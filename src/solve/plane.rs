@@ -116,11 +116,14 @@ impl PlaneCollision {
             ("incoming.plane.velocity", velocity),
             ("incoming.plane.spin", spin),
         ] {
-            if !x.iter().all(|c| c.is_finite()) {
+            // The length too: the equivalent pair's state is the vector turned into the
+            // plane's axes, whose components overflow where |x| does (1.8e308 and -1.5e308
+            // turned gave an infinite U, refused under the pair's own field name).
+            if !(x.iter().all(|c| c.is_finite()) && x.norm().is_finite()) {
                 return Err(Error::invalid(
                     field,
                     format!("[{}, {}, {}]", x.x, x.y, x.z),
-                    "finite numbers",
+                    "finite numbers with a finite length",
                 ));
             }
         }
