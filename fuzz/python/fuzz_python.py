@@ -77,12 +77,6 @@ OUT_VECTORS = ["va", "wa", "vb", "wb"]
 OUT_SCALARS = ["impulse", "tangential_impulse", "sticks", "throw_angle_deg"]
 
 
-CONVERSION = re.compile(
-    r"could not convert|float\(\) argument|setting an array element|invalid literal|"
-    r"could not be converted|not supported for|cannot convert|Could not convert"
-)
-
-
 class Finding(Exception):
     """A broken promise."""
 
@@ -120,10 +114,6 @@ def refusal(e: BaseException, names: list[str], what: str) -> None:
             # A scalar keyword of another type names itself and the type expected
             # ("mass: expected a real number (float or int), got str"): PyO3's own
             # extraction ("must be real number, not str") is a finding.
-            if what.startswith("resolve_lab") and CONVERSION.search(msg):
-                # numpy's own conversion of a non-numeric array-like.
-                known("array of non-numbers: numpy's error names no argument", f"{what}: {msg}")
-                return
             raise Finding(f"{what}: the refusal names no argument: {type(e).__name__}: {msg}") from e
         return
     raise Finding(f"{what}: {type(e).__name__}: {e}") from e

@@ -98,6 +98,24 @@ impl LabRows for Inputs {
     }
 }
 
+/// numpy's own refusal of an array-like (a ragged list: "setting an array element with a
+/// sequence...", an object that is no number) with the argument's name in front.
+#[cold]
+fn naming(py: Python<'_>, name: &str, e: PyErr) -> PyErr {
+    let message = e
+        .value(py)
+        .str()
+        .map_or_else(|_| String::new(), |m| m.to_string());
+    let text = format!("{name}: {}", message.replace('\n', " "));
+    if e.is_instance_of::<PyTypeError>(py) {
+        PyTypeError::new_err(text)
+    } else if e.is_instance_of::<PyValueError>(py) {
+        PyValueError::new_err(text)
+    } else {
+        e
+    }
+}
+
 #[cold]
 #[inline(never)]
 pub(crate) fn non_finite(all: &[Vector3<f64>; 7]) -> Error {
@@ -169,7 +187,9 @@ pub(crate) fn float_array<'py>(
                 0,
                 std::ptr::null_mut(),
             );
-            Bound::from_owned_ptr_or_err(py, ptr)?.cast_into::<PyUntypedArray>()?
+            Bound::from_owned_ptr_or_err(py, ptr)
+                .map_err(|e| naming(py, name, e))?
+                .cast_into::<PyUntypedArray>()?
         },
     };
     let dtype = array.dtype();

@@ -203,6 +203,27 @@ def test_non_real_arrays_raise_type_error_naming_the_argument(arg, value, shown)
         model.resolve_lab(**rows)
 
 
+def test_what_numpy_cannot_convert_is_named():
+    # A ragged list, or an object numpy cannot make an array of, raises numpy's own error
+    # with the argument's name in front (found by the Python fuzz target: BallCushion's v
+    # = [[1, 2, 3], [4, 5]] raised "setting an array element with a sequence..." alone).
+    cushion = bc.BallCushion(mass=M, radius=R, height=1.4 * R, mu_cushion=0.2, mu_table=0.2, restitution=0.9)
+    plane = bc.BallPlane(mass=M, radius=R, mu=0.2)
+    model = bc.BallBall(mass=M, radius=R, mu=0.06)
+    pa, pb = TOUCHING
+    ragged = [[1, 2, 3], [4, 5]]
+    for call, name in [
+        (lambda: cushion.resolve(ragged, [0, 0, 0]), "v"),
+        (lambda: cushion.resolve([0, 1, 0], ragged), "w"),
+        (lambda: plane.resolve([0, 0, -1], [0, 0, 0], ragged), "normal"),
+        (lambda: model.resolve_lab(pa, ragged, [0, 0, 0], pb, [0, 0, 0], [0, 0, 0]), "va"),
+    ]:
+        with pytest.raises(ValueError) as e:
+            call()
+        assert str(e.value).startswith(f"{name}: setting an array element with a sequence"), str(e.value)
+        assert "\n" not in str(e.value)
+
+
 @pytest.mark.parametrize("dtype", [bool, np.int8, np.uint16, np.int32, np.int64, np.float16, np.float32, ">f8", np.longdouble])
 def test_bool_integer_and_other_float_arrays_are_accepted(dtype):
     model = bc.BallBall(mass=M, radius=R, mu=0.06)
