@@ -1,6 +1,7 @@
 //! Figures (SVG and PNG) drawn with `plotters` without system fonts: the DejaVu Sans font is
 //! embedded and registered once under the family name `sans-serif`.
 
+pub(crate) mod angle_panel;
 pub(crate) mod cushion;
 pub(crate) mod paths;
 pub(crate) mod rebound;

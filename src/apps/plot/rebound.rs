@@ -5,7 +5,7 @@
 //! and side spin.
 
 use super::style::Drawn;
-use super::sweep::colour;
+use super::angle_panel::{self, Axes, Shot};
 use super::FONT;
 use crate::apps::rebound::{curves, spin_name, ReboundRow};
 use crate::base::error::Error;
@@ -134,54 +134,27 @@ fn draw_panel<DB: DrawingBackend>(
     q: &Quantity,
     curves: &[&[ReboundRow]],
 ) -> Drawn<DB> {
-    let ((x0, x1), (y0, y1)) = ranges(q, curves);
-    let mut chart = ChartBuilder::on(area)
-        .caption(kind, (FONT, 17))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart
-        .configure_mesh()
-        .x_desc("incidence angle (deg)")
-        .y_desc(q.label)
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 13))
-        .light_line_style(WHITE.mix(0.0))
-        .bold_line_style(BLACK.mix(0.08))
-        .draw()?;
-    if q.mirror {
-        let grey = RGBColor(150, 150, 150);
-        chart.draw_series(LineSeries::new([(x0, x0), (x1, x1)], grey.stroke_width(1)))?;
+    let (x, y) = ranges(q, curves);
+    let axes = Axes {
+        x_desc: "incidence angle (deg)",
+        y_desc: q.label,
+        x,
+        y,
+        diagonal: q.mirror,
+    };
+    angle_panel::draw(area, kind, &axes, curves, q.value)
+}
+
+impl Shot for ReboundRow {
+    fn speed(&self) -> f64 {
+        self.shot.speed
     }
-    let sides: Vec<f64> = curves.iter().map(|c| c[0].shot.side).collect();
-    let with_side = sides.iter().any(|s| *s != sides[0]);
-    for (i, c) in curves.iter().enumerate() {
-        let colour = colour(i);
-        let shot = &c[0].shot;
-        let label = if with_side {
-            format!("{} m/s, side {}", shot.speed, shot.side)
-        } else {
-            format!("{} m/s", shot.speed)
-        };
-        let pts: Vec<(f64, f64)> = c
-            .iter()
-            .filter_map(|r| (q.value)(r).map(|v| (r.shot.incidence_deg, v)))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
+    fn side(&self) -> f64 {
+        self.shot.side
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .margin(6)
-        .legend_area_size(22)
-        .label_font((FONT, 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
+    fn angle(&self) -> f64 {
+        self.shot.incidence_deg
+    }
 }
 
 /// Writes the chart as SVG to `svg` and PNG to `png`, each replacing its file only once

@@ -2,6 +2,7 @@
 //! row the throw (degrees) against the cut angle (degrees), the bottom row the spin given
 //! to the object ball (rad/s), one line per speed and side spin.
 
+use super::angle_panel::{self, Axes, Shot};
 use super::FONT;
 use crate::apps::sweep::{curves, SweepRow};
 use crate::base::error::Error;
@@ -55,21 +56,6 @@ fn spin_kinds(rows: &[SweepRow]) -> Vec<String> {
 pub(crate) fn size(rows: &[SweepRow]) -> (u32, u32) {
     let columns = spin_kinds(rows).len().max(1) as u32;
     ((PANEL.0 * columns).max(MIN_WIDTH), HEADER + 2 * PANEL.1)
-}
-
-/// A curve's colour: by its index among the curves of one panel (also the rebound chart's).
-pub(crate) fn colour(i: usize) -> RGBColor {
-    const PALETTE: [RGBColor; 8] = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-        RGBColor(148, 103, 189),
-        RGBColor(255, 127, 14),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(23, 190, 207),
-    ];
-    PALETTE[i % PALETTE.len()]
 }
 
 /// One quantity drawn against the cut angle.
@@ -159,50 +145,27 @@ fn draw_panel<DB: DrawingBackend>(
     q: &Quantity,
     curves: &[&[SweepRow]],
 ) -> Drawn<DB> {
-    let ((x0, x1), (y0, y1)) = ranges(q, curves);
-    let mut chart = ChartBuilder::on(area)
-        .caption(kind, (FONT, 17))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
-    chart
-        .configure_mesh()
-        .x_desc("cut angle (deg)")
-        .y_desc(q.label)
-        .label_style((FONT, 12))
-        .axis_desc_style((FONT, 13))
-        .light_line_style(WHITE.mix(0.0))
-        .bold_line_style(BLACK.mix(0.08))
-        .draw()?;
-    let sides: Vec<f64> = curves.iter().map(|c| c[0].shot.side).collect();
-    let with_side = sides.iter().any(|s| *s != sides[0]);
-    for (i, c) in curves.iter().enumerate() {
-        let colour = colour(i);
-        let shot = &c[0].shot;
-        let label = if with_side {
-            format!("{} m/s, side {}", shot.speed, shot.side)
-        } else {
-            format!("{} m/s", shot.speed)
-        };
-        let pts: Vec<(f64, f64)> = c
-            .iter()
-            .filter_map(|r| (q.value)(r).map(|v| (r.shot.cut_deg, v)))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
+    let (x, y) = ranges(q, curves);
+    let axes = Axes {
+        x_desc: "cut angle (deg)",
+        y_desc: q.label,
+        x,
+        y,
+        diagonal: false,
+    };
+    angle_panel::draw(area, kind, &axes, curves, q.value)
+}
+
+impl Shot for SweepRow {
+    fn speed(&self) -> f64 {
+        self.shot.speed
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .margin(6)
-        .legend_area_size(22)
-        .label_font((FONT, 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
+    fn side(&self) -> f64 {
+        self.shot.side
+    }
+    fn angle(&self) -> f64 {
+        self.shot.cut_deg
+    }
 }
 
 /// Writes the chart as SVG to `svg` and as PNG to `png`, each replacing its file only once
