@@ -513,7 +513,7 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     call = {} if method is None else {"method": method}
     draw_rtol(fdp, call, stepping)
     what = f"BallPlane({kw}).resolve({args}, {call})"
-    got = resolved(model, args, call, ["v", "w", "normal"], PLANE_OUT, what)
+    got = resolved(model, args, call, ["v", "w", "normal"] + PLANE_ARGS, PLANE_OUT, what)
     if got is None:
         return
     out, _ = got
@@ -562,7 +562,9 @@ def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
     if fdp.ConsumeIntInRange(0, 7) == 0:
         call["steps"] = pick(fdp, [None, 1, 10, 1000, 0, -1, 10**12, 2.5, "x"])
     what = f"BallCushion({kw}).resolve({args}, {call})"
-    got = resolved(model, args, call, ["v", "w", "steps"], CUSHION_OUT, what)
+    # A refusal of the impact may name a keyword of the model (friction that wedges the
+    # ball names mu_cushion).
+    got = resolved(model, args, call, ["v", "w", "steps"] + CUSHION_ARGS, CUSHION_OUT, what)
     if got is None:
         return
     out, rows = got
