@@ -4,8 +4,8 @@
 //! incidence), the bottom row the rebound speed over the incoming speed; one line per speed
 //! and side spin.
 
-use super::style::Drawn;
 use super::angle_panel::{self, Axes, Shot};
+use super::style::Drawn;
 use super::FONT;
 use crate::apps::rebound::{curves, spin_name, ReboundRow};
 use crate::base::error::Error;
