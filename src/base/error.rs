@@ -191,6 +191,21 @@ pub enum Error {
     },
 }
 
+/// A value echoed in a message, kept to one line: control characters (a newline or tab
+/// inside a scene's string) are written as their escapes (`\n`, `\t`).
+fn one_line(s: &str) -> String {
+    s.chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_debug().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect()
+}
+
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn invalid(
@@ -200,7 +215,7 @@ impl Error {
     ) -> Self {
         Error::InvalidParameter {
             field: field.into(),
-            value: readable_numbers(&value.to_string()),
+            value: readable_numbers(&one_line(&value.to_string())),
             expected: readable_numbers(&expected.into()),
         }
     }
@@ -249,6 +264,21 @@ impl Error {
 mod tests {
     use super::*;
     use crate::base::method::Method;
+
+    /// A value with a newline and a tab (a scene string `"new\nton"`) is echoed on one line,
+    /// its control characters written as escapes; other characters are kept as given.
+    #[test]
+    fn an_echoed_value_stays_one_line() {
+        let e = Error::invalid(
+            "cushion.rule",
+            "\"new\nton\tx é\"",
+            "\"stronge\" or \"newton\"",
+        );
+        assert_eq!(
+            e.to_string(),
+            r#"cushion.rule = "new\nton\tx é": "stronge" or "newton""#
+        );
+    }
 
     /// Exit codes: the variants that replaced an InvalidParameter or an Io (kind Other)
     /// stay bad input (2); the integrator's failures stay failed runs (1).
