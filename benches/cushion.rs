@@ -3,7 +3,8 @@
 //! incidence 10 to 80 degrees; 1 to 6 m/s), for several methods and tolerances, with the
 //! largest rebound-velocity error of each against a reference at tolerance 1e-13.
 //! `cargo bench --bench cushion`; docs/cushion.md quotes the numbers. The speed target:
-//! an error of 1e-8 (relative to the speed) in at most 20 us an impact.
+//! an error of 1e-8 (relative to the speed) in at most 20 us an impact. The error is
+//! |v' - v'_ref| / |v| over the shots, the reference dop853 at rtol = atol = 1e-13.
 
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{
@@ -83,12 +84,17 @@ fn bench(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500))
         .sample_size(10);
     let mut rows = Vec::new();
+    // The target's error 1e-8 is reached (largest error <= 1e-8) by dopri5 at 7e-9 and
+    // dop853 at 2e-8 (dopri5 at 1e-8 lands at 1.25e-8); the loose ones show how the cost
+    // falls with the tolerance.
     for (method, tol) in [
         (Method::Dop853, 1e-10),
+        (Method::Dop853, 2e-8),
         (Method::Dop853, 1e-8),
-        (Method::Dop853, 1e-7),
         (Method::Dopri5, 1e-8),
-        (Method::Dopri5, 1e-7),
+        (Method::Dopri5, 7e-9),
+        (Method::Dopri5, 1e-4),
+        (Method::Dopri5, 1e-2),
     ] {
         let s = settings(method, tol);
         let mut worst = (0.0f64, String::new());

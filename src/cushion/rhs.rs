@@ -63,8 +63,8 @@ pub(crate) struct Rhs {
     pub(crate) c: f64,
     /// sin theta.
     pub(crate) s: f64,
-    /// I = alpha m r^2.
-    pub(crate) alpha: f64,
+    /// 1 / alpha, with I = alpha m r^2 (a reciprocal: the evaluation multiplies by it).
+    pub(crate) inv_alpha: f64,
     /// Friction at the cushion.
     pub(crate) mu_i: f64,
     /// Friction at the cloth.
@@ -105,10 +105,19 @@ pub(crate) fn normal_velocity(rhs: &Rhs, y: &State) -> f64 {
 
 /// The unit vector along `s`, or `seed` when `s` has no direction.
 fn direction(s: [f64; 2], seed: [f64; 2], origin: [f64; 2]) -> [f64; 2] {
-    let s = [s[0] - origin[0], s[1] - origin[1]];
-    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
-    if n > DIRECTION_FLOOR {
-        [s[0] / n, s[1] / n]
+    unit([s[0] - origin[0], s[1] - origin[1]], seed)
+}
+
+/// The unit vector along `s`, or `seed` when |s| <= DIRECTION_FLOOR. As s sqrt(q) / q
+/// (q = |s|^2): the square root and the reciprocal run side by side, where s / sqrt(q)
+/// waits for the root before it divides (the evaluation is a chain of dependent
+/// operations, and these two were a third of its latency).
+#[inline]
+fn unit(s: [f64; 2], seed: [f64; 2]) -> [f64; 2] {
+    let q = s[0] * s[0] + s[1] * s[1];
+    if q > DIRECTION_FLOOR * DIRECTION_FLOOR {
+        let k = q.sqrt() * (1.0 / q);
+        [s[0] * k, s[1] * k]
     } else {
         seed
     }
@@ -126,7 +135,7 @@ impl Rhs {
             -s + f_i[1] * c + n_c,
         ];
         // r_I x f_I = (F2, s F1, -c F1); r_C x f_C = (G2, -G1, 0).
-        let a = 1.0 / self.alpha;
+        let a = self.inv_alpha;
         let dw = [
             (f_i[1] + f_c[1]) * a,
             (s * f_i[0] - f_c[0]) * a,
@@ -323,7 +332,72 @@ impl Rhs {
     }
 
     /// The forces and derivatives at `y` for `modes`.
+    #[inline]
     pub(crate) fn eval(&self, modes: &Modes, y: &State) -> Eval {
+        if let Some(e) = self.eval_sliding(modes, y) {
+            return e;
+        }
+        self.eval_general(modes, y)
+    }
+
+    /// The common state, both contacts sliding on the cloth with their slips past any
+    /// seed's floor, without the general path's matches and stuck-friction solve (the same
+    /// arithmetic); None otherwise.
+    #[inline]
+    fn eval_sliding(&self, modes: &Modes, y: &State) -> Option<Eval> {
+        let (
+            Friction::Sliding {
+                seed: seed_i,
+                origin: o_i,
+                floor: floor_i,
+            },
+            Friction::Sliding {
+                seed: seed_c,
+                origin: o_c,
+                floor: floor_c,
+            },
+            false,
+        ) = (modes.cushion, modes.table, modes.airborne)
+        else {
+            return None;
+        };
+        let si = slip_cushion(self, y);
+        let sc = slip_table(y);
+        let ri = [si[0] - o_i[0], si[1] - o_i[1]];
+        let rc = [sc[0] - o_c[0], sc[1] - o_c[1]];
+        let qi = ri[0] * ri[0] + ri[1] * ri[1];
+        let qc = rc[0] * rc[0] + rc[1] * rc[1];
+        if (floor_i > 0.0 && qi <= floor_i * floor_i) || (floor_c > 0.0 && qc <= floor_c * floor_c)
+        {
+            return None;
+        }
+        let dir_i = unit(ri, seed_i);
+        let dir_c = unit(rc, seed_c);
+        let f_i = [-self.mu_i * dir_i[0], -self.mu_i * dir_i[1]];
+        let n_c = self.s - f_i[1] * self.c;
+        let k = -self.mu_c * n_c;
+        let f_c = [k * dir_c[0], k * dir_c[1]];
+        let (mut dv, dw) = self.motion(f_i, n_c, f_c);
+        dv[2] = 0.0;
+        Some(Eval {
+            dy: [
+                dv[0],
+                dv[1],
+                dv[2],
+                dw[0],
+                dw[1],
+                dw[2],
+                n_c,
+                normal_velocity(self, y),
+            ],
+            f_i,
+            f_c,
+            n_c,
+        })
+    }
+
+    /// [`Rhs::eval`] for any state of the contacts.
+    fn eval_general(&self, modes: &Modes, y: &State) -> Eval {
         let dir_i = self.friction_direction(modes, y, 0);
         let dir_c = if modes.airborne {
             [0.0, 0.0]
