@@ -312,8 +312,16 @@ fn non_finite_numbers_anywhere() {
             "1e160",
             "finite",
             "(m = 0.17 kg, r = 0.028575 m)",
-            "speeds below 3.3e154 m/s",
+            "to 3.3e154 m/s",
         ],
+    );
+    // So small that m v^2 underflows to zero: 1e-170 m/s squared is 1e-340, below the
+    // smallest double, and the ball must not pass for one at rest. The lower end is where
+    // m v^2 is the smallest normal double: sqrt(2.2251e-308 / 0.17) = 3.6178e-154 m/s.
+    cm(
+        "u = [0.5, 0.25, 0.0]\nomega_a = [-17.5, 35.0, 0.0]",
+        "u = [1e-170, 0.0, 0.0]\nomega_a = [0.0, 0.0, 0.0]",
+        &["incoming", "1e-170", "from 3.6e-154 to 3.3e154 m/s"],
     );
     let unequal = edit(
         CM,
@@ -330,7 +338,7 @@ fn non_finite_numbers_anywhere() {
             "incoming",
             "1e160",
             "(m_A = 0.17 kg, r_A = 0.028575 m, m_B = 0.16 kg, r_B = 0.028 m)",
-            "speeds below 3.3e154 m/s",
+            "to 3.3e154 m/s",
         ],
     );
 }

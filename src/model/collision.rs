@@ -7,6 +7,10 @@ use crate::model::params::{BallPair, Contact, Friction};
 use crate::model::state::{planar_length, CmState};
 use nalgebra::Vector2;
 
+/// Below this speed (m/s) the squares of the norms may underflow (the square root of the
+/// smallest normal double, 1.5e-154, with a margin), and the norms are taken with hypot.
+const SQUARES_UNDERFLOW: f64 = 1e-150;
+
 /// Natural scales of a collision (docs/model.md#scales-and-scaled-errors): errors are
 /// reported relative to them and the integrator works in the variables they make
 /// dimensionless.
@@ -84,7 +88,8 @@ impl Collision {
         let rb = balls.b.radius();
         // One square root for the three norms (sqrt is monotone, so the maximum is the
         // same); |U(0)| <= |U| needs no term of its own. Where the squares overflow (above
-        // ~1e154) the norms are taken with hypot instead.
+        // ~1e154) or underflow (below ~1e-154, where 1e-170 m/s squared is 0 and the ball
+        // would pass for one at rest) the norms are taken with hypot instead.
         let mut speed = s0.max(
             incoming
                 .u_cm
@@ -93,7 +98,7 @@ impl Collision {
                 .max(rb * rb * incoming.omega_b.norm_squared())
                 .sqrt(),
         );
-        if !speed.is_finite() {
+        if !(speed.is_finite() && speed >= SQUARES_UNDERFLOW) {
             let norm = |v: &nalgebra::Vector3<f64>| v.x.hypot(v.y).hypot(v.z);
             speed = s0
                 .max(norm(&incoming.u_cm))
@@ -115,7 +120,11 @@ impl Collision {
                 ),
                 format!(
                     "magnitudes whose scales v/r, m v, m v^2 and m v r are finite, normal \
-                     double-precision numbers (here speeds below {:.1e} m/s)",
+                     double-precision numbers (here 0 or speeds from {:.1e} to {:.1e} m/s)",
+                    (f64::MIN_POSITIVE / m)
+                        .sqrt()
+                        .max(f64::MIN_POSITIVE / (m * r))
+                        .max(f64::MIN_POSITIVE * r),
                     (f64::MAX.sqrt() / m.sqrt())
                         .min(f64::MAX / (m * r))
                         .min(f64::MAX * r)
