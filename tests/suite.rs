@@ -54,6 +54,7 @@ mod properties_invariants;
 mod stick_half_sine;
 mod table_closed_forms;
 mod tangential;
+mod tangential_pair;
 mod theta_constant_states;
 mod throw_stun_cuts;
 mod throw_sweep;
