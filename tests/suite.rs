@@ -18,6 +18,7 @@ mod scenes;
 mod bad_input_cli;
 mod bad_input_sizes;
 mod batch_rows;
+mod chung_ooi;
 mod cli_batch_values;
 mod cli_contact_law_options;
 mod cli_error_messages;
