@@ -99,6 +99,9 @@ fn pair_impact(case: &Case, ratio: f64, deg: f64) -> Result<CompliantPairOutcome
     resolve_sphere_sphere_compliant(&ball_a, &ball_b, Vector3::x(), case.mu, 1.0, &settings()?)
 }
 
+/// The points (Psi_1, Psi_2) of one pair sweep, with its colour and radius ratio.
+type PairSeries = (RGBColor, f64, Vec<(f64, f64)>);
+
 /// The radius ratios r_B / r_A of the pairs drawn: identical spheres, and B twice A.
 const RATIOS: [f64; 2] = [1.0, 2.0];
 
@@ -229,7 +232,7 @@ pub fn run() -> Result<(), Error> {
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     curves: &[(&Case, Vec<(f64, f64)>)],
-    pairs: &[(RGBColor, f64, Vec<(f64, f64)>)],
+    pairs: &[PairSeries],
     trace: &CompliantOutcome,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();

@@ -158,7 +158,9 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, shots: &[Shot]) -> Re
     root.fill(&WHITE).map_err(e)?;
     let (left, right) = root.split_horizontally(600);
     type Pick = fn(&Shot) -> [f64; 2];
-    let panels: [(&DrawingArea<DB, Shift>, &str, &str, Pick, f64); 2] = [
+    /// A panel: its area, title, y label, what it draws and its y range's top.
+    type Panel<'a, DB> = (&'a DrawingArea<DB, Shift>, &'a str, &'a str, Pick, f64);
+    let panels: [Panel<DB>; 2] = [
         (
             &left,
             "Throw, mu = 0.06, e = 1",

@@ -24,8 +24,11 @@ fn sphere(rho: f64, r: f64) -> Ball {
     Ball::new(rho * 4.0 / 3.0 * PI * r.powi(3), r, ALPHA_SOLID).unwrap()
 }
 
+/// What the kernel gives for each quantity the file names, for one case.
+type Measured = Box<dyn Fn(&str) -> f64>;
+
 /// One case: what the kernel gives for each quantity the file names.
-fn measure(f: &[&str], num: &dyn Fn(usize) -> f64) -> Box<dyn Fn(&str) -> f64> {
+fn measure(f: &[&str], num: &dyn Fn(usize) -> f64) -> Measured {
     let (mu, v_n, v_t, w1, w2) = (num(11), num(12), num(13), num(14), num(15));
     let ball = sphere(num(5), num(6));
     let mat = Material::new(num(3), num(4)).unwrap();
@@ -86,7 +89,7 @@ fn chung_ooi_benchmark_rows() {
     let header = lines.next().unwrap();
     assert!(header.starts_with("test,case,partner"), "{header}");
     let mut seen = std::collections::BTreeSet::new();
-    let mut case: Option<(String, Box<dyn Fn(&str) -> f64>)> = None;
+    let mut case: Option<(String, Measured)> = None;
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 20, "{line}");

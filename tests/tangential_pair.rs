@@ -132,7 +132,6 @@ fn rigid(a: &Ball, b: &Ball, mu: f64, s: CmState) -> ([Vector3<f64>; 2], CmState
     };
     let c = Collision::new(pair, contact, Effects::default(), s).unwrap();
     let out = ClosedForm::new(&c).result;
-    assert!(out.sticks, "the rigid reference must stick");
     let total = a.mass() + b.mass();
     let va = 2.0 * b.mass() / total * s.u_cm;
     let vb = -2.0 * a.mass() / total * s.u_cm;
@@ -169,6 +168,17 @@ fn tangential_pair_converges_to_the_rigid_stick_rule() {
         Vector3::new(3.0, -4.0, 0.0),
     );
     let ([va, vb], rigid_out) = rigid(&a, &b, mu, s);
+    let rigid_sticks = {
+        let pair = BallPair::new(a, b);
+        let contact = Contact {
+            friction: Friction::constant(mu).unwrap(),
+            impulse: ImpulseRule::restitution(1.0).unwrap(),
+        };
+        ClosedForm::new(&Collision::new(pair, contact, Effects::default(), s).unwrap())
+            .result
+            .sticks
+    };
+    assert!(rigid_sticks, "the rigid reference must stick");
     let pa = body(a, resin.0, resin.1, va, s.omega_a);
     let pb = body(b, resin.0, resin.1, vb, s.omega_b);
     let p_in = momentum(&[pa, pb]);
@@ -316,4 +326,34 @@ fn tangential_pair_refuses_bad_inputs() {
         field(resolve_sphere_sphere_compliant(&a, &nan, x, 0.1, 1.0, &s)),
         "incoming.spin_b"
     );
+}
+
+/// A rolling cue ball's cut shot (docs/throw.md#tangential-compliance): the slip holds the
+/// whole cue-ball speed and never stops, so the compliant contact is the rigid closed form
+/// (gross sliding, eqs 24-35) for every shear stiffness: two resin pool balls, mu = 0.06,
+/// 1.341 m/s at cuts of 3, 10 and 20 degrees, the outgoing state to 1e-8 of the speed.
+#[test]
+fn tangential_pair_rolling_cut_shot_is_the_rigid_contact() {
+    let ball = Ball::new(0.17, 0.028575, ALPHA_SOLID).unwrap();
+    let v = 1.341;
+    for cut in [3.0f64, 10.0, 20.0] {
+        let c = cut.to_radians();
+        // In the frame (n = x from A to B, z up): the cue ball's velocity makes the angle
+        // `cut` with the line of centres, u = (v_A - v_B) / 2 with B at rest.
+        let vel = v * Vector3::new(c.cos(), -c.sin(), 0.0);
+        let u = vel / 2.0;
+        // Rolling on the cloth (its contact at -r z at rest): w = (z x v) / r.
+        let w = Vector3::z().cross(&vel) / ball.radius();
+        let s = CmState::new(u, w, Vector3::zeros());
+        let ([va, vb], rigid_out) = rigid(&ball, &ball, 0.06, s);
+        let pa = body(ball, 5.4e9, 0.34, va, w);
+        let pb = body(ball, 5.4e9, 0.34, vb, Vector3::zeros());
+        for factor in [1.0, 100.0] {
+            let out =
+                resolve_sphere_sphere_compliant(&pa, &pb, Vector3::x(), 0.06, factor, &tight())
+                    .unwrap();
+            let d = distance(&ball, &ball, &out, &rigid_out, v);
+            assert!(d < 1e-8, "cut {cut}, factor {factor}: {d:e}");
+        }
+    }
 }
