@@ -5,24 +5,11 @@
 //! contact must reproduce exactly once the spring slides from first touch to the end
 //! (tests 4 to 8). The references were computed from those formulas, not by this crate.
 
+use crate::common::compliant::{sphere, tight};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
-use std::f64::consts::PI;
 
 const CSV: &str = include_str!("../data/chung_ooi/benchmark.csv");
-
-fn tight() -> SolverSettings {
-    SolverSettings::default()
-        .with_rtol(1e-11)
-        .unwrap()
-        .with_atol(1e-11)
-        .unwrap()
-}
-
-/// A solid sphere of density `rho` (kg/m3) and radius `r` (m).
-fn sphere(rho: f64, r: f64) -> Ball {
-    Ball::new(rho * 4.0 / 3.0 * PI * r.powi(3), r, ALPHA_SOLID).unwrap()
-}
 
 /// What the kernel gives for each quantity the file names, for one case.
 type Measured = Box<dyn Fn(&str) -> f64>;

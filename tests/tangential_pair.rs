@@ -6,22 +6,9 @@
 //! spring must approach, conservation of momentum, the energy, and two exact equivalences
 //! with the sphere-plane kernel.
 
+use crate::common::compliant::{hertz, sphere, tight};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
-use std::f64::consts::PI;
-
-/// A solid sphere of density `rho` (kg/m3) and radius `r` (m).
-fn sphere(rho: f64, r: f64) -> Ball {
-    Ball::new(rho * 4.0 / 3.0 * PI * r.powi(3), r, ALPHA_SOLID).unwrap()
-}
-
-fn tight() -> SolverSettings {
-    SolverSettings::default()
-        .with_rtol(1e-11)
-        .unwrap()
-        .with_atol(1e-11)
-        .unwrap()
-}
 
 fn body(ball: Ball, e: f64, nu: f64, v: Vector3<f64>, w: Vector3<f64>) -> CompliantSphere {
     CompliantSphere {
@@ -61,10 +48,7 @@ fn hertz_pair(a: &CompliantSphere, b: &CompliantSphere, v: f64) -> (f64, f64, f6
     let es = 1.0 / (c(a) + c(b));
     let r = 1.0 / (1.0 / a.ball.radius() + 1.0 / b.ball.radius());
     let m = a.ball.mass() * b.ball.mass() / (a.ball.mass() + b.ball.mass());
-    let d = (15.0 * m * v * v / (16.0 * es * r.sqrt())).powf(0.4);
-    let f = 4.0 / 3.0 * es * r.sqrt() * d.powf(1.5);
-    let t = 2.868_265_699 * (m * m / (es * es * r * v)).powf(0.2);
-    (d, f, t)
+    hertz(m, r, es, v)
 }
 
 /// Without friction the tangential spring does nothing: the normal impact is Hertz's of the
