@@ -4,7 +4,10 @@
 //! docs/tangential/rebound.csv (every run), docs/tangential/trace_alumina_20deg.csv (one time
 //! history) and the figure docs/tangential/rebound.svg and .png: Maw, Barber and Fawcett's
 //! normalised rebound Psi_2 against the normalised incidence Psi_1, with the gross-sliding
-//! line, and the trace's forces.
+//! line, and the trace's forces. The same sweep for two spheres of the material
+//! (`resolve_sphere_sphere_compliant`, ball B at rest, relative speed 3.9 m/s): two
+//! identical spheres, and ball B of twice A's radius, written to
+//! docs/tangential/rebound_pair.csv and drawn as markers on the same panel.
 //!
 //! `cargo run --release --example chung_ooi_plane`
 
@@ -75,6 +78,33 @@ fn impact(case: &Case, deg: f64) -> Result<(Ball, CompliantOutcome), Error> {
     Ok((ball, out))
 }
 
+/// Two spheres of `case`'s material, A of the case's radius and B of `ratio` times it (B at
+/// rest), meeting at the relative speed 3.9 m/s at incidence `deg`.
+fn pair_impact(case: &Case, ratio: f64, deg: f64) -> Result<CompliantPairOutcome, Error> {
+    let solid = |r: f64| Ball::new(case.density * 4.0 / 3.0 * PI * r.powi(3), r, ALPHA_SOLID);
+    let material = Material::new(case.youngs, case.poisson)?;
+    let a = deg.to_radians();
+    let ball_a = CompliantSphere {
+        ball: solid(case.radius)?,
+        material,
+        velocity: SPEED * Vector3::new(a.cos(), a.sin(), 0.0),
+        spin: Vector3::zeros(),
+    };
+    let ball_b = CompliantSphere {
+        ball: solid(ratio * case.radius)?,
+        material,
+        velocity: Vector3::zeros(),
+        spin: Vector3::zeros(),
+    };
+    resolve_sphere_sphere_compliant(&ball_a, &ball_b, Vector3::x(), case.mu, 1.0, &settings()?)
+}
+
+/// The points (Psi_1, Psi_2) of one pair sweep, with its colour and radius ratio.
+type PairSeries = (RGBColor, f64, Vec<(f64, f64)>);
+
+/// The radius ratios r_B / r_A of the pairs drawn: identical spheres, and B twice A.
+const RATIOS: [f64; 2] = [1.0, 2.0];
+
 /// The gross-sliding line's offset 2 chi mu (1 + 1/alpha), chi = 2 (1 - nu) / (mu (2 - nu)).
 fn offset(case: &Case) -> f64 {
     4.0 * (1.0 - case.poisson) / (2.0 - case.poisson) * (1.0 + 1.0 / ALPHA_SOLID)
@@ -138,6 +168,31 @@ pub fn run() -> Result<(), Error> {
     std::fs::write("docs/tangential/rebound.csv", csv)
         .map_err(io("docs/tangential/rebound.csv"))?;
 
+    let mut pair_csv = String::from("material,radius_ratio,incidence_deg,psi1,psi2,energy_ratio\n");
+    let mut pairs = Vec::new();
+    for case in &CASES {
+        for ratio in RATIOS {
+            let mut points = Vec::new();
+            for i in 1..=17 {
+                let deg = 5.0 * i as f64;
+                let o = pair_impact(case, ratio, deg)?.ball_a;
+                writeln!(
+                    pair_csv,
+                    "{},{ratio},{deg},{:.9e},{:.9e},{:.12}",
+                    case.name,
+                    o.normalised_incidence,
+                    o.normalised_rebound,
+                    o.kinetic_energy_out / o.kinetic_energy_in
+                )
+                .expect("writing to a String");
+                points.push((o.normalised_incidence, o.normalised_rebound));
+            }
+            pairs.push((case.colour, ratio, points));
+        }
+    }
+    std::fs::write("docs/tangential/rebound_pair.csv", pair_csv)
+        .map_err(io("docs/tangential/rebound_pair.csv"))?;
+
     let (_, out) = impact(&CASES[0], 20.0)?;
     let mut trace = String::from(
         "time_s,compression_m,normal_force_n,tangential_force_n,displacement_m,slip_m_s,sliding\n",
@@ -164,16 +219,20 @@ pub fn run() -> Result<(), Error> {
         (1200, 500),
         Path::new("docs/tangential/rebound.svg"),
         Path::new("docs/tangential/rebound.png"),
-        |root| draw(root, &curves, &out),
-        |root| draw(root, &curves, &out),
+        |root| draw(root, &curves, &pairs, &out),
+        |root| draw(root, &curves, &pairs, &out),
     )?;
-    println!("wrote docs/tangential/rebound.csv, trace_alumina_20deg.csv, rebound.svg and .png");
+    println!(
+        "wrote docs/tangential/rebound.csv, rebound_pair.csv, trace_alumina_20deg.csv, \
+         rebound.svg and .png"
+    );
     Ok(())
 }
 
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     curves: &[(&Case, Vec<(f64, f64)>)],
+    pairs: &[PairSeries],
     trace: &CompliantOutcome,
 ) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
@@ -229,6 +288,30 @@ fn draw<DB: DrawingBackend>(
                     .map(|(_, &p)| Circle::new(p, 3, c.filled())),
             )
             .map_err(e)?;
+    }
+    for (c, ratio, points) in pairs {
+        let c = *c;
+        let shown = points.iter().cloned().filter(|p| p.0 <= 14.0);
+        if *ratio == 1.0 {
+            chart
+                .draw_series(shown.map(|p| {
+                    Rectangle::new(
+                        [(p.0 - 0.1, p.1 - 0.1), (p.0 + 0.1, p.1 + 0.1)],
+                        c.stroke_width(1),
+                    )
+                }))
+                .map_err(e)?
+                .label("two identical spheres")
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x + 6, y - 4), (x + 14, y + 4)], c.stroke_width(1))
+                });
+        } else {
+            chart
+                .draw_series(shown.map(|p| TriangleMarker::new(p, 6, c.stroke_width(1))))
+                .map_err(e)?
+                .label(format!("spheres, r_B = {ratio} r_A"))
+                .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 6, c.stroke_width(1)));
+        }
     }
     chart
         .configure_series_labels()

@@ -60,7 +60,8 @@
 //! [`PlaneCollision`] and [`solve_plane`] (`docs/plane.md`); a cushion, touching the cloth at
 //! the same time, with [`resolve_cushion`] or a cushion scene file, [`CushionScene`]
 //! (`docs/cushion.md`); a plane with an elastic tangential compliance instead of the stick
-//! rule, [`resolve_sphere_plane_compliant`] (`docs/tangential.md`).
+//! rule, [`resolve_sphere_plane_compliant`], and two balls with it,
+//! [`resolve_sphere_sphere_compliant`] (`docs/tangential.md`).
 //!
 //! Expert pieces (the integrator driver, the closed-form batch kernel, the checks) are in
 //! [`details`]; many collisions at once in [`batch`]; the cost of accuracy in
@@ -145,7 +146,8 @@ pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
 pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
 pub use tangential::impact::resolve_sphere_plane_compliant;
-pub use tangential::outcome::{CompliantOutcome, CompliantTraceRow};
+pub use tangential::outcome::{CompliantOutcome, CompliantPairOutcome, CompliantTraceRow};
+pub use tangential::pair::{resolve_sphere_sphere_compliant, CompliantSphere};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who

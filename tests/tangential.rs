@@ -4,26 +4,13 @@
 //! gross sliding, Maw, Barber and Fawcett's normalisation, and the energy. The materials
 //! and speeds are those of Chung and Ooi's benchmark (data/chung_ooi/README.md).
 
+use crate::common::compliant::{hertz, sphere, tight};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
-use std::f64::consts::PI;
-
-/// A solid sphere of density `rho` (kg/m3) and radius `r` (m).
-fn sphere(rho: f64, r: f64) -> Ball {
-    Ball::new(rho * 4.0 / 3.0 * PI * r.powi(3), r, ALPHA_SOLID).unwrap()
-}
 
 /// Chung and Ooi's aluminium oxide sphere and its material.
 fn alumina() -> (Ball, Material) {
     (sphere(4000.0, 0.0025), Material::new(3.8e11, 0.23).unwrap())
-}
-
-fn tight() -> SolverSettings {
-    SolverSettings::default()
-        .with_rtol(1e-11)
-        .unwrap()
-        .with_atol(1e-11)
-        .unwrap()
 }
 
 /// A speed `speed` at `deg` degrees from the normal +y, towards the plane y = 0, along +x.
@@ -46,17 +33,6 @@ fn run(
 /// E* of a ball of (E, nu) on a plane of (E_p, nu_p), rigid when `None`.
 fn e_star(e: f64, nu: f64, plane: Option<(f64, f64)>) -> f64 {
     1.0 / ((1.0 - nu * nu) / e + plane.map_or(0.0, |(ep, nup)| (1.0 - nup * nup) / ep))
-}
-
-/// Hertz's sphere on a half-space (Johnson, Contact Mechanics, 11.1): the largest
-/// compression delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5), the peak force
-/// F_max = (4/3) E* sqrt(R) delta_max^1.5 and the contact time 2.868265699 (m^2 / (E*^2 R
-/// v))^(1/5) (the constant is (4/5) B(2/5, 1/2) (15/16)^(2/5), to ten digits).
-fn hertz(m: f64, r: f64, es: f64, v: f64) -> (f64, f64, f64) {
-    let d = (15.0 * m * v * v / (16.0 * es * r.sqrt())).powf(0.4);
-    let f = 4.0 / 3.0 * es * r.sqrt() * d.powf(1.5);
-    let t = 2.868_265_699 * (m * m / (es * es * r * v)).powf(0.2);
-    (d, f, t)
 }
 
 /// Chung and Ooi's normal impact of a sphere on a rigid plane at 0.2 m/s (R = 0.1 m): the

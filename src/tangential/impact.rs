@@ -1,17 +1,23 @@
-//! The compliant impact of a sphere on a plane (docs/tangential.md).
+//! The compliant impact of a sphere on a plane or on another sphere (docs/tangential.md).
 //!
-//! State, in the plane's frame (n the unit normal towards the ball, t1, t2 the tangent
-//! plane): the compression delta, its rate delta' (the approach speed), the centre's
-//! tangential velocity v_t, the spin w and the tangential spring's force S. With
-//! k_n = (4/3) E* sqrt(R) and k_t = 8 G* sqrt(R delta):
+//! State, in the contact's frame (n the unit normal from the partner towards ball 1, t1, t2
+//! the tangent plane): the compression delta, its rate delta' (the approach speed), the
+//! tangential velocity g_t of ball 1's centre relative to the partner's, both spins w1, w2
+//! and the tangential spring's force S on ball 1. With k_n = (4/3) E* sqrt(R*),
+//! k_t = 8 G* sqrt(R* delta) and the reduced mass m* = m1 m2 / (m1 + m2):
 //!
 //! ```text
-//! F_n   = k_n delta^1.5                    m delta'' = -F_n
-//! u     = v_t - R (w x n)                  slip of the contact point
+//! F_n   = k_n delta^1.5                    m* delta'' = -F_n
+//! u     = g_t - (R1 w1 + R2 w2) x n        slip of ball 1's contact point over the partner's
 //! stick:  S' = -k_t u + S min(delta', 0) / (2 delta)
 //! slide:  S' = (S'_stick)_perp + mu F_n' e,  e = S/|S|   (S stays on |S| = mu F_n)
-//! F_t   = S capped to |F_t| <= mu F_n      m v_t' = F_t,   I w' = (-R n) x F_t
+//! F_t   = S capped to |F_t| <= mu F_n
+//! m* g_t' = F_t,   I1 w1' = (-R1 n) x F_t,   I2 w2' = (-R2 n) x F_t
 //! ```
+//!
+//! The plane is the partner's limit of infinite radius, mass and inertia: R* = R1, m* = m1,
+//! and its spin stays 0 (I2 infinite), so its lever arm R2 never enters; the kernel carries
+//! it as `Partner::Plane`, whose spin components are not stepped.
 //!
 //! The spring loads incrementally (dF_t = -k_t u dt) and, while the contact shrinks, its
 //! force is scaled with the stiffness (F_t = -k_t xi at fixed xi): the rule of Thornton,
@@ -43,11 +49,24 @@ const MAX_STEP_FRACTION: f64 = 0.05;
 /// Relative margin of |S| over mu F_n before a sticking step counts as having slid.
 const CAP_MARGIN: f64 = 1e-10;
 
+/// What ball 1 meets.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Partner {
+    /// A plane: infinite radius, mass and inertia; its spin stays 0.
+    Plane,
+    /// A sphere of radius `radius` (m) and moment of inertia `inertia` (kg m^2).
+    Sphere { radius: f64, inertia: f64 },
+}
+
 /// The contact's constants.
-struct Contact {
+pub(crate) struct Contact {
+    /// The mass of the relative motion m* = m1 m2 / (m1 + m2) (kg); m1 on a plane.
     mass: f64,
+    /// Ball 1's radius R1 (m).
     radius: f64,
+    /// Ball 1's moment of inertia I1 (kg m^2).
     inertia: f64,
+    partner: Partner,
     mu: f64,
     /// k_n = (4/3) E* sqrt(R) (N / m^1.5).
     k_n: f64,
@@ -82,13 +101,21 @@ impl Contact {
         }
     }
 
-    fn spin(y: &Z) -> Vector3<f64> {
+    pub(crate) fn spin(y: &Z) -> Vector3<f64> {
         Vector3::new(y[4], y[5], y[6])
     }
 
-    /// The slip u = v_t - R (w x n) in (t1, t2).
+    /// The partner's spin (rad/s): 0 for a plane.
+    pub(crate) fn partner_spin(y: &Z) -> Vector3<f64> {
+        Vector3::new(y[9], y[10], y[11])
+    }
+
+    /// The slip u = g_t - (R1 w1 + R2 w2) x n in (t1, t2).
     fn slip(&self, y: &Z) -> [f64; 2] {
-        let rot = self.radius * Contact::spin(y).cross(&self.n);
+        let mut rot = self.radius * Contact::spin(y).cross(&self.n);
+        if let Partner::Sphere { radius, .. } = self.partner {
+            rot += radius * Contact::partner_spin(y).cross(&self.n);
+        }
         [y[2] - rot.dot(&self.t1), y[3] - rot.dot(&self.t2)]
     }
 
@@ -145,6 +172,10 @@ impl Contact {
         let f = self.applied(y);
         let f_lab = f[0] * self.t1 + f[1] * self.t2;
         let torque = (-self.radius * self.n).cross(&f_lab);
+        let partner_rate = match self.partner {
+            Partner::Plane => Vector3::zeros(),
+            Partner::Sphere { radius, inertia } => (-radius * self.n).cross(&f_lab) / inertia,
+        };
         let mut rate = if self.mu > 0.0 {
             self.stick_rate(y)
         } else {
@@ -170,6 +201,9 @@ impl Contact {
             torque.z / self.inertia,
             rate[0],
             rate[1],
+            partner_rate.x,
+            partner_rate.y,
+            partner_rate.z,
         ]
     }
 
@@ -218,7 +252,7 @@ fn perpendicular(n: &Vector3<f64>) -> Vector3<f64> {
     n.cross(&axis).normalize()
 }
 
-fn finite_vector(field: &str, v: &Vector3<f64>) -> Result<(), Error> {
+pub(crate) fn finite_vector(field: &str, v: &Vector3<f64>) -> Result<(), Error> {
     if v.iter().all(|x| x.is_finite()) {
         Ok(())
     } else {
@@ -230,78 +264,140 @@ fn finite_vector(field: &str, v: &Vector3<f64>) -> Result<(), Error> {
     }
 }
 
-/// A `ball` of `ball_material` meeting a plane of `plane_material` (`None`: rigid) with
-/// Coulomb friction `mu`, arriving with velocity `v` and spin `w` (lab frame) on the plane
-/// of unit normal `normal` (out of the plane towards the ball; normalised here), resolved
-/// with Hertz's normal force and Mindlin's no-slip tangential spring under Coulomb's cap
-/// (docs/tangential.md). The kernel steps with its own Dormand-Prince 5(4) at
-/// `settings`' rtol and atol (atol on the state over its scale: the approach speed, Hertz's
-/// compression and force); `settings`' method and step count are not used.
-///
-/// Errors: [`Error::InvalidParameter`] naming `friction.mu` (finite, in [0, 1e6]),
-/// `plane.normal` (finite, not zero), `incoming.velocity` (finite, approaching: v.n < 0),
-/// `incoming.spin` (finite) or `contact.profile.duration` (a material so extreme that Hertz's
-/// contact time is not a normal number); [`Error::TooManySteps`] past 1e6 steps;
-/// [`Error::NonFinite`] when a result is not finite.
-///
-/// ```
-/// use billiard_contact::nalgebra::Vector3;
-/// use billiard_contact::*;
-/// // An aluminium-oxide sphere (R = 2.5 mm, 4000 kg/m3) at 3.9 m/s, 45 degrees, on a rigid
-/// // plane with mu = 0.092: gross sliding, so the tangential speed falls by 2 mu v_n.
-/// let r = 0.0025;
-/// let ball = Ball::new(4000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r, r, 0.4)?;
-/// let alumina = Material::new(3.8e11, 0.23)?;
-/// let v = 3.9 * Vector3::new(45f64.to_radians().sin(), -45f64.to_radians().cos(), 0.0);
-/// let out = resolve_sphere_plane_compliant(
-///     &ball, alumina, None, 0.092, v, Vector3::zeros(), Vector3::y(), &SolverSettings::default(),
-/// )?;
-/// assert!((out.velocity.y + v.y).abs() < 1e-7 * v.norm()); // elastic: e = 1
-/// assert!((v.x - out.velocity.x - 2.0 * 0.092 * (-v.y)).abs() < 1e-6 * v.norm());
-/// # Ok::<(), billiard_contact::Error>(())
-/// ```
-#[allow(clippy::too_many_arguments)]
-pub fn resolve_sphere_plane_compliant(
-    ball: &Ball,
-    ball_material: Material,
-    plane_material: Option<Material>,
-    mu: f64,
-    v: Vector3<f64>,
-    w: Vector3<f64>,
-    normal: Vector3<f64>,
-    settings: &SolverSettings,
-) -> Result<CompliantOutcome, Error> {
+/// The friction coefficient `mu`, checked: finite, in [0, 1e6].
+pub(crate) fn check_mu(mu: f64) -> Result<(), Error> {
     finite("friction.mu", mu)?;
     if !(0.0..=MU_MAX).contains(&mu) {
         return Err(Error::invalid("friction.mu", mu, "in [0, 1e6]"));
     }
-    finite_vector("plane.normal", &normal)?;
+    Ok(())
+}
+
+/// The unit vector along `normal`, named `field` when it is not finite or zero.
+/// `accepted` says what it must be.
+pub(crate) fn unit_normal(
+    field: &str,
+    normal: &Vector3<f64>,
+    accepted: &str,
+) -> Result<Vector3<f64>, Error> {
+    finite_vector(field, normal)?;
     if !(normal.norm() > 0.0 && normal.norm().is_finite()) {
         return Err(Error::invalid(
-            "plane.normal",
+            field,
             format!("[{}, {}, {}]", normal.x, normal.y, normal.z),
-            "a non-zero vector (the plane's normal, towards the ball)",
+            accepted,
         ));
     }
-    let n = normal.normalize();
-    finite_vector("incoming.velocity", &v)?;
-    finite_vector("incoming.spin", &w)?;
-    let v_n0 = v.dot(&n);
-    if v_n0 >= 0.0 {
-        return Err(Error::invalid(
-            "incoming.velocity",
-            format!("[{}, {}, {}] (v.n = {v_n0} m/s)", v.x, v.y, v.z),
-            "a ball approaching the plane: v.n < 0",
-        ));
+    Ok(normal.normalize())
+}
+
+/// Ball 1 and its partner, as the kernel steps them.
+pub(crate) struct Bodies {
+    /// m* (kg).
+    pub(crate) mass: f64,
+    /// R1 (m).
+    pub(crate) radius: f64,
+    /// I1 (kg m^2).
+    pub(crate) inertia: f64,
+    pub(crate) partner: Partner,
+    /// Hertz's k_n = (4/3) E* sqrt(R*) (N / m^1.5).
+    pub(crate) k_n: f64,
+    /// R* (m).
+    pub(crate) effective_radius: f64,
+    /// G* (Pa): 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2.
+    pub(crate) g_star: f64,
+    /// The factor on Mindlin's k_t (1: Mindlin).
+    pub(crate) shear_factor: f64,
+}
+
+/// What the stepping returns: the final state in the contact's basis and the contact's
+/// scalars.
+pub(crate) struct Run {
+    pub(crate) y: Z,
+    pub(crate) n: Vector3<f64>,
+    pub(crate) t1: Vector3<f64>,
+    pub(crate) t2: Vector3<f64>,
+    /// Ball 1's incoming relative velocity (m/s).
+    pub(crate) g_in: Vector3<f64>,
+    /// |u(0)| (m/s).
+    pub(crate) slip_in: f64,
+    /// The outgoing slip along t1, the incoming slip's direction (m/s).
+    pub(crate) slip_out: f64,
+    pub(crate) contact_time: f64,
+    pub(crate) max_compression: f64,
+    pub(crate) max_normal_force: f64,
+    pub(crate) steps: u64,
+    pub(crate) rejected: u64,
+    pub(crate) trace: Vec<CompliantTraceRow>,
+}
+
+impl Run {
+    /// Ball 1's outgoing velocity relative to the partner's (m/s).
+    pub(crate) fn g_out(&self) -> Vector3<f64> {
+        -self.y[1] * self.n + self.y[2] * self.t1 + self.y[3] * self.t2
     }
 
-    let (e_star, radius, k_n) =
-        sphere_plane_stiffness(ball, &ball_material, plane_material.as_ref());
-    let g_star = 1.0
-        / (shear_compliance(&ball_material)
-            + plane_material.as_ref().map_or(0.0, shear_compliance));
-    let mass = ball.mass();
-    let speed = -v_n0;
+    /// The outcome as ball 1 sees it, with its outgoing `velocity`, the mass `mass` of the
+    /// relative motion m* (kg: the impulse on ball 1 is m* times the change of g), the
+    /// normalisation `chi` = 4 G* / (mu E*) and the kinetic energies in and out (J).
+    pub(crate) fn outcome(
+        self,
+        velocity: Vector3<f64>,
+        mass: f64,
+        chi: f64,
+        kinetic_energy: (f64, f64),
+    ) -> Result<CompliantOutcome, Error> {
+        let speed = -self.g_in.dot(&self.n);
+        let v_n_out = -self.y[1];
+        let dg = self.g_out() - self.g_in;
+        let out = CompliantOutcome {
+            velocity,
+            spin: Contact::spin(&self.y),
+            contact_time: self.contact_time,
+            normal_impulse: mass * dg.dot(&self.n),
+            tangential_impulse: mass * (dg - dg.dot(&self.n) * self.n),
+            max_normal_force: self.max_normal_force,
+            max_compression: self.max_compression,
+            incidence_angle: self.slip_in.atan2(speed),
+            rebound_angle: if self.slip_in > 0.0 {
+                self.slip_out.atan2(v_n_out)
+            } else {
+                0.0
+            },
+            normalised_incidence: chi * self.slip_in / speed,
+            normalised_rebound: chi * self.slip_out / v_n_out,
+            kinetic_energy_in: kinetic_energy.0,
+            kinetic_energy_out: kinetic_energy.1,
+            steps: self.steps,
+            rejected: self.rejected,
+            trace: self.trace,
+        };
+        for (name, x) in [
+            ("velocity", out.velocity.norm()),
+            ("spin", out.spin.norm()),
+            ("contact_time", out.contact_time),
+            ("max_normal_force", out.max_normal_force),
+        ] {
+            crate::base::validate::finite_output(x, || name.to_string())?;
+        }
+        Ok(out)
+    }
+}
+
+/// Steps one impact: ball 1 arriving at the relative velocity `g` with spin `w1`, the
+/// partner with spin `w2`, along the unit normal `n` (from the partner towards ball 1), with
+/// Coulomb's `mu`.
+pub(crate) fn run(
+    b: &Bodies,
+    mu: f64,
+    g: Vector3<f64>,
+    w1: Vector3<f64>,
+    w2: Vector3<f64>,
+    n: Vector3<f64>,
+    settings: &SolverSettings,
+) -> Result<Run, Error> {
+    let (mass, radius, k_n) = (b.mass, b.effective_radius, b.k_n);
+    let speed = -g.dot(&n);
     let delta_max = (5.0 * mass * speed * speed / (4.0 * k_n)).powf(0.4);
     // Hertz's contact time, (4/5) B(2/5, 1/2) delta_max / v = 2.9433 delta_max / v.
     let t_hertz = 0.8 * beta(0.4, 0.5) * delta_max / speed;
@@ -315,7 +411,15 @@ pub fn resolve_sphere_plane_compliant(
     }
 
     // The tangent basis: t1 along the incoming slip when there is one.
-    let slip0 = (v - v_n0 * n) - radius * w.cross(&n);
+    let mut rot0 = b.radius * w1.cross(&n);
+    let mut v_ref = g.norm().max(b.radius * w1.norm());
+    let mut partner_scale = 0.0;
+    if let Partner::Sphere { radius: r2, .. } = b.partner {
+        rot0 += r2 * w2.cross(&n);
+        v_ref = v_ref.max(r2 * w2.norm());
+        partner_scale = v_ref / r2;
+    }
+    let slip0 = (g + speed * n) - rot0;
     let t1 = if slip0.norm() > 1e-300 {
         (slip0 - slip0.dot(&n) * n).normalize()
     } else {
@@ -324,33 +428,56 @@ pub fn resolve_sphere_plane_compliant(
     let t2 = n.cross(&t1);
     let c = Contact {
         mass,
-        radius,
-        inertia: ball.inertia(),
+        radius: b.radius,
+        inertia: b.inertia,
+        partner: b.partner,
         mu,
         k_n,
-        k_t0: 8.0 * g_star * radius.sqrt(),
+        k_t0: b.shear_factor * 8.0 * b.g_star * radius.sqrt(),
         n,
         t1,
         t2,
     };
 
-    let v_ref = v.norm().max(radius * w.norm());
+    let w_scale = v_ref / b.radius;
+    // The spring's force is at most mu F_n, so its scale is mu F_max (F_max when mu > 1):
+    // with Hertz's F_max for a small mu its error would be judged against a force it never
+    // reaches, the drift off the cap would outgrow the cap's band and every step would read
+    // as a switch. Without friction it stays 0, and scale 0 leaves it out of the error norm,
+    // as the plane's spin, which is not stepped.
+    let s_scale = f_max * mu.min(1.0);
     let scale: Z = [
         delta_max,
         v_ref,
         v_ref,
         v_ref,
-        v_ref / radius,
-        v_ref / radius,
-        v_ref / radius,
-        f_max,
-        f_max,
+        w_scale,
+        w_scale,
+        w_scale,
+        s_scale,
+        s_scale,
+        partner_scale,
+        partner_scale,
+        partner_scale,
     ];
     let (rtol, atol) = (settings.rtol(), settings.atol());
     let h_event = EVENT_FRACTION * t_hertz;
     let h_max = MAX_STEP_FRACTION * t_hertz;
 
-    let mut y: Z = [0.0, speed, v.dot(&t1), v.dot(&t2), w.x, w.y, w.z, 0.0, 0.0];
+    let mut y: Z = [
+        0.0,
+        speed,
+        g.dot(&t1),
+        g.dot(&t2),
+        w1.x,
+        w1.y,
+        w1.z,
+        0.0,
+        0.0,
+        w2.x,
+        w2.y,
+        w2.z,
+    ];
     let mut t = 0.0;
     let mut h = FIRST_STEP_FRACTION * t_hertz;
     let mut mode = Mode::Stick;
@@ -411,55 +538,120 @@ pub fn resolve_sphere_plane_compliant(
         trace.push(c.row(t, &y, mode));
         h = next_step(h, err).min(h_max);
     };
-
-    let velocity = -y[1] * n + y[2] * t1 + y[3] * t2;
-    let spin = Contact::spin(&y);
-    let slip_out = c.slip(&y);
-    let (u0, u_out_s) = (slip0.norm(), slip_out[0]);
-    let v_n_out = -y[1];
-    let chi = if mu > 0.0 {
-        4.0 * g_star / (mu * e_star)
-    } else {
-        f64::NAN
-    };
-    let energy = |v: &Vector3<f64>, w: &Vector3<f64>| {
-        0.5 * mass * v.norm_squared() + 0.5 * ball.inertia() * w.norm_squared()
-    };
-    let out = CompliantOutcome {
-        velocity,
-        spin,
+    Ok(Run {
+        slip_out: c.slip(&y)[0],
+        y,
+        n,
+        t1,
+        t2,
+        g_in: g,
+        slip_in: slip0.norm(),
         contact_time,
-        normal_impulse: mass * (velocity - v).dot(&n),
-        tangential_impulse: mass * ((velocity - v) - (velocity - v).dot(&n) * n),
-        max_normal_force: c.normal_force(max_compression),
         max_compression,
-        incidence_angle: u0.atan2(speed),
-        rebound_angle: if u0 > 0.0 {
-            u_out_s.atan2(v_n_out)
-        } else {
-            0.0
-        },
-        normalised_incidence: chi * u0 / speed,
-        normalised_rebound: chi * u_out_s / v_n_out,
-        kinetic_energy_in: energy(&v, &w),
-        kinetic_energy_out: energy(&velocity, &spin),
+        max_normal_force: c.normal_force(max_compression),
         steps,
         rejected,
         trace,
-    };
-    for (name, x) in [
-        ("velocity", out.velocity.norm()),
-        ("spin", out.spin.norm()),
-        ("contact_time", out.contact_time),
-        ("max_normal_force", out.max_normal_force),
-    ] {
-        crate::base::validate::finite_output(x, || name.to_string())?;
+    })
+}
+
+/// Maw, Barber and Fawcett's chi = 4 G* / (mu E*); NaN without friction.
+pub(crate) fn chi(g_star: f64, e_star: f64, mu: f64) -> f64 {
+    if mu > 0.0 {
+        4.0 * g_star / (mu * e_star)
+    } else {
+        f64::NAN
     }
-    Ok(out)
+}
+
+/// Kinetic energy (J) of `ball` at velocity `v` (m/s) and spin `w` (rad/s).
+pub(crate) fn kinetic_energy(ball: &Ball, v: &Vector3<f64>, w: &Vector3<f64>) -> f64 {
+    0.5 * ball.mass() * v.norm_squared() + 0.5 * ball.inertia() * w.norm_squared()
+}
+
+/// A `ball` of `ball_material` meeting a plane of `plane_material` (`None`: rigid) with
+/// Coulomb friction `mu`, arriving with velocity `v` and spin `w` (lab frame) on the plane
+/// of unit normal `normal` (out of the plane towards the ball; normalised here), resolved
+/// with Hertz's normal force and Mindlin's no-slip tangential spring under Coulomb's cap
+/// (docs/tangential.md). The kernel steps with its own Dormand-Prince 5(4) at
+/// `settings`' rtol and atol (atol on the state over its scale: the approach speed, Hertz's
+/// compression and force); `settings`' method and step count are not used.
+///
+/// Errors: [`Error::InvalidParameter`] naming `friction.mu` (finite, in [0, 1e6]),
+/// `plane.normal` (finite, not zero), `incoming.velocity` (finite, approaching: v.n < 0),
+/// `incoming.spin` (finite) or `contact.profile.duration` (a material so extreme that Hertz's
+/// contact time is not a normal number); [`Error::TooManySteps`] past 1e6 steps;
+/// [`Error::NonFinite`] when a result is not finite.
+///
+/// ```
+/// use billiard_contact::nalgebra::Vector3;
+/// use billiard_contact::*;
+/// // An aluminium-oxide sphere (R = 2.5 mm, 4000 kg/m3) at 3.9 m/s, 45 degrees, on a rigid
+/// // plane with mu = 0.092: gross sliding, so the tangential speed falls by 2 mu v_n.
+/// let r = 0.0025;
+/// let ball = Ball::new(4000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r, r, 0.4)?;
+/// let alumina = Material::new(3.8e11, 0.23)?;
+/// let v = 3.9 * Vector3::new(45f64.to_radians().sin(), -45f64.to_radians().cos(), 0.0);
+/// let out = resolve_sphere_plane_compliant(
+///     &ball, alumina, None, 0.092, v, Vector3::zeros(), Vector3::y(), &SolverSettings::default(),
+/// )?;
+/// assert!((out.velocity.y + v.y).abs() < 1e-7 * v.norm()); // elastic: e = 1
+/// assert!((v.x - out.velocity.x - 2.0 * 0.092 * (-v.y)).abs() < 1e-6 * v.norm());
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn resolve_sphere_plane_compliant(
+    ball: &Ball,
+    ball_material: Material,
+    plane_material: Option<Material>,
+    mu: f64,
+    v: Vector3<f64>,
+    w: Vector3<f64>,
+    normal: Vector3<f64>,
+    settings: &SolverSettings,
+) -> Result<CompliantOutcome, Error> {
+    check_mu(mu)?;
+    let n = unit_normal(
+        "plane.normal",
+        &normal,
+        "a non-zero vector (the plane's normal, towards the ball)",
+    )?;
+    finite_vector("incoming.velocity", &v)?;
+    finite_vector("incoming.spin", &w)?;
+    let v_n0 = v.dot(&n);
+    if v_n0 >= 0.0 {
+        return Err(Error::invalid(
+            "incoming.velocity",
+            format!("[{}, {}, {}] (v.n = {v_n0} m/s)", v.x, v.y, v.z),
+            "a ball approaching the plane: v.n < 0",
+        ));
+    }
+    let (e_star, radius, k_n) =
+        sphere_plane_stiffness(ball, &ball_material, plane_material.as_ref());
+    let g_star = 1.0
+        / (shear_compliance(&ball_material)
+            + plane_material.as_ref().map_or(0.0, shear_compliance));
+    let bodies = Bodies {
+        mass: ball.mass(),
+        radius,
+        inertia: ball.inertia(),
+        partner: Partner::Plane,
+        k_n,
+        effective_radius: radius,
+        g_star,
+        shear_factor: 1.0,
+    };
+    let r = run(&bodies, mu, v, w, Vector3::zeros(), n, settings)?;
+    let velocity = r.g_out();
+    let energy = (
+        kinetic_energy(ball, &v, &w),
+        kinetic_energy(ball, &velocity, &Contact::spin(&r.y)),
+    );
+    r.outcome(velocity, ball.mass(), chi(g_star, e_star, mu), energy)
 }
 
 /// The shear compliance (2 - nu) / G of a material, G = E / (2 (1 + nu)): its share of 1/G*.
-fn shear_compliance(m: &Material) -> f64 {
+pub(crate) fn shear_compliance(m: &Material) -> f64 {
     let nu = m.poisson_ratio();
     (2.0 - nu) * 2.0 * (1.0 + nu) / m.youngs_modulus()
 }

@@ -1,4 +1,4 @@
-//! What a compliant sphere-plane impact returns: the outgoing motion, the impulses, the
+//! What a compliant sphere-plane or sphere-sphere impact returns: the outgoing motion, the impulses, the
 //! normalised incidence and rebound of Maw, Barber and Fawcett, and the time history.
 
 use nalgebra::Vector3;
@@ -32,9 +32,9 @@ pub struct CompliantOutcome {
     pub spin: Vector3<f64>,
     /// Time from first touch until F_n returns to 0 (s).
     pub contact_time: f64,
-    /// Normal impulse of the plane on the ball (N s).
+    /// Normal impulse of the partner (the plane, or ball B) on the ball (N s).
     pub normal_impulse: f64,
-    /// Tangential impulse of the plane on the ball (N s, in the tangent plane).
+    /// Tangential impulse of the partner on the ball (N s, in the tangent plane).
     pub tangential_impulse: Vector3<f64>,
     /// Largest normal force (N), at the largest compression.
     pub max_normal_force: f64,
@@ -61,4 +61,18 @@ pub struct CompliantOutcome {
     pub rejected: u64,
     /// Every accepted step, from first touch to the end of the contact.
     pub trace: Vec<CompliantTraceRow>,
+}
+
+/// The result of [`crate::resolve_sphere_sphere_compliant`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CompliantPairOutcome {
+    /// The contact as ball A sees it: A's outgoing velocity and spin, the impulses of B on A
+    /// (the normal one along the normal from B towards A), the incidence and rebound of A's
+    /// contact point relative to B's, the kinetic energies of both balls, and the trace
+    /// (the force on A, the slip of A over B).
+    pub ball_a: CompliantOutcome,
+    /// Ball B's velocity after the contact (m/s).
+    pub velocity_b: Vector3<f64>,
+    /// Ball B's spin after the contact (rad/s).
+    pub spin_b: Vector3<f64>,
 }

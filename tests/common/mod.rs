@@ -13,6 +13,7 @@ use nalgebra::Vector3;
 use std::f64::consts::PI;
 
 pub mod collision;
+pub mod compliant;
 pub mod scene_file;
 pub mod table;
 pub mod unequal;
