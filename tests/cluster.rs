@@ -325,14 +325,9 @@ fn cluster_with_gaps_is_pairwise() {
     let out = resolve_cluster(&cl, &tight(1e-13)).unwrap();
     let got: Vec<usize> = out.contacts.iter().map(|c| c.pair.0).collect();
     assert_eq!(got, pairs);
-    for b in 0..4 {
-        let e = (out.balls[b].velocity - Vector3::new(v[b], 0.0, 0.0)).norm() / 1.2;
-        assert!(
-            e < 1e-10,
-            "ball {b}: {:?} vs {} ({e:e})",
-            out.balls[b].velocity,
-            v[b]
-        );
+    for (b, (o, v)) in out.balls.iter().zip(v).enumerate() {
+        let e = (o.velocity - Vector3::new(v, 0.0, 0.0)).norm() / 1.2;
+        assert!(e < 1e-10, "ball {b}: {:?} vs {v} ({e:e})", o.velocity);
     }
     eprintln!("gaps: {} contacts in order {pairs:?}", pairs.len());
 }
@@ -469,7 +464,5 @@ fn cluster_refuses_bad_input() {
         err.contains("23 balls") && err.contains("cluster.balls"),
         "{err}"
     );
-    for e in [&err] {
-        assert_eq!(e.lines().count(), 1);
-    }
+    assert_eq!(err.lines().count(), 1);
 }

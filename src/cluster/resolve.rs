@@ -187,13 +187,17 @@ struct Body {
     inertia: f64,
 }
 
+/// The force of one contact: normal force (N), friction on ball i (N), tangential slip
+/// (m/s), closing rate (m/s), compression (m).
+type ContactForce = (f64, Vector3<f64>, Vector3<f64>, f64, f64);
+
 /// The forces of one state.
 struct Forces {
     /// Per ball: acceleration (m/s^2), angular acceleration (rad/s^2).
     acc: Vec<[Vector3<f64>; 2]>,
     /// Per contact: normal force (N), friction on ball i (N), tangential slip (m/s),
     /// closing rate (m/s), compression (m).
-    contact: Vec<(f64, Vector3<f64>, Vector3<f64>, f64, f64)>,
+    contact: Vec<ContactForce>,
 }
 
 /// The system of one segment: its balls, its contact set and the friction.
@@ -290,12 +294,7 @@ impl System<'_> {
     /// The friction of the stuck contacts: the tangential forces F_d (2 unknowns each, in the
     /// tangent basis) for which every stuck slip has zero rate, s_t' = 0, given the other
     /// forces; coupled through the balls the contacts share (docs/cluster.md#the-stick-solve).
-    fn stuck(
-        &self,
-        y: &[f64],
-        acc: &mut [[Vector3<f64>; 2]],
-        contact: &mut [(f64, Vector3<f64>, Vector3<f64>, f64, f64)],
-    ) {
+    fn stuck(&self, y: &[f64], acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
         let _ = y;
         let stuck: Vec<usize> = (0..self.active.len())
             .filter(|&k| self.active[k].mode == Mode::Stuck)
@@ -571,8 +570,8 @@ impl Run<'_> {
     fn scale(&self) -> Vec<f64> {
         let nb = self.nb();
         let mut s = vec![self.delta0; 3 * nb];
-        s.extend(std::iter::repeat(self.v_ref).take(3 * nb));
-        s.extend(std::iter::repeat(self.v_ref / self.r_min).take(3 * nb));
+        s.extend(std::iter::repeat_n(self.v_ref, 3 * nb));
+        s.extend(std::iter::repeat_n(self.v_ref / self.r_min, 3 * nb));
         for _ in &self.active {
             let p = self.m_min * self.v_ref;
             s.extend([p, p, p, p, p * self.v_ref]);
@@ -797,7 +796,6 @@ impl Run<'_> {
             let mut frozen = false;
             let mut evals = sys.evaluations.get();
             let reversed = sys.reversed.get();
-            drop(sys);
             if err <= 1.0 && reversed {
                 // A slip reversed inside the step: redo it with the friction along each
                 // sliding contact's direction at its start (as two balls do), so that the
@@ -820,14 +818,12 @@ impl Run<'_> {
             let events = self.crossings(&sys, &self.y, &y1);
             if frozen && events.is_empty() {
                 // The reversal was inside the stages only: a smaller step.
-                drop(sys);
                 self.stats.rejected += 1;
                 h *= 0.5;
                 k0 = Some(d0);
                 continue;
             }
             if events.is_empty() {
-                drop(sys);
                 self.stats.steps += 1;
                 self.y = y1;
                 self.t += h;
@@ -848,7 +844,6 @@ impl Run<'_> {
                 .map(|&e| self.event_value(&sys, &ya, e))
                 .collect();
             let evals = sys.evaluations.get();
-            drop(sys);
             self.stats.evaluations += evals;
             self.stats.steps += 1;
             self.y = ya;
@@ -891,7 +886,6 @@ impl Run<'_> {
     fn after_step(&mut self) {
         let sys = self.system(false);
         let fs = sys.forces(&self.y);
-        drop(sys);
         self.stats.evaluations += 1;
         for (c, (f, fr, _, _, _)) in self.active.iter_mut().zip(&fs.contact) {
             if *f > 0.0 {
@@ -922,7 +916,6 @@ impl Run<'_> {
                 (c.law.force(d, w) <= 0.0 && w <= 0.0, !c.loaded && d < -tol)
             })
             .collect();
-        drop(sys);
         let all_quiet = state.iter().all(|q| q.0);
         for k in (0..self.active.len()).rev() {
             if all_quiet || state[k].1 {
