@@ -94,6 +94,7 @@ mod base;
 #[cfg(feature = "cli")]
 pub mod cli;
 mod closed_form;
+mod cluster;
 mod cushion;
 mod integrator;
 mod model;
@@ -115,6 +116,13 @@ pub use base::error::Error;
 pub use base::method::Method;
 pub use base::settings::{Sampling, SolverSettings, Stats};
 pub use closed_form::kernel::ClosedForm;
+pub use cluster::params::{
+    Cluster, ClusterBall, ClusterLaw, PairDamping, CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
+};
+pub use cluster::resolve::{
+    resolve_cluster, BallOut, ClusterOutcome, ClusterSettings, ClusterStats, ContactRecord,
+    StopReason, CLUSTER_DEFAULT_RTOL, CLUSTER_MAX_STEPS,
+};
 pub use cushion::impact::resolve_cushion;
 pub use cushion::outcome::{
     CushionContact, CushionOutcome, CushionPhase, CushionTraceRow, SlipChange, SlipEvent,

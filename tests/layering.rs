@@ -18,6 +18,7 @@ const LAYERS: [(&str, &[&str]); 8] = [
         "kernels",
         &[
             "closed_form",
+            "cluster",
             "cushion",
             "integrator",
             "table_phase",

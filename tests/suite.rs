@@ -31,6 +31,7 @@ mod cli_table;
 mod cli_work_precision_laws;
 mod cli_work_precision_values;
 mod closed_form_paper;
+mod cluster;
 mod contact_law_checks;
 mod contact_law_scenes;
 mod convergence_profiles;

@@ -12,7 +12,7 @@ pub(crate) const DIM: usize = 9;
 pub(crate) type Z = [f64; DIM];
 
 /// Dormand-Prince 5(4): a_ij, rows 2..7 (row 7 is the 5th-order solution, FSAL).
-const DOPRI5_A: [[f64; 6]; 6] = [
+pub(crate) const DOPRI5_A: [[f64; 6]; 6] = [
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
     [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
@@ -43,7 +43,7 @@ const DOPRI5_A: [[f64; 6]; 6] = [
 ];
 
 /// Dormand-Prince 5(4): the error weights, b_i - b*_i.
-const DOPRI5_E: [f64; 7] = [
+pub(crate) const DOPRI5_E: [f64; 7] = [
     71.0 / 57600.0,
     0.0,
     -71.0 / 16695.0,

@@ -1,0 +1,224 @@
+//! The inputs of a cluster of touching balls (docs/cluster.md): the balls with their lab
+//! state, the contact law of each pair, the friction, validated together.
+
+use crate::base::error::Error;
+use crate::model::contact_law::{ContactLaw, Damping};
+use crate::model::material::{hertz_stiffness, Material};
+use crate::model::params::Ball;
+use nalgebra::Vector3;
+
+/// Most balls in one cluster: a full rack and its cue ball with room to spare; the stick
+/// solve is dense in the stuck contacts, so its cost grows with their cube.
+pub const MAX_CLUSTER_BALLS: usize = 22;
+
+/// Largest overlap or gap (relative to r_i + r_j) at which two balls count as touching: the
+/// same relative tolerance as two touching lab balls (`TOUCH_TOLERANCE`), 1e-9, a few
+/// hundred times the rounding of positions of a metre-sized table.
+pub const CLUSTER_TOUCH_TOLERANCE: f64 = crate::model::frame::TOUCH_TOLERANCE;
+
+/// One ball of a cluster in the lab frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClusterBall {
+    /// Mass, radius, alpha.
+    pub ball: Ball,
+    /// Centre (m).
+    pub position: Vector3<f64>,
+    /// Velocity of the centre (m/s).
+    pub velocity: Vector3<f64>,
+    /// Spin (rad/s).
+    pub spin: Vector3<f64>,
+}
+
+/// The damping of the pairs' laws when the stiffness comes from the materials.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PairDamping {
+    /// Elastic Hertz.
+    None,
+    /// A given coefficient (beta in s/m or gamma in s) for every pair.
+    Coefficient(Damping, f64),
+    /// Each pair's coefficient calibrated so that its head-on impact at `at_speed` (m/s)
+    /// has restitution `restitution` (`ContactLaw::calibrated`, docs/contact-law.md).
+    Restitution {
+        /// The damping law.
+        damping: Damping,
+        /// Restitution in (0, 1].
+        restitution: f64,
+        /// Relative approach speed of the calibration (m/s).
+        at_speed: f64,
+    },
+}
+
+/// The normal law of every pair.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ClusterLaw {
+    /// The same law for every pair (identical balls).
+    Same(ContactLaw),
+    /// Hertz's stiffness k = (4/3) E* sqrt(R) from the two balls' materials (one per ball,
+    /// in order), with a damping.
+    Materials(Vec<Material>, PairDamping),
+}
+
+/// A validated cluster: balls, laws of every pair, friction coefficient.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cluster {
+    pub(crate) balls: Vec<ClusterBall>,
+    /// The law of pair (i, j), i < j, at index `pair_index(i, j)`.
+    pub(crate) laws: Vec<ContactLaw>,
+    /// Coulomb's mu (dimensionless), the same at every contact.
+    pub(crate) mu: f64,
+}
+
+/// Index of pair (i, j), i < j, among the n (n - 1) / 2 pairs.
+pub(crate) fn pair_index(n: usize, i: usize, j: usize) -> usize {
+    i * n - i * (i + 1) / 2 + (j - i - 1)
+}
+
+impl Cluster {
+    /// A validated cluster: 2 to [`MAX_CLUSTER_BALLS`] balls with finite states, no two
+    /// overlapping by more than [`CLUSTER_TOUCH_TOLERANCE`] of r_i + r_j, at least one pair
+    /// approaching (touching and closing, or on course to touch); `mu` finite in [0, 1e6].
+    pub fn new(balls: Vec<ClusterBall>, law: ClusterLaw, mu: f64) -> Result<Self, Error> {
+        let n = balls.len();
+        if !(2..=MAX_CLUSTER_BALLS).contains(&n) {
+            return Err(Error::invalid(
+                "cluster.balls",
+                format!("{n} balls"),
+                format!("2 to {MAX_CLUSTER_BALLS} balls"),
+            ));
+        }
+        if !(mu.is_finite() && (0.0..=crate::model::params::MU_MAX).contains(&mu)) {
+            return Err(Error::invalid(
+                "cluster.mu",
+                mu,
+                "finite, in [0, 1e6] (Coulomb's friction coefficient)",
+            ));
+        }
+        for (i, b) in balls.iter().enumerate() {
+            let all = [b.position, b.velocity, b.spin];
+            if !all.iter().all(|v| v.iter().all(|x| x.is_finite())) {
+                return Err(Error::invalid(
+                    format!("cluster.balls[{i}]"),
+                    format!(
+                        "position {:?}, velocity {:?}, spin {:?}",
+                        b.position.as_slice(),
+                        b.velocity.as_slice(),
+                        b.spin.as_slice()
+                    ),
+                    "finite components (m, m/s, rad/s)",
+                ));
+            }
+        }
+        let mut approaching = false;
+        for i in 0..n {
+            for j in i + 1..n {
+                let (a, b) = (&balls[i], &balls[j]);
+                let d = a.ball.radius() + b.ball.radius();
+                let p = b.position - a.position;
+                let gap = p.norm() - d;
+                if gap < -CLUSTER_TOUCH_TOLERANCE * d {
+                    return Err(Error::invalid(
+                        format!("cluster.balls[{i}], cluster.balls[{j}]"),
+                        format!("an overlap of {:e} m", -gap),
+                        format!(
+                            "at most {CLUSTER_TOUCH_TOLERANCE:e} of r_i + r_j = {d} m (balls \
+                             that do not overlap)"
+                        ),
+                    ));
+                }
+                approaching |= first_touch(p, b.velocity - a.velocity, d).is_some();
+            }
+        }
+        if !approaching {
+            return Err(Error::invalid(
+                "cluster.balls",
+                "no pair of balls touching and closing or on course to touch",
+                "at least one pair that approaches",
+            ));
+        }
+        let laws = pair_laws(&balls, law)?;
+        Ok(Cluster { balls, laws, mu })
+    }
+
+    /// The balls.
+    pub fn balls(&self) -> &[ClusterBall] {
+        &self.balls
+    }
+
+    /// The law of pair (i, j).
+    pub fn law(&self, i: usize, j: usize) -> ContactLaw {
+        let (i, j) = (i.min(j), i.max(j));
+        self.laws[pair_index(self.balls.len(), i, j)]
+    }
+
+    /// Coulomb's mu.
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+}
+
+/// The time (s) from now at which two balls in free flight, centre of the second at `p` (m)
+/// from the first's, relative velocity `u` (m/s), come to the distance `d` (m) while
+/// approaching: 0 when they touch (within the tolerance) and close; `None` when they never do.
+pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64) -> Option<f64> {
+    let b = p.dot(&u);
+    if b >= 0.0 {
+        return None;
+    }
+    let c = p.norm_squared() - d * d;
+    if c <= 2.0 * CLUSTER_TOUCH_TOLERANCE * d * d {
+        return Some(0.0);
+    }
+    let a = u.norm_squared();
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    // The smaller root, written without cancellation: c / (-b + sqrt(disc)).
+    Some(c / (-b + disc.sqrt()))
+}
+
+/// The law of every pair.
+fn pair_laws(balls: &[ClusterBall], law: ClusterLaw) -> Result<Vec<ContactLaw>, Error> {
+    let n = balls.len();
+    match law {
+        ClusterLaw::Same(l) => Ok(vec![l; n * (n - 1) / 2]),
+        ClusterLaw::Materials(materials, damping) => {
+            if materials.len() != n {
+                return Err(Error::invalid(
+                    "cluster.materials",
+                    format!("{} materials", materials.len()),
+                    format!("one material per ball ({n})"),
+                ));
+            }
+            // Calibrations cost a head-on run each: identical pairs share one.
+            let mut done: Vec<(f64, f64, ContactLaw)> = Vec::new();
+            let mut laws = Vec::with_capacity(n * (n - 1) / 2);
+            for i in 0..n {
+                for j in i + 1..n {
+                    let (a, b) = (&balls[i].ball, &balls[j].ball);
+                    let k = hertz_stiffness((a, &materials[i]), (b, &materials[j])).2;
+                    let m = a.mass() * b.mass() / (a.mass() + b.mass());
+                    let l = match damping {
+                        PairDamping::None => ContactLaw::elastic(k)?,
+                        PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c)?,
+                        PairDamping::Restitution {
+                            damping,
+                            restitution,
+                            at_speed,
+                        } => match done.iter().find(|x| x.0 == k && x.1 == m) {
+                            Some(x) => x.2,
+                            None => {
+                                let l =
+                                    ContactLaw::calibrated(k, damping, restitution, at_speed, m)?;
+                                done.push((k, m, l));
+                                l
+                            }
+                        },
+                    };
+                    laws.push(l);
+                }
+            }
+            Ok(laws)
+        }
+    }
+}

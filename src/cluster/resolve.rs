@@ -1,0 +1,961 @@
+//! Resolving a cluster of balls as one system of ODEs (docs/cluster.md): the positions,
+//! velocities and spins of every ball, the normal force of each contact from its compression
+//! under the pair's law (`ContactLaw::force`, docs/contact-law.md), Coulomb friction at each
+//! contact with the stick rule, stepped by Dormand-Prince 5(4) with events.
+//!
+//! Each contact keeps the geometry it had when it closed, as the paper does for two balls
+//! (its eqs 14-19 hold the line of centres and the lever arms r fixed through the contact):
+//! the normal n from ball i to ball j, the compression measured along it from the positions,
+//! delta = r_i + r_j - n . (x_j - x_i), closing at delta' = n . (v_i - v_j), and the contact
+//! points at r_i n and -r_j n from the centres. The slip of the contact points is
+//! s = v_i - v_j + r_i w_i x n + r_j w_j x n, its tangential part s_t = s - (s . n) n
+//! (eqs 5-6 of two balls).
+
+use super::params::{first_touch, pair_index, Cluster, CLUSTER_TOUCH_TOLERANCE};
+use crate::base::error::Error;
+use crate::base::root::{illinois_update, Bound, Side};
+use crate::cushion::tableau::{DOPRI5_A, DOPRI5_CONTROL, DOPRI5_E};
+use crate::model::contact_law::ContactLaw;
+use crate::model::material::elastic_impact;
+use nalgebra::{DMatrix, DVector, Vector3};
+use std::cell::Cell;
+
+/// Default relative tolerance of the step control.
+pub const CLUSTER_DEFAULT_RTOL: f64 = 1e-8;
+
+/// Most accepted and rejected steps of one run: a 16-ball break at rtol 1e-10 takes a few
+/// thousand; a run still going after this many is chattering, and stops with
+/// [`StopReason::WorkBound`].
+pub const CLUSTER_MAX_STEPS: u64 = 1_000_000;
+
+/// Slip (relative to the reference speed) under which a contact's sliding direction is taken
+/// from its last known direction rather than from the slip itself: near 1e-13 the direction
+/// of a slip is rounding.
+const SLIP_FLOOR: f64 = 1e-13;
+
+/// Bracket width (relative to the elastic contact time) at which an event is located: a few
+/// ulps of the time unit, as for two balls (the integrator's law events).
+const EVENT_X_TOL: f64 = 1e-14;
+
+/// Most trials of one event location.
+const EVENT_TRIALS: usize = 100;
+
+/// A stuck contact is released when the friction it needs exceeds mu f by this fraction: the
+/// needed friction comes out of a linear solve accurate to about 1e-12.
+const RELEASE_SLACK: f64 = 1e-9;
+
+/// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
+const FIRST_STEP: f64 = 1e-3;
+
+/// Smallest step, in elastic contact times, before the run stops with
+/// [`StopReason::StepTooSmall`].
+const MIN_STEP: f64 = 1e-15;
+
+/// Components of the state per ball: position, velocity, spin.
+const PER_BALL: usize = 9;
+/// Components of the state per open contact: normal impulse, friction impulse (3), heat.
+const PER_CONTACT: usize = 5;
+
+/// Why a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// No contact is compressed and no pair will touch again: the result is final.
+    Separated,
+    /// [`CLUSTER_MAX_STEPS`] steps were taken; the state is where the run stopped.
+    WorkBound,
+    /// The step control asked for a step below 1e-15 elastic contact times.
+    StepTooSmall,
+}
+
+/// Settings of a cluster run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClusterSettings {
+    /// Relative tolerance of the step control (also the absolute one, on the natural scales).
+    pub rtol: f64,
+    /// Static friction once a contact's slip stops (the stick rule); off: friction keeps
+    /// acting along the last sliding direction while the slip reverses.
+    pub stick: bool,
+}
+
+impl Default for ClusterSettings {
+    fn default() -> Self {
+        ClusterSettings {
+            rtol: CLUSTER_DEFAULT_RTOL,
+            stick: true,
+        }
+    }
+}
+
+/// A ball after the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BallOut {
+    /// Position (m) when the run ended.
+    pub position: Vector3<f64>,
+    /// Velocity (m/s).
+    pub velocity: Vector3<f64>,
+    /// Spin (rad/s).
+    pub spin: Vector3<f64>,
+}
+
+/// A contact that carried force, from its closing to its opening.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRecord {
+    /// The balls (i < j).
+    pub pair: (usize, usize),
+    /// Its normal, from ball i to ball j.
+    pub normal: Vector3<f64>,
+    /// Normal impulse (N s) on ball j (on i, minus it).
+    pub normal_impulse: f64,
+    /// Friction impulse (N s) on ball i (on j, minus it).
+    pub friction_impulse: Vector3<f64>,
+    /// Time it closed (s, from the start of the run).
+    pub start: f64,
+    /// Its duration (s).
+    pub duration: f64,
+    /// Energy it dissipated (J): the work of its normal force on the compression and of its
+    /// friction on the slip.
+    pub heat: f64,
+    /// Time (s, from its closing) its slip last stopped; `None` if it never did.
+    pub stick_time: Option<f64>,
+}
+
+/// Work done.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ClusterStats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps.
+    pub rejected: u64,
+    /// Right-hand-side evaluations.
+    pub evaluations: u64,
+    /// Events located (stops and releases of slip, contacts opening and closing).
+    pub events: u64,
+}
+
+/// The result of a cluster run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClusterOutcome {
+    /// Every ball, in the input's order.
+    pub balls: Vec<BallOut>,
+    /// Every contact that carried force, in the order they opened.
+    pub contacts: Vec<ContactRecord>,
+    /// Why the run ended.
+    pub stop: StopReason,
+    /// Time (s) the run covered.
+    pub time: f64,
+    /// Work done.
+    pub stats: ClusterStats,
+}
+
+/// How a contact's friction acts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Mode {
+    /// Coulomb's mu f against the slip.
+    Sliding,
+    /// Whatever keeps the slip zero (solved jointly with the other stuck contacts).
+    Stuck,
+}
+
+/// A contact in the current set.
+#[derive(Debug, Clone, Copy)]
+struct Active {
+    i: usize,
+    j: usize,
+    /// Radii (m) and normal frozen at the closing.
+    ri: f64,
+    rj: f64,
+    n: Vector3<f64>,
+    /// An orthonormal basis of the tangent plane.
+    t: [Vector3<f64>; 2],
+    law: ContactLaw,
+    mode: Mode,
+    /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
+    /// friction keeps while a step is located: the slip's at the start of the step.
+    seed: Vector3<f64>,
+    /// Whether the force has been positive.
+    loaded: bool,
+    /// Time of the closing (s).
+    start: f64,
+    stick_time: Option<f64>,
+}
+
+/// Mass, radius and moment of inertia (kg, m, kg m^2).
+#[derive(Debug, Clone, Copy)]
+struct Body {
+    m: f64,
+    r: f64,
+    inertia: f64,
+}
+
+/// The force of one contact: normal force (N), friction on ball i (N), tangential slip
+/// (m/s), closing rate (m/s), compression (m).
+type ContactForce = (f64, Vector3<f64>, Vector3<f64>, f64, f64);
+
+/// The forces of one state.
+struct Forces {
+    /// Per ball: acceleration (m/s^2), angular acceleration (rad/s^2).
+    acc: Vec<[Vector3<f64>; 2]>,
+    /// Per contact: normal force (N), friction on ball i (N), tangential slip (m/s),
+    /// closing rate (m/s), compression (m).
+    contact: Vec<ContactForce>,
+}
+
+/// The system of one segment: its balls, its contact set and the friction.
+struct System<'a> {
+    bodies: &'a [Body],
+    active: &'a [Active],
+    mu: f64,
+    /// Reference speed (m/s).
+    v_ref: f64,
+    /// Friction along each sliding contact's `seed` (the located step).
+    frozen: bool,
+    /// Set when a stage saw a sliding contact's slip reversed against its seed.
+    reversed: Cell<bool>,
+    evaluations: Cell<u64>,
+}
+
+fn pos(y: &[f64], b: usize) -> Vector3<f64> {
+    Vector3::new(y[3 * b], y[3 * b + 1], y[3 * b + 2])
+}
+
+impl System<'_> {
+    fn nb(&self) -> usize {
+        self.bodies.len()
+    }
+    fn vel(&self, y: &[f64], b: usize) -> Vector3<f64> {
+        pos(y, self.nb() + b)
+    }
+    fn spin(&self, y: &[f64], b: usize) -> Vector3<f64> {
+        pos(y, 2 * self.nb() + b)
+    }
+
+    /// Compression delta (m) and closing rate delta' (m/s) of contact `c`.
+    fn compression(&self, y: &[f64], c: &Active) -> (f64, f64) {
+        let d = c.ri + c.rj - c.n.dot(&(pos(y, c.j) - pos(y, c.i)));
+        (d, c.n.dot(&(self.vel(y, c.i) - self.vel(y, c.j))))
+    }
+
+    /// Tangential slip s_t (m/s) of contact `c`.
+    fn slip(&self, y: &[f64], c: &Active) -> Vector3<f64> {
+        let s = self.vel(y, c.i) - self.vel(y, c.j)
+            + (self.spin(y, c.i) * c.ri + self.spin(y, c.j) * c.rj).cross(&c.n);
+        s - c.n * s.dot(&c.n)
+    }
+
+    /// Every force of state `y`.
+    fn forces(&self, y: &[f64]) -> Forces {
+        self.evaluations.set(self.evaluations.get() + 1);
+        let mut acc = vec![[Vector3::zeros(); 2]; self.nb()];
+        let mut contact = Vec::with_capacity(self.active.len());
+        let floor = SLIP_FLOOR * self.v_ref;
+        for c in self.active {
+            let (d, w) = self.compression(y, c);
+            let f = c.law.force(d, w);
+            let s = self.slip(y, c);
+            let friction = match c.mode {
+                Mode::Sliding if f > 0.0 && self.mu > 0.0 => {
+                    let dir = if self.frozen {
+                        c.seed
+                    } else {
+                        if s.dot(&c.seed) <= 0.0 {
+                            self.reversed.set(true);
+                        }
+                        let sn = s.norm();
+                        if sn > floor {
+                            s / sn
+                        } else {
+                            c.seed
+                        }
+                    };
+                    -dir * (self.mu * f)
+                }
+                _ => Vector3::zeros(),
+            };
+            self.push(&mut acc, c, -c.n * f + friction);
+            contact.push((f, friction, s, w, d));
+        }
+        if self.active.iter().any(|c| c.mode == Mode::Stuck) {
+            self.stuck(y, &mut acc, &mut contact);
+        }
+        Forces { acc, contact }
+    }
+
+    /// Adds the force `f` (N) on ball i at the contact point r_i n of `c` (and -f on ball j
+    /// at -r_j n) to the accelerations.
+    fn push(&self, acc: &mut [[Vector3<f64>; 2]], c: &Active, f: Vector3<f64>) {
+        let (bi, bj) = (&self.bodies[c.i], &self.bodies[c.j]);
+        let torque = c.n.cross(&f);
+        acc[c.i][0] += f / bi.m;
+        acc[c.j][0] -= f / bj.m;
+        acc[c.i][1] += torque * (c.ri / bi.inertia);
+        acc[c.j][1] += torque * (c.rj / bj.inertia);
+    }
+
+    /// The friction of the stuck contacts: the tangential forces F_d (2 unknowns each, in the
+    /// tangent basis) for which every stuck slip has zero rate, s_t' = 0, given the other
+    /// forces; coupled through the balls the contacts share (docs/cluster.md#the-stick-solve).
+    fn stuck(&self, y: &[f64], acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
+        let _ = y;
+        let stuck: Vec<usize> = (0..self.active.len())
+            .filter(|&k| self.active[k].mode == Mode::Stuck)
+            .collect();
+        let k = stuck.len();
+        let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
+        let mut b = DVector::<f64>::zeros(2 * k);
+        // Role of a ball in a contact: the sign of its velocity in the slip and its lever.
+        let role = |c: &Active, ball: usize| -> Option<(f64, f64)> {
+            if ball == c.i {
+                Some((1.0, c.ri))
+            } else if ball == c.j {
+                Some((-1.0, c.rj))
+            } else {
+                None
+            }
+        };
+        for (p, &ci) in stuck.iter().enumerate() {
+            let c = &self.active[ci];
+            let rate =
+                acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
+            for u in 0..2 {
+                b[2 * p + u] = -c.t[u].dot(&rate);
+            }
+            for (q, &di) in stuck.iter().enumerate() {
+                let d = &self.active[di];
+                for ball in [d.i, d.j] {
+                    let (Some((sc, rc)), Some((sd, rd))) = (role(c, ball), role(d, ball)) else {
+                        continue;
+                    };
+                    let body = &self.bodies[ball];
+                    for v in 0..2 {
+                        let f = d.t[v];
+                        // s_t' of c from F_d on this ball: sc sd F / m + rc rd ((n_d x F) / I) x n_c.
+                        let ds = f * (sc * sd / body.m)
+                            + d.n.cross(&f).cross(&c.n) * (rc * rd / body.inertia);
+                        for u in 0..2 {
+                            a[(2 * p + u, 2 * q + v)] += c.t[u].dot(&ds);
+                        }
+                    }
+                }
+            }
+        }
+        let Some(x) = a.lu().solve(&b) else {
+            return;
+        };
+        for (p, &ci) in stuck.iter().enumerate() {
+            let c = &self.active[ci];
+            let f = c.t[0] * x[2 * p] + c.t[1] * x[2 * p + 1];
+            self.push(acc, c, f);
+            contact[ci].1 = f;
+        }
+    }
+
+    /// dy/dt at `y`.
+    fn derivative(&self, y: &[f64], dy: &mut [f64]) {
+        let nb = self.nb();
+        let fs = self.forces(y);
+        dy[..3 * nb].copy_from_slice(&y[3 * nb..6 * nb]);
+        for (b, a) in fs.acc.iter().enumerate() {
+            for k in 0..3 {
+                dy[3 * nb + 3 * b + k] = a[0][k];
+                dy[6 * nb + 3 * b + k] = a[1][k];
+            }
+        }
+        for (c, (f, fr, s, w, _)) in fs.contact.iter().enumerate() {
+            let o = PER_BALL * nb + PER_CONTACT * c;
+            dy[o] = *f;
+            dy[o + 1] = fr.x;
+            dy[o + 2] = fr.y;
+            dy[o + 3] = fr.z;
+            dy[o + 4] = f * w - fr.dot(s);
+        }
+    }
+
+    /// One Dormand-Prince 5(4) step of size `h` from `y` (derivative `k0` there): the new
+    /// state and its error norm, the root mean square of the local error over
+    /// rtol (scale_i + |y_i|), positions on their scale alone.
+    fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> (Vec<f64>, f64) {
+        let n = y.len();
+        let mut k = vec![vec![0.0; n]; 7];
+        k[0].copy_from_slice(k0);
+        let mut ys = vec![0.0; n];
+        for s in 1..7 {
+            ys.copy_from_slice(y);
+            for (kj, &aj) in k[..s].iter().zip(&DOPRI5_A[s - 1][..s]) {
+                if aj != 0.0 {
+                    for i in 0..n {
+                        ys[i] += h * aj * kj[i];
+                    }
+                }
+            }
+            let (head, tail) = k.split_at_mut(s);
+            let _ = head;
+            self.derivative(&ys, &mut tail[0]);
+        }
+        // Row 7 of a is the 5th-order solution: the last stage was evaluated at it.
+        let npos = 3 * self.nb();
+        let mut sum = 0.0;
+        for i in 0..n {
+            let e: f64 = k.iter().zip(DOPRI5_E).map(|(ks, es)| es * ks[i]).sum();
+            let mag = if i < npos {
+                0.0
+            } else {
+                y[i].abs().max(ys[i].abs())
+            };
+            let q = h * e / (rtol * (scale[i] + mag));
+            sum += q * q;
+        }
+        (ys, (sum / n as f64).sqrt())
+    }
+}
+
+/// A crossing found at the end of a step: what happened, and its event function (positive
+/// before, <= 0 once it happened).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Event {
+    /// Contact (index in the set) stops sliding.
+    Stop(usize),
+    /// Contact (index) opens: the law's separation function reaches 0.
+    Open(usize),
+    /// Pair (i, j) not in the set closes.
+    Close(usize, usize),
+}
+
+/// Resolves `cluster` with `settings`.
+///
+/// ```
+/// use billiard_contact::nalgebra::Vector3;
+/// use billiard_contact::*;
+/// // Two identical balls head on, elastic Hertz, no friction: they exchange velocities.
+/// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+/// let at = |x: f64, v: f64| ClusterBall {
+///     ball,
+///     position: Vector3::new(x, 0.0, 0.0),
+///     velocity: Vector3::new(v, 0.0, 0.0),
+///     spin: Vector3::zeros(),
+/// };
+/// let balls = vec![at(-0.028575, 1.0), at(0.028575, 0.0)];
+/// let cluster = Cluster::new(balls, ClusterLaw::Same(ContactLaw::elastic(4.5e8)?), 0.0)?;
+/// let out = resolve_cluster(&cluster, &ClusterSettings::default())?;
+/// assert!(out.balls[0].velocity.norm() < 1e-7);
+/// assert!((out.balls[1].velocity.x - 1.0).abs() < 1e-7);
+/// assert_eq!(out.contacts.len(), 1);
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+pub fn resolve_cluster(
+    cluster: &Cluster,
+    settings: &ClusterSettings,
+) -> Result<ClusterOutcome, Error> {
+    let rtol = settings.rtol;
+    if !(rtol.is_finite() && (1e-14..=1e-2).contains(&rtol)) {
+        return Err(Error::invalid(
+            "cluster.rtol",
+            rtol,
+            "in [1e-14, 1e-2] (relative tolerance of the step control)",
+        ));
+    }
+    let nb = cluster.balls.len();
+    let bodies: Vec<Body> = cluster
+        .balls
+        .iter()
+        .map(|b| Body {
+            m: b.ball.mass(),
+            r: b.ball.radius(),
+            inertia: b.ball.inertia(),
+        })
+        .collect();
+    // Positions from the balls' centroid, so that compressions keep their digits.
+    let centre = cluster
+        .balls
+        .iter()
+        .fold(Vector3::zeros(), |s, b| s + b.position)
+        / nb as f64;
+    let mut y = vec![0.0; PER_BALL * nb];
+    for (b, ball) in cluster.balls.iter().enumerate() {
+        for k in 0..3 {
+            y[3 * b + k] = ball.position[k] - centre[k];
+            y[3 * nb + 3 * b + k] = ball.velocity[k];
+            y[6 * nb + 3 * b + k] = ball.spin[k];
+        }
+    }
+    // Natural scales: the largest relative speed, and the elastic compression and contact
+    // time of the softest, heaviest pair at it.
+    let mut v_ref: f64 = 0.0;
+    for i in 0..nb {
+        for j in i + 1..nb {
+            let (a, b) = (&cluster.balls[i], &cluster.balls[j]);
+            v_ref = v_ref.max((a.velocity - b.velocity).norm());
+            v_ref = v_ref.max(a.spin.norm() * bodies[i].r + b.spin.norm() * bodies[j].r);
+        }
+    }
+    let (mut delta0, mut tau0) = (0.0f64, 0.0f64);
+    for i in 0..nb {
+        for j in i + 1..nb {
+            let m = bodies[i].m * bodies[j].m / (bodies[i].m + bodies[j].m);
+            let (d, t) = elastic_impact(cluster.laws[pair_index(nb, i, j)].stiffness(), m, v_ref);
+            delta0 = delta0.max(d);
+            tau0 = tau0.max(t);
+        }
+    }
+    let m_min = bodies.iter().map(|b| b.m).fold(f64::INFINITY, f64::min);
+    let r_min = bodies.iter().map(|b| b.r).fold(f64::INFINITY, f64::min);
+    let mut run = Run {
+        cluster,
+        bodies: &bodies,
+        settings: *settings,
+        v_ref,
+        delta0,
+        tau0,
+        m_min,
+        r_min,
+        t: 0.0,
+        y,
+        active: Vec::new(),
+        records: Vec::new(),
+        stats: ClusterStats::default(),
+    };
+    let stop = run.go()?;
+    let y = &run.y;
+    let balls = (0..nb)
+        .map(|b| BallOut {
+            position: pos(y, b) + centre,
+            velocity: pos(y, nb + b),
+            spin: pos(y, 2 * nb + b),
+        })
+        .collect();
+    Ok(ClusterOutcome {
+        balls,
+        contacts: run.records,
+        stop,
+        time: run.t,
+        stats: run.stats,
+    })
+}
+
+/// The state of a run.
+struct Run<'a> {
+    cluster: &'a Cluster,
+    bodies: &'a [Body],
+    settings: ClusterSettings,
+    v_ref: f64,
+    delta0: f64,
+    tau0: f64,
+    m_min: f64,
+    r_min: f64,
+    t: f64,
+    /// Balls (9 per ball), then the open contacts' accumulators (5 each).
+    y: Vec<f64>,
+    active: Vec<Active>,
+    records: Vec<ContactRecord>,
+    stats: ClusterStats,
+}
+
+impl Run<'_> {
+    fn nb(&self) -> usize {
+        self.bodies.len()
+    }
+
+    fn system(&self, frozen: bool) -> System<'_> {
+        System {
+            bodies: self.bodies,
+            active: &self.active,
+            mu: self.cluster.mu,
+            v_ref: self.v_ref,
+            frozen,
+            reversed: Cell::new(false),
+            evaluations: Cell::new(0),
+        }
+    }
+
+    /// The error scale of every component.
+    fn scale(&self) -> Vec<f64> {
+        let nb = self.nb();
+        let mut s = vec![self.delta0; 3 * nb];
+        s.extend(std::iter::repeat_n(self.v_ref, 3 * nb));
+        s.extend(std::iter::repeat_n(self.v_ref / self.r_min, 3 * nb));
+        for _ in &self.active {
+            let p = self.m_min * self.v_ref;
+            s.extend([p, p, p, p, p * self.v_ref]);
+        }
+        s
+    }
+
+    /// Opens a contact between balls i < j at the current state.
+    fn close(&mut self, i: usize, j: usize) {
+        let (xi, xj) = (pos(&self.y, i), pos(&self.y, j));
+        let n = (xj - xi).normalize();
+        let a = if n.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let t0 = n.cross(&a).normalize();
+        let t1 = n.cross(&t0);
+        let c = Active {
+            i,
+            j,
+            ri: self.bodies[i].r,
+            rj: self.bodies[j].r,
+            n,
+            t: [t0, t1],
+            law: self.cluster.law(i, j),
+            mode: Mode::Sliding,
+            seed: t0,
+            loaded: false,
+            start: self.t,
+            stick_time: None,
+        };
+        self.active.push(c);
+        self.y.extend([0.0; PER_CONTACT]);
+        let k = self.active.len() - 1;
+        let sys = self.system(false);
+        let s = sys.slip(&self.y, &self.active[k]);
+        let sn = s.norm();
+        let stuck = self.cluster.mu > 0.0 && self.settings.stick && sn <= SLIP_FLOOR * self.v_ref;
+        let c = &mut self.active[k];
+        if sn > 0.0 {
+            c.seed = s / sn;
+        }
+        if stuck {
+            c.mode = Mode::Stuck;
+            c.stick_time = Some(0.0);
+        }
+    }
+
+    /// Removes contact `k`, writing its record if it carried force.
+    fn open(&mut self, k: usize) {
+        let c = self.active.remove(k);
+        let o = PER_BALL * self.nb() + PER_CONTACT * k;
+        let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
+        if c.loaded || acc[0] > 0.0 {
+            self.records.push(ContactRecord {
+                pair: (c.i, c.j),
+                normal: c.n,
+                normal_impulse: acc[0],
+                friction_impulse: Vector3::new(acc[1], acc[2], acc[3]),
+                start: c.start,
+                duration: self.t - c.start,
+                heat: acc[4],
+                stick_time: c.stick_time,
+            });
+        }
+    }
+
+    /// Whether pair (i, j) is in the contact set.
+    fn in_set(&self, i: usize, j: usize) -> bool {
+        self.active.iter().any(|c| c.i == i && c.j == j)
+    }
+
+    /// The law's separation function of a pair not in the set, from its centres' distance.
+    fn gap_function(&self, y: &[f64], i: usize, j: usize) -> f64 {
+        let nb = self.nb();
+        let p = pos(y, j) - pos(y, i);
+        let d = p.norm();
+        let delta = self.bodies[i].r + self.bodies[j].r - d;
+        let rate = -p.dot(&(pos(y, nb + j) - pos(y, nb + i))) / d;
+        self.cluster.law(i, j).separation(delta, rate)
+    }
+
+    /// The event function of `e` at state `y` (positive before the event).
+    fn event_value(&self, sys: &System<'_>, y: &[f64], e: Event) -> f64 {
+        match e {
+            Event::Stop(k) => sys.slip(y, &self.active[k]).dot(&self.active[k].seed),
+            Event::Open(k) => {
+                let c = &self.active[k];
+                let (d, w) = sys.compression(y, c);
+                c.law.separation(d, w)
+            }
+            Event::Close(i, j) => -self.gap_function(y, i, j),
+        }
+    }
+
+    /// The events crossed between `y0` and `y1`.
+    fn crossings(&self, sys: &System<'_>, y0: &[f64], y1: &[f64]) -> Vec<Event> {
+        let mut out = Vec::new();
+        for (k, c) in self.active.iter().enumerate() {
+            if c.mode == Mode::Sliding && self.cluster.mu > 0.0 {
+                let e = Event::Stop(k);
+                let loaded = c
+                    .law
+                    .force(sys.compression(y1, c).0, sys.compression(y1, c).1)
+                    > 0.0;
+                if loaded
+                    && self.event_value(sys, y0, e) > 0.0
+                    && self.event_value(sys, y1, e) <= 0.0
+                {
+                    out.push(e);
+                }
+            }
+            let e = Event::Open(k);
+            let was = c.loaded
+                || c.law
+                    .force(sys.compression(y0, c).0, sys.compression(y0, c).1)
+                    > 0.0;
+            if was && self.event_value(sys, y0, e) > 0.0 && self.event_value(sys, y1, e) <= 0.0 {
+                out.push(e);
+            }
+        }
+        let nb = self.nb();
+        for i in 0..nb {
+            for j in i + 1..nb {
+                if self.in_set(i, j) {
+                    continue;
+                }
+                let e = Event::Close(i, j);
+                if self.event_value(sys, y0, e) >= 0.0 && self.event_value(sys, y1, e) < 0.0 {
+                    out.push(e);
+                }
+            }
+        }
+        out
+    }
+
+    /// The time inside the step `h` from `y` (derivative `k0`) at which `e` happens, by regula
+    /// falsi (Illinois), each trial one step of that size from `y`.
+    fn locate(&self, sys: &System<'_>, k0: &[f64], h: f64, y1: &[f64], e: Event) -> f64 {
+        let scale = self.scale();
+        let mut lo = Bound {
+            q: 0.0,
+            g: self.event_value(sys, &self.y, e),
+        };
+        let mut hi = Bound {
+            q: h,
+            g: self.event_value(sys, y1, e),
+        };
+        let mut side = Side::None;
+        for _ in 0..EVENT_TRIALS {
+            if hi.q - lo.q <= EVENT_X_TOL * self.tau0 || hi.g == 0.0 {
+                break;
+            }
+            let x = (lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g))).clamp(lo.q, hi.q);
+            let (yx, _) = sys.step(&self.y, k0, x, &scale, self.settings.rtol);
+            let g = self.event_value(sys, &yx, e);
+            side = illinois_update(&mut lo, &mut hi, side, x, g);
+        }
+        hi.q
+    }
+
+    /// The run: free flight to the next touch while no contact is in the set, steps with
+    /// events while one is.
+    fn go(&mut self) -> Result<StopReason, Error> {
+        let nb = self.nb();
+        for i in 0..nb {
+            for j in i + 1..nb {
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                let d = self.bodies[i].r + self.bodies[j].r;
+                if p.norm() - d <= CLUSTER_TOUCH_TOLERANCE * d {
+                    self.close(i, j);
+                }
+            }
+        }
+        let mut h = FIRST_STEP * self.tau0;
+        let mut k0: Option<Vec<f64>> = None;
+        loop {
+            if self.stats.steps + self.stats.rejected >= CLUSTER_MAX_STEPS {
+                return Ok(StopReason::WorkBound);
+            }
+            self.drop_quiet();
+            if self.active.is_empty() {
+                if !self.fly() {
+                    return Ok(StopReason::Separated);
+                }
+                h = FIRST_STEP * self.tau0;
+                k0 = None;
+                continue;
+            }
+            if h < MIN_STEP * self.tau0 {
+                return Ok(StopReason::StepTooSmall);
+            }
+            // Each sliding contact's direction at the start of the step.
+            {
+                let sys = self.system(false);
+                let seeds: Vec<Option<Vector3<f64>>> = self
+                    .active
+                    .iter()
+                    .map(|c| {
+                        let s = sys.slip(&self.y, c);
+                        (s.norm() > SLIP_FLOOR * self.v_ref).then(|| s.normalize())
+                    })
+                    .collect();
+                for (c, s) in self.active.iter_mut().zip(seeds) {
+                    if let (Mode::Sliding, Some(s)) = (c.mode, s) {
+                        c.seed = s;
+                    }
+                }
+            }
+            let scale = self.scale();
+            let sys = self.system(false);
+            let d0 = match k0.take() {
+                Some(k) => k,
+                None => {
+                    let mut d = vec![0.0; self.y.len()];
+                    sys.derivative(&self.y, &mut d);
+                    d
+                }
+            };
+            let (mut y1, mut err) = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
+            let mut frozen = false;
+            let mut evals = sys.evaluations.get();
+            let reversed = sys.reversed.get();
+            if err <= 1.0 && reversed {
+                // A slip reversed inside the step: redo it with the friction along each
+                // sliding contact's direction at its start (as two balls do), so that the
+                // stop is a clean crossing.
+                let fsys = self.system(true);
+                let mut df = vec![0.0; self.y.len()];
+                fsys.derivative(&self.y, &mut df);
+                (y1, err) = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
+                evals += fsys.evaluations.get();
+                frozen = true;
+            }
+            self.stats.evaluations += evals;
+            if err > 1.0 || !err.is_finite() {
+                self.stats.rejected += 1;
+                h = DOPRI5_CONTROL.next(h, if err.is_finite() { err } else { 1e10 });
+                k0 = Some(d0);
+                continue;
+            }
+            let sys = self.system(frozen);
+            let events = self.crossings(&sys, &self.y, &y1);
+            if frozen && events.is_empty() {
+                // The reversal was inside the stages only: a smaller step.
+                self.stats.rejected += 1;
+                h *= 0.5;
+                k0 = Some(d0);
+                continue;
+            }
+            if events.is_empty() {
+                self.stats.steps += 1;
+                self.y = y1;
+                self.t += h;
+                h = DOPRI5_CONTROL.next(h, err);
+                self.after_step();
+                continue;
+            }
+            let mut d = vec![0.0; self.y.len()];
+            sys.derivative(&self.y, &mut d);
+            let times: Vec<f64> = events
+                .iter()
+                .map(|&e| self.locate(&sys, &d, h, &y1, e))
+                .collect();
+            let at = times.iter().copied().fold(f64::INFINITY, f64::min);
+            let (ya, _) = sys.step(&self.y, &d, at, &scale, self.settings.rtol);
+            let g: Vec<f64> = events
+                .iter()
+                .map(|&e| self.event_value(&sys, &ya, e))
+                .collect();
+            let evals = sys.evaluations.get();
+            self.stats.evaluations += evals;
+            self.stats.steps += 1;
+            self.y = ya;
+            self.t += at;
+            // Every event located at that time (or crossed by it), contacts removed last.
+            let mut opened = Vec::new();
+            for ((e, time), g) in events.iter().zip(&times).zip(&g) {
+                let happens = *time <= at
+                    || match e {
+                        Event::Close(..) => *g < 0.0,
+                        _ => *g <= 0.0,
+                    };
+                if !happens {
+                    continue;
+                }
+                self.stats.events += 1;
+                match *e {
+                    Event::Stop(k) => {
+                        let c = &mut self.active[k];
+                        c.stick_time = Some(self.t - c.start);
+                        if self.settings.stick {
+                            c.mode = Mode::Stuck;
+                        }
+                    }
+                    Event::Open(k) => opened.push(k),
+                    Event::Close(i, j) => self.close(i, j),
+                }
+            }
+            opened.sort_unstable();
+            for k in opened.into_iter().rev() {
+                self.open(k);
+            }
+            self.after_step();
+            h = h.max(FIRST_STEP * self.tau0);
+        }
+    }
+
+    /// After a step: marks the loaded contacts and releases the stuck ones whose friction
+    /// exceeds mu f.
+    fn after_step(&mut self) {
+        let sys = self.system(false);
+        let fs = sys.forces(&self.y);
+        self.stats.evaluations += 1;
+        for (c, (f, fr, _, _, _)) in self.active.iter_mut().zip(&fs.contact) {
+            if *f > 0.0 {
+                c.loaded = true;
+            }
+            if c.mode == Mode::Stuck {
+                let cap = self.cluster.mu * f;
+                let need = fr.norm();
+                if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
+                    c.mode = Mode::Sliding;
+                    c.seed = -fr / need;
+                }
+            }
+        }
+    }
+
+    /// Drops the contacts that carry no force and do not close (or, unloaded, have moved
+    /// apart by more than the touch tolerance).
+    fn drop_quiet(&mut self) {
+        let sys = self.system(false);
+        // Per contact: (no force and not closing, unloaded and apart by the tolerance).
+        let state: Vec<(bool, bool)> = self
+            .active
+            .iter()
+            .map(|c| {
+                let (d, w) = sys.compression(&self.y, c);
+                let tol = CLUSTER_TOUCH_TOLERANCE * (c.ri + c.rj);
+                (c.law.force(d, w) <= 0.0 && w <= 0.0, !c.loaded && d < -tol)
+            })
+            .collect();
+        let all_quiet = state.iter().all(|q| q.0);
+        for k in (0..self.active.len()).rev() {
+            if all_quiet || state[k].1 {
+                self.open(k);
+            }
+        }
+    }
+
+    /// Free flight to the next touch; false when no pair will touch.
+    fn fly(&mut self) -> bool {
+        let nb = self.nb();
+        let mut next: Option<f64> = None;
+        for i in 0..nb {
+            for j in i + 1..nb {
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
+                if let Some(t) = first_touch(p, u, self.bodies[i].r + self.bodies[j].r) {
+                    next = Some(next.map_or(t, |x: f64| x.min(t)));
+                }
+            }
+        }
+        let Some(t) = next else {
+            return false;
+        };
+        for b in 0..nb {
+            for k in 0..3 {
+                self.y[3 * b + k] += t * self.y[3 * nb + 3 * b + k];
+            }
+        }
+        self.t += t;
+        for i in 0..nb {
+            for j in i + 1..nb {
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
+                let d = self.bodies[i].r + self.bodies[j].r;
+                if first_touch(p, u, d) == Some(0.0) {
+                    self.close(i, j);
+                }
+            }
+        }
+        true
+    }
+}
