@@ -16,6 +16,9 @@ SI units throughout (kg, m, s, m/s, rad/s, N s, J).
 - ``BallCushion(mass=, radius=, alpha=0.4, height=, mu_cushion=, mu_table=, restitution=)``:
   a ball on the cloth against a cushion (Mathavan 2010), ``cushion.resolve(v, w)`` in the
   cushion's frame (x along it, y towards it, z up).
+- ``Cluster(balls=[Ball(...), ...], mu=, youngs_modulus=, poisson_ratio=, damping=None,
+  restitution=, at_speed=)``: N balls resolved together (a break, a frozen combination,
+  Newton's cradle); ``cluster.resolve(positions, velocities, spins)`` on (N, 3) arrays.
 - ``billiard_contact.pooltool``: ball-ball and ball-linear-cushion models for pooltool's
   ``Resolver``.
 
@@ -29,6 +32,7 @@ from billiard_contact._core import (
     BallBall,
     BallCushion,
     BallPlane,
+    Cluster,
     SpeedDependentFriction,
     __version__,
     run,
@@ -41,6 +45,7 @@ __all__ = [
     "BallBall",
     "BallCushion",
     "BallPlane",
+    "Cluster",
     "SpeedDependentFriction",
     "__version__",
     "run",

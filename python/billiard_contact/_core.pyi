@@ -408,3 +408,88 @@ class BallCushion:
         (default 1e-10, atol with it); steps of rk4. 64 rows or more run on all cores
         without the GIL.
         """
+
+class ClusterContact(TypedDict):
+    """One contact of Cluster.resolve that carried force, from its closing to its opening."""
+
+    pair: tuple[int, int]
+    """The balls' indices (i, j), i < j."""
+    impulse: float
+    """Normal impulse on ball j (on ball i, minus it) (N s)."""
+    friction_impulse: npt.NDArray[np.float64]
+    """Friction impulse on ball i (on ball j, minus it), (3,) (N s)."""
+    normal: npt.NDArray[np.float64]
+    """Unit normal from ball i to ball j at the closing, (3,)."""
+    start: float
+    """Time it closed, from the start of the run (s)."""
+    duration: float
+    """How long it carried force (s)."""
+    heat: float
+    """Energy it dissipated: damping and sliding friction (J)."""
+    stick_time: Optional[float]
+    """Time from its closing at which its slip last stopped (s), or None."""
+
+class ClusterResult(TypedDict):
+    """Outgoing state of Cluster.resolve: a row per ball, in the order of Cluster.balls."""
+
+    velocities: npt.NDArray[np.float64]
+    """(N, 3) velocities after the last contact opened (m/s)."""
+    spins: npt.NDArray[np.float64]
+    """(N, 3) spins (rad/s)."""
+    positions: npt.NDArray[np.float64]
+    """(N, 3) centres when the run ended (m)."""
+    contacts: list[ClusterContact]
+    """Every contact that carried force, in the order they opened again (ended)."""
+    time: float
+    """Time the run covered (s)."""
+    steps: int
+    """Accepted steps."""
+    evaluations: int
+    """Evaluations of the right-hand side."""
+
+class Cluster:
+    """N balls resolved together (docs/cluster.md): every pair that touches or comes to
+    touch is a contact with its own compression, normal law and Coulomb friction with the
+    stick rule.
+
+    balls: 2 to 22 Ball; mu >= 0 at every contact; the normal law from the balls' material
+    (youngs_modulus in Pa, poisson_ratio) or one stiffness (N/m^1.5) for every pair;
+    damping None, "hunt-crossley" or "kuwabara-kono" with its coefficient (s/m or s) or
+    the restitution of a head-on impact at at_speed (m/s); stick (the stick rule).
+    The keywords are the scene file's names ([balls] and [contact.law]).
+
+    Bad values raise ValueError naming the keyword.
+    """
+
+    def __init__(
+        self,
+        *,
+        balls: Sequence[Ball],
+        mu: float,
+        youngs_modulus: Optional[float] = None,
+        poisson_ratio: Optional[float] = None,
+        stiffness: Optional[float] = None,
+        damping: Optional[Literal["hunt-crossley", "kuwabara-kono"]] = None,
+        coefficient: Optional[float] = None,
+        restitution: Optional[float] = None,
+        at_speed: Optional[float] = None,
+        stick: bool = True,
+    ) -> None: ...
+    @property
+    def balls(self) -> list[Ball]: ...
+    @property
+    def mu(self) -> float: ...
+    def resolve(
+        self,
+        positions: npt.ArrayLike,
+        velocities: npt.ArrayLike,
+        spins: npt.ArrayLike,
+        rtol: Optional[float] = None,
+    ) -> ClusterResult:
+        """Resolves the balls from this state to the end of every contact.
+
+        positions (m), velocities (m/s), spins (rad/s): (N, 3), a row per ball. Balls may
+        touch (within 1e-9 of r_i + r_j) or come to touch; one pair at least approaches.
+        rtol: the step control's relative tolerance (default 1e-8). A run that cannot
+        finish raises RuntimeError; nothing partial is returned.
+        """

@@ -137,6 +137,12 @@ named! {
     samples: integer_or_none -> Option<i64>;
     steps: integer_or_none -> Option<i64>;
     base_dir: path -> PathBuf;
+    youngs_modulus: real_or_none -> Option<f64>;
+    poisson_ratio: real_or_none -> Option<f64>;
+    stiffness: real_or_none -> Option<f64>;
+    damping: text_or_none -> Option<String>;
+    coefficient: real_or_none -> Option<f64>;
+    at_speed: real_or_none -> Option<f64>;
 }
 
 named_as! {
@@ -150,4 +156,5 @@ named_as! {
     b_ball("b"): ball_or_none -> Option<Ball>;
     scene_path("path"): path -> PathBuf;
     scene_text("text"): text -> String;
+    restitution_or_none("restitution"): real_or_none -> Option<f64>;
 }

@@ -3,6 +3,7 @@
 
 mod args;
 mod ball;
+mod cluster;
 mod cushion;
 mod errors;
 mod friction;
@@ -22,6 +23,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<friction::SpeedDependentFriction>()?;
     m.add_class::<plane::BallPlane>()?;
     m.add_class::<cushion::BallCushion>()?;
+    m.add_class::<cluster::Cluster>()?;
     m.add_function(wrap_pyfunction!(outputs::_check_outputs_per_chunk, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::run_toml, m)?)?;

@@ -42,7 +42,9 @@ def test_frictionless_cushion_and_cloth(rule, e):
     w = rng.normal(size=(50, 3)) * 60
     out = cushion.resolve(v, w)
     np.testing.assert_allclose(out["v"][:, 0], v[:, 0], rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(out["v"][:, 1], -e * v[:, 1], rtol=1e-9, atol=1e-12)
+    # The end of compression (and of restitution) is an event located to about 1e-12 of
+    # the impulse, so v_y' holds to that fraction of v_y (at e = 0: |v_y'| <= 1e-12 v_y).
+    np.testing.assert_allclose(out["v"][:, 1] / v[:, 1], -e, rtol=1e-9, atol=2e-12)
     np.testing.assert_allclose(out["v"][:, 2], 0, atol=1e-12)
     np.testing.assert_allclose(out["w"], w, rtol=1e-12, atol=1e-9)
     s = (H - R) / R

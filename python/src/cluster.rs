@@ -1,0 +1,479 @@
+//! `Cluster`: N balls that touch or come to touch, resolved together as one system
+//! (docs/cluster.md): every pair's normal law from the balls' materials (or one given
+//! stiffness), Coulomb friction with the stick rule at every contact.
+
+use crate::ball::Ball;
+use crate::errors::to_py;
+use crate::inputs::float_array;
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::{
+    resolve_cluster, Cluster as Kernel, ClusterBall, ClusterLaw, ClusterSettings, ContactLaw,
+    Damping, Error, Material, PairDamping, StopReason,
+};
+use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+/// The argument names of `resolve`, in order.
+const NAMES: [&str; 3] = ["positions", "velocities", "spins"];
+
+/// Default relative tolerance of the step control (the library's default for clusters).
+const DEFAULT_RTOL: f64 = billiard_contact::CLUSTER_DEFAULT_RTOL;
+
+/// N balls resolved together: balls, a list of Ball (2 to 22; each its own mass, radius
+/// and alpha); mu, Coulomb's friction at every contact (>= 0); the normal law of every
+/// pair, Hertz's k = (4/3) E* sqrt(R*) from the balls' material, youngs_modulus (Pa) and
+/// poisson_ratio (the same for every ball; phenolic resin: about 5.4e9 and 0.34), or one
+/// stiffness (N/m^1.5) for every pair instead; damping None (elastic), "hunt-crossley"
+/// or "kuwabara-kono", its coefficient (s/m or s) or, instead, the restitution a head-on
+/// impact at at_speed (m/s, relative approach speed) has; stick: whether a contact whose
+/// slip stops sticks (the stick rule, default True).
+///
+/// The keyword names are the scene file's: [balls] youngs_modulus and poisson_ratio,
+/// [contact.law] stiffness, damping, coefficient, restitution and at_speed.
+///
+/// Bad values raise ValueError naming the keyword, e.g. "mu = -1: finite, in [0, 1e6]".
+#[pyclass(frozen, module = "billiard_contact._core", name = "Cluster")]
+pub struct Cluster {
+    balls: Vec<Ball>,
+    mu: f64,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    stiffness: Option<f64>,
+    damping: Option<String>,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+    stick: bool,
+    /// The law of every pair (calibrations done once, here).
+    law: ClusterLaw,
+}
+
+/// `e` with the library's `cluster.` and `contact.law.` prefixes taken off its field:
+/// the keywords are the bare names.
+fn keyword(e: Error) -> Error {
+    match e {
+        Error::InvalidParameter {
+            field,
+            value,
+            expected,
+        } => {
+            let bare = ["cluster.", "contact.law.", "balls."]
+                .iter()
+                .find_map(|p| field.strip_prefix(p))
+                .map(|s| s.replace(", cluster.", ", "))
+                .unwrap_or(field);
+            Error::InvalidParameter {
+                field: bare,
+                value,
+                expected,
+            }
+        }
+        other => other,
+    }
+}
+
+fn bad(field: &str, value: impl std::fmt::Display, expected: &str) -> PyErr {
+    to_py(Error::invalid(field, value, expected))
+}
+
+/// The damping law named `name` (None: elastic).
+fn damping_of(name: Option<&str>) -> PyResult<Damping> {
+    match name {
+        None | Some("none") => Ok(Damping::None),
+        Some("hunt-crossley") => Ok(Damping::HuntCrossley),
+        Some("kuwabara-kono") => Ok(Damping::KuwabaraKono),
+        Some(other) => Err(bad(
+            "damping",
+            format!("{other:?}"),
+            "None, \"hunt-crossley\" or \"kuwabara-kono\"",
+        )),
+    }
+}
+
+/// The law of every pair from the keywords, refused as the scene file's `[contact.law]`
+/// is: exactly one of the stiffness or the material, the coefficient or the restitution
+/// with its speed.
+#[allow(clippy::too_many_arguments)]
+fn law_of(
+    balls: &[Ball],
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    stiffness: Option<f64>,
+    damping: Damping,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+) -> PyResult<ClusterLaw> {
+    let material = match (youngs_modulus, poisson_ratio) {
+        (Some(e), Some(nu)) => Some(Material::new(e, nu).map_err(|e| to_py(keyword(e)))?),
+        (None, None) => None,
+        (Some(_), None) => {
+            return Err(bad(
+                "youngs_modulus",
+                "given without poisson_ratio",
+                "both youngs_modulus and poisson_ratio, or neither",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(bad(
+                "poisson_ratio",
+                "given without youngs_modulus",
+                "both youngs_modulus and poisson_ratio, or neither",
+            ))
+        }
+    };
+    let calibration = match (coefficient, restitution, at_speed) {
+        (Some(_), Some(_), _) => {
+            return Err(bad(
+                "coefficient, restitution",
+                "both given",
+                "the coefficient or the restitution (with at_speed), not both",
+            ))
+        }
+        (_, Some(_), None) | (_, None, Some(_)) => {
+            return Err(bad(
+                "restitution, at_speed",
+                "one given without the other",
+                "restitution and at_speed together",
+            ))
+        }
+        (_, Some(e), Some(v)) => Some((e, v)),
+        (_, None, None) => None,
+    };
+    if damping == Damping::None && coefficient.is_some() {
+        return Err(bad(
+            "coefficient",
+            "given with damping None",
+            "no coefficient for elastic Hertz; name a damping law",
+        ));
+    }
+    let pair_damping = match (coefficient, calibration) {
+        (Some(c), _) => PairDamping::Coefficient(damping, c),
+        (None, Some((e, v))) => PairDamping::Restitution {
+            damping,
+            restitution: e,
+            at_speed: v,
+        },
+        (None, None) if damping == Damping::None => PairDamping::None,
+        (None, None) => {
+            return Err(bad(
+                "damping",
+                format!(
+                    "{:?} without a coefficient or a restitution",
+                    damping.name()
+                ),
+                "coefficient=, or restitution= with at_speed=",
+            ))
+        }
+    };
+    match (stiffness, material) {
+        (Some(_), Some(_)) => Err(bad(
+            "stiffness",
+            "given with youngs_modulus and poisson_ratio",
+            "the stiffness or the material, not both",
+        )),
+        (None, None) => Err(bad(
+            "youngs_modulus",
+            "not given (nor stiffness)",
+            "youngs_modulus and poisson_ratio, or stiffness",
+        )),
+        (None, Some(m)) => Ok(ClusterLaw::Materials(vec![m; balls.len()], pair_damping)),
+        (Some(k), None) => {
+            let law = match pair_damping {
+                PairDamping::None => ContactLaw::elastic(k),
+                PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
+                PairDamping::Restitution {
+                    damping,
+                    restitution,
+                    at_speed,
+                } => {
+                    // One law for every pair: calibrated on the first two balls' reduced
+                    // mass, so identical balls are what a given stiffness is for.
+                    if let Some(b) = balls.iter().skip(1).find(|b| b.ball != balls[0].ball) {
+                        return Err(bad(
+                            "stiffness",
+                            format!("one calibrated law with unequal balls ({})", b.__repr__()),
+                            "identical balls, or the balls' material (each pair calibrated \
+                             on its own reduced mass)",
+                        ));
+                    }
+                    let m = balls[0].ball.mass() / 2.0;
+                    ContactLaw::calibrated(k, damping, restitution, at_speed, m)
+                }
+            }
+            .map_err(|e| to_py(keyword(e)))?;
+            Ok(ClusterLaw::Same(law))
+        }
+    }
+}
+
+/// An (N, 3) float array's rows.
+fn rows(name: &str, ob: &Bound<'_, PyAny>) -> PyResult<Vec<Vector3<f64>>> {
+    let a = float_array(name, ob)?;
+    let shape = a.shape().to_vec();
+    if shape.len() != 2 || shape[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "{name}: shape {shape:?}: an (N, 3) array, a row per ball"
+        )));
+    }
+    let ro = a.try_readonly()?;
+    let view = ro.as_array();
+    Ok((0..shape[0])
+        .map(|i| Vector3::new(view[[i, 0]], view[[i, 1]], view[[i, 2]]))
+        .collect())
+}
+
+fn stop_name(s: StopReason) -> &'static str {
+    match s {
+        StopReason::Separated => "separated",
+        StopReason::WorkBound => "work-bound",
+        StopReason::StepTooSmall => "step-too-small",
+    }
+}
+
+#[pymethods]
+impl Cluster {
+    #[new]
+    #[pyo3(signature = (*, balls, mu, youngs_modulus = None, poisson_ratio = None,
+                        stiffness = None, damping = None, coefficient = None,
+                        restitution = None, at_speed = None, stick = true),
+           text_signature = "(*, balls, mu, youngs_modulus=None, poisson_ratio=None, \
+                             stiffness=None, damping=None, coefficient=None, \
+                             restitution=None, at_speed=None, stick=True)")]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        balls: &Bound<'_, PyAny>,
+        #[pyo3(from_py_with = crate::args::mu)] mu: f64,
+        #[pyo3(from_py_with = crate::args::youngs_modulus)] youngs_modulus: Option<f64>,
+        #[pyo3(from_py_with = crate::args::poisson_ratio)] poisson_ratio: Option<f64>,
+        #[pyo3(from_py_with = crate::args::stiffness)] stiffness: Option<f64>,
+        #[pyo3(from_py_with = crate::args::damping)] damping: Option<String>,
+        #[pyo3(from_py_with = crate::args::coefficient)] coefficient: Option<f64>,
+        #[pyo3(from_py_with = crate::args::restitution_or_none)] restitution: Option<f64>,
+        #[pyo3(from_py_with = crate::args::at_speed)] at_speed: Option<f64>,
+        #[pyo3(from_py_with = crate::args::stick)] stick: bool,
+    ) -> PyResult<Self> {
+        let balls: Vec<Ball> = balls
+            .try_iter()
+            .map_err(|_| PyTypeError::new_err("balls: expected a list of Ball"))?
+            .map(|b| {
+                b.and_then(|b| {
+                    b.cast::<Ball>()
+                        .map(|b| *b.get())
+                        .map_err(|_| PyTypeError::new_err("balls: expected a list of Ball"))
+                })
+            })
+            .collect::<PyResult<_>>()?;
+        let n = balls.len();
+        if !(2..=billiard_contact::MAX_CLUSTER_BALLS).contains(&n) {
+            return Err(bad(
+                "balls",
+                format!("{n} balls"),
+                &format!("2 to {} balls", billiard_contact::MAX_CLUSTER_BALLS),
+            ));
+        }
+        if !(mu.is_finite() && (0.0..=1e6).contains(&mu)) {
+            return Err(bad(
+                "mu",
+                mu,
+                "finite, in [0, 1e6] (Coulomb's friction coefficient)",
+            ));
+        }
+        let law = law_of(
+            &balls,
+            youngs_modulus,
+            poisson_ratio,
+            stiffness,
+            damping_of(damping.as_deref())?,
+            coefficient,
+            restitution,
+            at_speed,
+        )?;
+        Ok(Cluster {
+            balls,
+            mu,
+            youngs_modulus,
+            poisson_ratio,
+            stiffness,
+            damping,
+            coefficient,
+            restitution,
+            at_speed,
+            stick,
+            law,
+        })
+    }
+
+    /// Resolves the balls from the given state to the end of every contact.
+    ///
+    /// positions (m), velocities (m/s), spins (rad/s): (N, 3) arrays (lists work too), a
+    /// row per ball in the order of `balls`. Balls may touch (within 1e-9 of r_i + r_j)
+    /// or stand apart and come to touch; at least one pair must approach. rtol: relative
+    /// tolerance of the step control (default 1e-8).
+    ///
+    /// Returns a dict: "velocities" and "spins" ((N, 3) after the last contact opened),
+    /// "positions" ((N, 3) when the run ended), "contacts" (a list with one dict per
+    /// contact that carried force, in the order they opened again: "pair" (i, j), i < j,
+    /// "impulse" (normal impulse on ball j, N s), "friction_impulse" (on ball i, (3,),
+    /// N s), "normal" (from i to j), "start" and "duration" (s), "heat" (J) and
+    /// "stick_time" (s from its closing, or None)), "time" (s covered), "steps" and
+    /// "evaluations". A run that cannot finish (the step control stalls or the work bound
+    /// is reached) raises RuntimeError; nothing partial is returned.
+    #[pyo3(signature = (positions, velocities, spins, rtol = None))]
+    fn resolve<'py>(
+        &self,
+        py: Python<'py>,
+        positions: &Bound<'py, PyAny>,
+        velocities: &Bound<'py, PyAny>,
+        spins: &Bound<'py, PyAny>,
+        #[pyo3(from_py_with = crate::args::rtol)] rtol: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let [p, v, w] = [
+            rows(NAMES[0], positions)?,
+            rows(NAMES[1], velocities)?,
+            rows(NAMES[2], spins)?,
+        ];
+        let n = self.balls.len();
+        for (name, r) in NAMES.iter().zip([&p, &v, &w]) {
+            if r.len() != n {
+                return Err(PyValueError::new_err(format!(
+                    "{name}: {} rows: a row per ball ({n})",
+                    r.len()
+                )));
+            }
+        }
+        let balls: Vec<ClusterBall> = (0..n)
+            .map(|i| ClusterBall {
+                ball: self.balls[i].ball,
+                position: p[i],
+                velocity: v[i],
+                spin: w[i],
+            })
+            .collect();
+        let settings = ClusterSettings {
+            rtol: rtol.unwrap_or(DEFAULT_RTOL),
+            stick: self.stick,
+        };
+        let law = self.law.clone();
+        let mu = self.mu;
+        let out = py
+            .detach(move || {
+                let cluster = Kernel::new(balls, law, mu)?;
+                resolve_cluster(&cluster, &settings)
+            })
+            .map_err(|e| to_py(keyword(e)))?;
+        if out.stop != StopReason::Separated {
+            return Err(PyRuntimeError::new_err(format!(
+                "the cluster's run stopped ({}) at t = {:e} s after {} steps with contacts \
+                 still compressed or closing; a looser rtol, or fewer balls at once",
+                stop_name(out.stop),
+                out.time,
+                out.stats.steps
+            )));
+        }
+        let matrix = |f: &dyn Fn(usize) -> Vector3<f64>| -> PyResult<Bound<'py, PyArray2<f64>>> {
+            let flat: Vec<f64> = (0..n).flat_map(|i| <[f64; 3]>::from(f(i))).collect();
+            numpy::PyArray1::from_vec(py, flat).reshape([n, 3])
+        };
+        let d = PyDict::new(py);
+        d.set_item("velocities", matrix(&|i| out.balls[i].velocity)?)?;
+        d.set_item("spins", matrix(&|i| out.balls[i].spin)?)?;
+        d.set_item("positions", matrix(&|i| out.balls[i].position)?)?;
+        let contacts = PyList::empty(py);
+        for c in &out.contacts {
+            let e = PyDict::new(py);
+            e.set_item("pair", PyTuple::new(py, [c.pair.0, c.pair.1])?)?;
+            e.set_item("impulse", c.normal_impulse)?;
+            e.set_item(
+                "friction_impulse",
+                numpy::PyArray1::from_slice(py, c.friction_impulse.as_slice()),
+            )?;
+            e.set_item(
+                "normal",
+                numpy::PyArray1::from_slice(py, c.normal.as_slice()),
+            )?;
+            e.set_item("start", c.start)?;
+            e.set_item("duration", c.duration)?;
+            e.set_item("heat", c.heat)?;
+            e.set_item("stick_time", c.stick_time)?;
+            contacts.append(e)?;
+        }
+        d.set_item("contacts", contacts)?;
+        d.set_item("time", out.time)?;
+        d.set_item("steps", out.stats.steps)?;
+        d.set_item("evaluations", out.stats.evaluations)?;
+        Ok(d)
+    }
+
+    /// The balls.
+    #[getter]
+    fn balls(&self) -> Vec<Ball> {
+        self.balls.clone()
+    }
+
+    /// Coulomb's mu at every contact.
+    #[getter]
+    fn mu(&self) -> f64 {
+        self.mu
+    }
+
+    /// Pickling and copying: the keywords again (the same numbers, so the same model).
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("balls", self.balls.clone())?;
+        kwargs.set_item("mu", self.mu)?;
+        kwargs.set_item("youngs_modulus", self.youngs_modulus)?;
+        kwargs.set_item("poisson_ratio", self.poisson_ratio)?;
+        kwargs.set_item("stiffness", self.stiffness)?;
+        kwargs.set_item("damping", self.damping.clone())?;
+        kwargs.set_item("coefficient", self.coefficient)?;
+        kwargs.set_item("restitution", self.restitution)?;
+        kwargs.set_item("at_speed", self.at_speed)?;
+        kwargs.set_item("stick", self.stick)?;
+        Ok((PyTuple::empty(py), kwargs))
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        self.balls
+            .iter()
+            .map(|b| b.ball)
+            .eq(other.balls.iter().map(|b| b.ball))
+            && (self.mu, self.stick) == (other.mu, other.stick)
+            && self.law == other.law
+    }
+
+    fn __repr__(&self) -> String {
+        let balls: Vec<String> = self.balls.iter().map(Ball::__repr__).collect();
+        let mut s = format!("Cluster(balls=[{}], mu={:?}", balls.join(", "), self.mu);
+        for (k, x) in [
+            ("youngs_modulus", self.youngs_modulus),
+            ("poisson_ratio", self.poisson_ratio),
+            ("stiffness", self.stiffness),
+        ] {
+            if let Some(x) = x {
+                s += &format!(", {k}={x:?}");
+            }
+        }
+        if let Some(d) = &self.damping {
+            s += &format!(", damping={d:?}");
+        }
+        for (k, x) in [
+            ("coefficient", self.coefficient),
+            ("restitution", self.restitution),
+            ("at_speed", self.at_speed),
+        ] {
+            if let Some(x) = x {
+                s += &format!(", {k}={x:?}");
+            }
+        }
+        if !self.stick {
+            s += ", stick=False";
+        }
+        s + ")"
+    }
+}
