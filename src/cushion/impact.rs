@@ -299,6 +299,14 @@ pub fn resolve_cushion(
     let mut s = *settings;
     loop {
         match (attempt(ball, cushion, v, w, &s, None), stall_retry(&s)) {
+            // Where friction can lock the ball between cushion and cloth, a stall is the
+            // lock's chatter: tighter tolerances only spend more steps on it.
+            (Err(Error::TooManySteps { scaled_time, .. }), _)
+                if s.method() != Method::Rk4 && self_locking(ball, cushion).is_some() =>
+            {
+                let lock = self_locking(ball, cushion).unwrap_or(0.0);
+                return Err(lock_refusal(cushion, lock, scaled_time));
+            }
             (Err(Error::TooManySteps { .. }), Some(tighter)) => s = tighter,
             (Err(Error::TooManySteps { scaled_time, .. }), None)
                 if s.method() != Method::Rk4 && scaled_time > STALL_JAM_IMPULSE =>
@@ -338,6 +346,38 @@ fn stall_retry(s: &SolverSettings) -> Option<SolverSettings> {
 
 /// The refusal of a wedged ball: the cushion's impulse passed `times` the frictionless one
 /// without the ball leaving the cushion.
+/// The friction above which the ball can lock between cushion and cloth, when both
+/// coefficients reach it: `Some(cos theta / (1 + sin theta))`, else `None`. A rigid ball
+/// held at two points carries, without torque about its centre, only forces along the chord
+/// between them; the chord from the cloth's point (0, 0, -r) to the cushion's
+/// r (0, cos theta, sin theta) makes the angle (90 degrees - theta) / 2 with either
+/// contact's normal, so both friction cones hold it when mu >= tan(45 degrees - theta / 2)
+/// = cos theta / (1 + sin theta) at both (0.65 at h = 7r/5).
+fn self_locking(ball: &Ball, cushion: &Cushion) -> Option<f64> {
+    let r = ball.radius();
+    let sin = (cushion.height() - r) / r;
+    let lock = (1.0 - sin * sin).sqrt() / (1.0 + sin);
+    (cushion.mu_cushion() >= lock && cushion.mu_table() >= lock).then_some(lock)
+}
+
+/// The refusal of a run that stalled where friction can lock the ball.
+fn lock_refusal(cushion: &Cushion, lock: f64, scaled_time: f64) -> Error {
+    Error::invalid(
+        "cushion.mu_cushion",
+        format!(
+            "{} (with cushion.mu_table = {})",
+            cushion.mu_cushion(),
+            cushion.mu_table()
+        ),
+        format!(
+            "friction below cos theta / (1 + sin theta) = {lock:.3} at one contact at least: \
+             with both at or above it the rigid ball can lock between cushion and cloth, and \
+             this one chattered there (its run stalled at {scaled_time:.2} times the \
+             frictionless impulse); billiard cushions and cloths have mu of about 0.1 to 0.3"
+        ),
+    )
+}
+
 fn jam_refusal(cushion: &Cushion, times: &str) -> Error {
     jam_refusal_of(cushion.mu_cushion(), cushion.mu_table(), times)
 }
