@@ -431,3 +431,41 @@ fn friction_that_jams_the_rigid_contacts_is_refused() {
         );
     }
 }
+
+/// rk4 with too few steps can go astray where an adaptive run resolves the impact (found by
+/// the `cushion_toml` fuzz target: mu_table = 8.21 at 5.2 m/s with spin; 2 steps gave a NaN
+/// velocity, 5 and 10 an impulse past the jam bound, a wedge the ball is not in). The step
+/// count is refused, naming it; 100 steps resolve the impact.
+#[test]
+fn too_few_rk4_steps_are_refused_naming_the_steps() {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("fuzz/regressions/cushion_toml/rk4_2_steps_mu_table_8_nan.toml"),
+    )
+    .unwrap();
+    let dir = fresh_dir("cushion_rk4_few_steps");
+    for steps in [2, 5, 10, 100] {
+        let path = dir.join(format!("steps_{steps}.toml"));
+        let scene = text
+            .lines()
+            .map(|l| {
+                if l.starts_with("steps = ") {
+                    format!("steps = {steps}")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        std::fs::write(&path, scene).unwrap();
+        let out = bin(&["run", path.to_str().unwrap()]);
+        if steps == 100 {
+            assert!(out.status.success(), "{steps}: {out:?}");
+        } else {
+            refused(
+                &out,
+                &[&format!("solver.steps = {steps}"), "dop853 resolves it"],
+            );
+        }
+    }
+}

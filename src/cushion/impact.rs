@@ -322,6 +322,26 @@ pub fn resolve_cushion(
                     _ => Err(e),
                 };
             }
+            // Too few rk4 steps can go astray (a non-finite state, or an impulse run past
+            // the jam bound) where an adaptive run resolves the impact: the step count is
+            // what is wrong, and the adaptive run's refusal, if it refuses, is the answer.
+            (Err(e @ (Error::NonFinite { .. } | Error::InvalidParameter { .. })), _)
+                if s.method() == Method::Rk4 =>
+            {
+                let probe = SolverSettings::default().with_method(Method::Dop853);
+                return match attempt(ball, cushion, v, w, &probe, None) {
+                    Ok(_) => Err(Error::invalid(
+                        "solver.steps",
+                        s.steps(),
+                        format!(
+                            "enough rk4 steps to follow this impact: with these it went \
+                             astray (\"{e}\"), where dop853 resolves it"
+                        ),
+                    )),
+                    Err(refusal) if refusal.is_bad_input() => Err(refusal),
+                    Err(_) => Err(e),
+                };
+            }
             (Ok(out), _) if trace.is_none() => return Ok(out),
             (Ok(_), _) => return attempt(ball, cushion, v, w, &s, trace),
             (Err(e), _) => return Err(e),
