@@ -255,11 +255,35 @@ class PlaneResult(TypedDict):
     """Normal impulse at which the slip stops, or would stop after the impact,
     m |u| / ((1 + 1/alpha) mu) (N s); NaN without friction or without an impulse."""
 
+class CompliantPlaneResult(TypedDict):
+    """Outgoing state of BallPlane(tangential="mindlin").resolve; shapes as PlaneResult's."""
+
+    v: npt.NDArray[np.float64]
+    """Velocity after the contact (m/s)."""
+    w: npt.NDArray[np.float64]
+    """Spin after the contact (rad/s)."""
+    impulse: Union[npt.NDArray[np.float64], np.float64]
+    """Normal impulse (N s); 0 where the ball does not approach."""
+    tangential_impulse: Union[npt.NDArray[np.float64], np.float64]
+    """Length of the tangential impulse (N s)."""
+    contact_time: Union[npt.NDArray[np.float64], np.float64]
+    """Time from first touch until the normal force returns to 0 (s)."""
+    rebound_angle: Union[npt.NDArray[np.float64], np.float64]
+    """The contact point's rebound angle atan2(u'.s, v'.n) (rad), s the incoming slip's
+    direction: negative when its tangential velocity reversed; NaN where there was no
+    contact."""
+
 class BallPlane:
     """A ball against a plane (docs/plane.md): the ball's mass (kg), radius (m) and alpha
     (I = alpha m r^2, in [1e-12, 2/3]; 0.4 a solid ball), Coulomb friction mu >= 0 between
     ball and plane, restitution e in [0, 1] (P = (1 + e) m |v.n|: Newton's, Poisson's and
     Stronge's rules agree for a sphere on a plane).
+
+    tangential "rigid" (default): the stick rule, the surfaces stick once the slip stops;
+    "mindlin": Hertz's normal force and Mindlin's tangential spring under Coulomb's cap
+    (docs/tangential.md), from the ball's material (youngs_modulus in Pa, poisson_ratio)
+    and the plane's (plane_youngs_modulus, plane_poisson_ratio; a plane without them is
+    rigid); elastic, so restitution 1.
 
     Bad values raise ValueError naming the keyword, e.g. "mass = -1: > 0 kg".
     """
@@ -272,7 +296,14 @@ class BallPlane:
         alpha: float = 0.4,
         mu: float,
         restitution: float = 1.0,
+        tangential: Literal["rigid", "mindlin"] = "rigid",
+        youngs_modulus: Optional[float] = None,
+        poisson_ratio: Optional[float] = None,
+        plane_youngs_modulus: Optional[float] = None,
+        plane_poisson_ratio: Optional[float] = None,
     ) -> None: ...
+    @property
+    def tangential(self) -> Literal["rigid", "mindlin"]: ...
     @property
     def mass(self) -> float:
         """Mass (kg)."""
@@ -293,8 +324,11 @@ class BallPlane:
         normal: ArrayLike3,
         method: Optional[Method] = None,
         rtol: Optional[float] = None,
-    ) -> PlaneResult:
+    ) -> Union[PlaneResult, CompliantPlaneResult]:
         """Resolves impacts of the ball on the plane.
+
+        With tangential="mindlin": the compliant kernel (its own Dormand-Prince 5(4) at
+        rtol, default 1e-10; method must be None), a CompliantPlaneResult.
 
         v, w: velocity (m/s) and spin (rad/s) before; normal: the plane's normal, out of the
         plane towards the ball, any non-zero length; each (3,) or (N, 3), any memory order

@@ -143,6 +143,9 @@ named! {
     damping: text_or_none -> Option<String>;
     coefficient: real_or_none -> Option<f64>;
     at_speed: real_or_none -> Option<f64>;
+    tangential: text -> String;
+    plane_youngs_modulus: real_or_none -> Option<f64>;
+    plane_poisson_ratio: real_or_none -> Option<f64>;
 }
 
 named_as! {

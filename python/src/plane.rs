@@ -11,8 +11,8 @@ use billiard_contact::details::{plane_impact, PlaneImpact};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::{
-    solve_plane, Ball, Contact, Error, Friction, ImpulseRule, Method, PlaneCollision,
-    SolverSettings,
+    resolve_sphere_plane_compliant, solve_plane, Ball, Contact, Error, Friction, ImpulseRule,
+    Material, Method, PlaneCollision, SolverSettings,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -47,6 +47,19 @@ pub struct BallPlane {
     contact: Contact,
     mu: f64,
     restitution: f64,
+    /// The tangential law: `None` the rigid stick rule, else Mindlin's spring between the
+    /// ball's material and the plane's (`None`: a rigid plane).
+    mindlin: Option<(Material, Option<Material>)>,
+}
+
+/// The rows of a compliant run, as output columns.
+struct CompliantRows {
+    v: Vec<f64>,
+    w: Vec<f64>,
+    impulse: Vec<f64>,
+    tangential_impulse: Vec<f64>,
+    contact_time: Vec<f64>,
+    rebound_angle: Vec<f64>,
 }
 
 /// `e` with the field `from` named `to` (the library names a scene file's fields).
@@ -289,6 +302,167 @@ impl BallPlane {
     }
 }
 
+/// The tangential law from the keywords: `None` for "rigid" (no material may be given: the
+/// stick rule does not use one), the ball's and the plane's (or a rigid plane's `None`)
+/// materials for "mindlin" (elastic Hertz, so restitution 1).
+fn mindlin_of(
+    tangential: &str,
+    restitution: f64,
+    ball: [Option<f64>; 2],
+    plane: [Option<f64>; 2],
+) -> Result<Option<(Material, Option<Material>)>, Error> {
+    let material = |[e, nu]: [Option<f64>; 2], names: [&str; 2]| match (e, nu) {
+        (Some(e), Some(nu)) => Material::new(e, nu).map(Some).map_err(|err| {
+            renamed(
+                renamed(err, "balls.youngs_modulus", names[0]),
+                "balls.poisson_ratio",
+                names[1],
+            )
+        }),
+        (None, None) => Ok(None),
+        _ => Err(Error::invalid(
+            format!("{}, {}", names[0], names[1]),
+            "one given without the other",
+            "both or neither",
+        )),
+    };
+    let ball = material(ball, ["youngs_modulus", "poisson_ratio"])?;
+    let plane = material(plane, ["plane_youngs_modulus", "plane_poisson_ratio"])?;
+    match tangential {
+        "rigid" => match (ball, plane) {
+            (None, None) => Ok(None),
+            _ => Err(Error::invalid(
+                "tangential",
+                "\"rigid\" with a material",
+                "tangential=\"mindlin\" with the materials (the rigid stick rule uses none)",
+            )),
+        },
+        "mindlin" => {
+            let Some(ball) = ball else {
+                return Err(Error::invalid(
+                    "youngs_modulus, poisson_ratio",
+                    "not given with tangential=\"mindlin\"",
+                    "the ball's material (Mindlin's spring and Hertz's force need it)",
+                ));
+            };
+            if restitution != 1.0 {
+                return Err(Error::invalid(
+                    "restitution",
+                    restitution,
+                    "1 with tangential=\"mindlin\" (the compliant contact is elastic Hertz)",
+                ));
+            }
+            Ok(Some((ball, plane)))
+        }
+        other => Err(Error::invalid(
+            "tangential",
+            format!("{other:?}"),
+            "\"rigid\" (the stick rule) or \"mindlin\" (Mindlin's tangential spring)",
+        )),
+    }
+}
+
+impl BallPlane {
+    /// Every row by the compliant kernel (a row that does not approach passes unchanged);
+    /// the first failure and its row.
+    fn compliant_rows(
+        &self,
+        views: &[Strided; 3],
+        n: usize,
+        (ball, plane): (Material, Option<Material>),
+        settings: &SolverSettings,
+    ) -> Result<CompliantRows, (usize, Error)> {
+        let one = |i: usize| -> Result<[f64; 10], (usize, Error)> {
+            let [v, w, normal] = Self::inputs(views, i).map_err(|e| (i, e))?;
+            if v.dot(&normal) >= 0.0 {
+                return Ok([v.x, v.y, v.z, w.x, w.y, w.z, 0.0, 0.0, 0.0, f64::NAN]);
+            }
+            let o = resolve_sphere_plane_compliant(
+                &self.ball, ball, plane, self.mu, v, w, normal, settings,
+            )
+            .map_err(|e| {
+                (
+                    i,
+                    renamed(
+                        renamed(renamed(e, "incoming.velocity", "v"), "incoming.spin", "w"),
+                        "friction.mu",
+                        "mu",
+                    ),
+                )
+            })?;
+            let (v, w) = (o.velocity, o.spin);
+            Ok([
+                v.x,
+                v.y,
+                v.z,
+                w.x,
+                w.y,
+                w.z,
+                o.normal_impulse,
+                o.tangential_impulse.norm(),
+                o.contact_time,
+                o.rebound_angle,
+            ])
+        };
+        let all: Vec<[f64; 10]> = if n >= 64 {
+            (0..n).into_par_iter().map(one).collect::<Vec<_>>()
+        } else {
+            (0..n).map(one).collect::<Vec<_>>()
+        }
+        .into_iter()
+        .collect::<Result<_, _>>()?;
+        Ok(CompliantRows {
+            v: all.iter().flat_map(|r| r[0..3].to_vec()).collect(),
+            w: all.iter().flat_map(|r| r[3..6].to_vec()).collect(),
+            impulse: all.iter().map(|r| r[6]).collect(),
+            tangential_impulse: all.iter().map(|r| r[7]).collect(),
+            contact_time: all.iter().map(|r| r[8]).collect(),
+            rebound_angle: all.iter().map(|r| r[9]).collect(),
+        })
+    }
+}
+
+/// The compliant rows as the result dict: (N, 3) and (N,) arrays, or (3,) arrays and
+/// numpy scalars for one impact.
+fn compliant_dict(
+    py: Python<'_>,
+    r: CompliantRows,
+    n: usize,
+    single: bool,
+) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    if single {
+        d.set_item(intern!(py, "v"), vector(py, [r.v[0], r.v[1], r.v[2]])?)?;
+        d.set_item(intern!(py, "w"), vector(py, [r.w[0], r.w[1], r.w[2]])?)?;
+        for (k, x) in [
+            ("impulse", &r.impulse),
+            ("tangential_impulse", &r.tangential_impulse),
+            ("contact_time", &r.contact_time),
+            ("rebound_angle", &r.rebound_angle),
+        ] {
+            d.set_item(k, float64(py, x[0])?)?;
+        }
+        return Ok(d);
+    }
+    d.set_item(
+        intern!(py, "v"),
+        PyArray1::from_vec(py, r.v).reshape([n, 3])?,
+    )?;
+    d.set_item(
+        intern!(py, "w"),
+        PyArray1::from_vec(py, r.w).reshape([n, 3])?,
+    )?;
+    for (k, x) in [
+        ("impulse", r.impulse),
+        ("tangential_impulse", r.tangential_impulse),
+        ("contact_time", r.contact_time),
+        ("rebound_angle", r.rebound_angle),
+    ] {
+        d.set_item(k, PyArray1::from_vec(py, x))?;
+    }
+    Ok(d)
+}
+
 /// The Python exception for a failed row (`row i: ` for arrays).
 fn failure_error(i: usize, f: Failure, single: bool) -> PyErr {
     let row = |m: String| if single { m } else { format!("row {i}: {m}") };
@@ -302,14 +476,33 @@ fn failure_error(i: usize, f: Failure, single: bool) -> PyErr {
 #[pymethods]
 impl BallPlane {
     #[new]
-    #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0))]
+    #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0,
+                        tangential = "rigid".to_string(), youngs_modulus = None,
+                        poisson_ratio = None, plane_youngs_modulus = None,
+                        plane_poisson_ratio = None),
+           text_signature = "(*, mass, radius, alpha=0.4, mu, restitution=1.0, \
+                             tangential='rigid', youngs_modulus=None, poisson_ratio=None, \
+                             plane_youngs_modulus=None, plane_poisson_ratio=None)")]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         #[pyo3(from_py_with = crate::args::mass)] mass: f64,
         #[pyo3(from_py_with = crate::args::radius)] radius: f64,
         #[pyo3(from_py_with = crate::args::alpha)] alpha: f64,
         #[pyo3(from_py_with = crate::args::mu)] mu: f64,
         #[pyo3(from_py_with = crate::args::restitution)] restitution: f64,
+        #[pyo3(from_py_with = crate::args::tangential)] tangential: String,
+        #[pyo3(from_py_with = crate::args::youngs_modulus)] youngs_modulus: Option<f64>,
+        #[pyo3(from_py_with = crate::args::poisson_ratio)] poisson_ratio: Option<f64>,
+        #[pyo3(from_py_with = crate::args::plane_youngs_modulus)] plane_youngs_modulus: Option<f64>,
+        #[pyo3(from_py_with = crate::args::plane_poisson_ratio)] plane_poisson_ratio: Option<f64>,
     ) -> PyResult<Self> {
+        let mindlin = mindlin_of(
+            &tangential,
+            restitution,
+            [youngs_modulus, poisson_ratio],
+            [plane_youngs_modulus, plane_poisson_ratio],
+        )
+        .map_err(to_py)?;
         let ball = Ball::in_section("ball", mass, radius, alpha)
             .map_err(|e| to_py(renamed(e, "ball.", "")))?;
         let friction = Friction::constant(mu).map_err(|e| to_py(renamed(e, "contact.", "")))?;
@@ -320,6 +513,7 @@ impl BallPlane {
             contact: Contact { friction, impulse },
             mu,
             restitution,
+            mindlin,
         })
     }
 
@@ -354,6 +548,27 @@ impl BallPlane {
             Some(float_array("normal", normal)?),
         ];
         let (views, n, single) = strided(&NAMES, &arrays)?;
+        if let Some(materials) = self.mindlin {
+            if let Some(m) = method {
+                return Err(to_py(Error::invalid(
+                    "method",
+                    format!("{m:?}"),
+                    "None with tangential=\"mindlin\" (the compliant contact steps with its \
+                     own Dormand-Prince 5(4); rtol= sets its tolerance)",
+                )));
+            }
+            let settings = settings::for_batch(Some("dopri5"), rtol, None).map_err(to_py)?;
+            let borrows = arrays
+                .iter()
+                .flatten()
+                .map(|a| a.try_readonly())
+                .collect::<Result<Vec<_>, _>>()?;
+            let rows = py.detach(|| self.compliant_rows(&views, n, materials, &settings));
+            drop(borrows);
+            drop(arrays);
+            let rows = rows.map_err(|(i, e)| failure_error(i, Failure::Input(e), single))?;
+            return compliant_dict(py, rows, n, single);
+        }
         let settings = match (method, rtol) {
             (None, None) => None,
             _ => Some(settings::for_batch(method, rtol, None).map_err(to_py)?),
@@ -504,21 +719,56 @@ impl BallPlane {
         kwargs.set_item("alpha", self.ball.alpha())?;
         kwargs.set_item("mu", self.mu)?;
         kwargs.set_item("restitution", self.restitution)?;
+        if let Some((ball, plane)) = self.mindlin {
+            kwargs.set_item("tangential", "mindlin")?;
+            kwargs.set_item("youngs_modulus", ball.youngs_modulus())?;
+            kwargs.set_item("poisson_ratio", ball.poisson_ratio())?;
+            if let Some(p) = plane {
+                kwargs.set_item("plane_youngs_modulus", p.youngs_modulus())?;
+                kwargs.set_item("plane_poisson_ratio", p.poisson_ratio())?;
+            }
+        }
         Ok((PyTuple::empty(py), kwargs))
     }
 
     fn __eq__(&self, other: &Self) -> bool {
-        (self.ball, self.mu, self.restitution) == (other.ball, other.mu, other.restitution)
+        (self.ball, self.mu, self.restitution, self.mindlin)
+            == (other.ball, other.mu, other.restitution, other.mindlin)
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "BallPlane(mass={:?}, radius={:?}, alpha={:?}, mu={:?}, restitution={:?})",
+        let mut s = format!(
+            "BallPlane(mass={:?}, radius={:?}, alpha={:?}, mu={:?}, restitution={:?}",
             self.ball.mass(),
             self.ball.radius(),
             self.ball.alpha(),
             self.mu,
             self.restitution
-        )
+        );
+        if let Some((ball, plane)) = self.mindlin {
+            s += &format!(
+                ", tangential=\"mindlin\", youngs_modulus={:?}, poisson_ratio={:?}",
+                ball.youngs_modulus(),
+                ball.poisson_ratio()
+            );
+            if let Some(p) = plane {
+                s += &format!(
+                    ", plane_youngs_modulus={:?}, plane_poisson_ratio={:?}",
+                    p.youngs_modulus(),
+                    p.poisson_ratio()
+                );
+            }
+        }
+        s + ")"
+    }
+
+    /// The tangential law: "rigid" (the stick rule) or "mindlin" (Mindlin's spring).
+    #[getter]
+    fn tangential(&self) -> &'static str {
+        if self.mindlin.is_some() {
+            "mindlin"
+        } else {
+            "rigid"
+        }
     }
 }
