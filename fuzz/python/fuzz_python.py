@@ -7,14 +7,20 @@ friction, restitution, profile, duration, friction, stick; plausible values, edg
 wrong types), then ``BallBall.resolve_lab`` gets arrays of arbitrary dtypes (every float and
 integer width, bool, complex, object, strings, byte-swapped), shapes ((3,), (N, 3), wrong
 ones, empty), memory layouts (Fortran order, strided, negative strides), lists and scalars,
-with a method, rtol and time_transform; ``BallPlane.resolve`` and ``BallCushion.resolve`` get
-velocities, spins (and normals) the same way. The promise checked on every call:
+with a method, rtol and time_transform; ``BallPlane.resolve`` (rigid, or with
+``tangential="mindlin"`` and the materials) and ``BallCushion.resolve`` get velocities, spins
+(and normals) the same way; ``Cluster`` gets 2 to 5 balls (sometimes 0, 1, 23 or a
+non-ball), a normal law from materials or a stiffness, a damping with its coefficient or
+restitution, and ``resolve`` a struck line or zig-zag of touching (or nearly touching) balls
+with spins. The promise checked on every call:
 
 - it returns, and every output is finite (``throw_angle_deg`` may be NaN where the library
   documents it has none), ``sticks`` is boolean, the shapes are (N, 3) and (N,) or (3,)
   and scalars; a plane's or a cushion's impulses are >= 0, the plane's friction impulse at
   most mu times its normal impulse, and neither creates kinetic energy (the cushion with
-  Stronge's rule; Newton's may, with friction: Kane and Levinson's paradox); or
+  Stronge's rule; Newton's may, with friction: Kane and Levinson's paradox); a cluster
+  keeps its momentum (to 1e-9), its contacts push, stay within Coulomb's cone and make
+  heat >= 0, and the kinetic energy out plus the heat is the energy in (to 1e-6); or
 - it raises ValueError or TypeError whose message names the argument (a keyword of the
   call, or ``row i:`` and a field of the row).
 
@@ -380,6 +386,12 @@ CUSHION_OUT = {"v": 3, "w": 3, "impulse": 0, "impulse_compression": 0, "impulse_
                "work_compression": 0, "work_restitution": 0, "energy_lost": 0, "lifts_off": 0,
                "events": None, "steps": 0, "evaluations": 0}
 RULES = ["stronge", "newton", "Stronge", "poisson", ""]
+MINDLIN_ARGS = ["tangential", "youngs_modulus", "poisson_ratio", "plane_youngs_modulus",
+                "plane_poisson_ratio", "restitution"]
+MINDLIN_OUT = {"v": 3, "w": 3, "impulse": 0, "tangential_impulse": 0, "contact_time": 0,
+               "rebound_angle": None}
+CLUSTER_ARGS = ["balls", "mu", "youngs_modulus", "poisson_ratio", "stiffness", "damping",
+                "coefficient", "restitution", "at_speed", "stick"]
 
 
 def draw_keywords(fdp: atheris.FuzzedDataProvider, plausible: dict, optional: set) -> dict:
@@ -501,8 +513,17 @@ def constructed(cls, kw: dict, names: list):
 def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     kw = draw_keywords(fdp, {"mass": M, "radius": R, "alpha": 0.4, "mu": 0.2,
                              "restitution": 0.8}, {"alpha", "restitution"})
-    model = constructed(bc.BallPlane, kw, PLANE_ARGS)
+    if fdp.ConsumeIntInRange(0, 2) == 0:
+        kw.pop("restitution", None) if fdp.ConsumeIntInRange(0, 3) else None
+        kw["tangential"] = pick(fdp, ["mindlin", "mindlin", "mindlin", "rigid", "Mindlin", 1.0])
+        kw.update(draw_keywords(fdp, {"youngs_modulus": 5.4e9, "poisson_ratio": 0.34,
+                                      "plane_youngs_modulus": 2e11, "plane_poisson_ratio": 0.3},
+                                {"plane_youngs_modulus", "plane_poisson_ratio"}))
+    model = constructed(bc.BallPlane, kw, PLANE_ARGS + MINDLIN_ARGS)
     if model is None:
+        return
+    if model.tangential == "mindlin":
+        surface_plane_mindlin(fdp, model, kw)
         return
     method = pick(fdp, METHODS) if fdp.ConsumeIntInRange(0, 3) == 0 else None
     stepping = method in ("rk4", "dopri5", "dop853", "closed-form")
@@ -540,6 +561,134 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
     k1 = kinetic(model.mass, model.radius, model.alpha, out["v"], out["w"])
     if np.any(k1 > k0 * (1 + tolerance(call, 1e-9)) + 1e-300):
         raise Finding(f"{what}: kinetic energy created: {k0} -> {k1}")
+
+
+def surface_plane_mindlin(fdp: atheris.FuzzedDataProvider, model, kw: dict) -> None:
+    """The compliant plane: elastic, so no energy created (to its tolerance); the tangential
+    impulse within Coulomb's mu P (the spring's force is capped at mu F_n at every instant)."""
+    n = pick(fdp, [1, 1, 2, 3])
+    single = n == 1 and fdp.ConsumeBool()
+    rows = draw_rows(fdp, n, ["v", "w", "normal"], plane_row)
+    args = {name: as_argument(fdp, a, single) for name, a in rows.items()}
+    call = {}
+    if fdp.ConsumeIntInRange(0, 7) == 0:
+        call["method"] = pick(fdp, [None, "dop853"])
+    draw_rtol(fdp, call, True)
+    what = f"BallPlane({kw}).resolve({args}, {call})"
+    got = resolved(model, args, call, ["v", "w", "normal"] + PLANE_ARGS + MINDLIN_ARGS,
+                   MINDLIN_OUT, what)
+    if got is None:
+        return
+    out, _ = got
+    p, j = np.asarray(out["impulse"]), np.asarray(out["tangential_impulse"])
+    if np.any(p < 0) or np.any(j < 0):
+        raise Finding(f"{what}: a negative impulse: {p}, {j}")
+    if np.any(j > model.mu * p * (1 + tolerance(call, 1e-6)) + 1e-300):
+        raise Finding(f"{what}: friction impulse {j} above mu P = {model.mu * p}")
+    k0 = energy_in(model, args, out)
+    if k0 is None:
+        return
+    k1 = kinetic(model.mass, model.radius, model.alpha, out["v"], out["w"])
+    if np.any(k1 > k0 * (1 + tolerance(call, 1e-6)) + 1e-300):
+        raise Finding(f"{what}: kinetic energy created: {k0} -> {k1}")
+
+
+def cluster_states(fdp: atheris.FuzzedDataProvider, balls: list) -> dict:
+    """Balls in a touching line along x (or a zig-zag), the first struck along +x, some
+    entries spoiled; sometimes gaps, spins and sideways velocities."""
+    n = len(balls)
+    radii = [b.radius if isinstance(b, bc.Ball) else R for b in balls]
+    p = np.zeros((n, 3))
+    for i in range(1, n):
+        d = radii[i - 1] + radii[i]
+        angle = fdp.ConsumeFloatInRange(-1.0, 1.0) if fdp.ConsumeIntInRange(0, 2) == 0 else 0.0
+        gap = fdp.ConsumeFloatInRange(0.0, 0.01) if fdp.ConsumeIntInRange(0, 3) == 0 else 0.0
+        p[i] = p[i - 1] + (d + gap) * np.array([math.cos(angle), math.sin(angle), 0.0])
+    v = np.zeros((n, 3))
+    v[0, 0] = fdp.ConsumeFloatInRange(0.01, 8.0)
+    w = np.zeros((n, 3))
+    for i in range(n):
+        if fdp.ConsumeIntInRange(0, 3) == 0:
+            v[i] += [fdp.ConsumeFloatInRange(-1, 1) for _ in range(3)]
+        if fdp.ConsumeIntInRange(0, 2) == 0:
+            w[i] = [fdp.ConsumeFloatInRange(-300, 300) for _ in range(3)]
+    s = {"positions": p, "velocities": v, "spins": w}
+    for _ in range(fdp.ConsumeIntInRange(0, 2) if fdp.ConsumeIntInRange(0, 3) == 0 else 0):
+        name = pick(fdp, list(s))
+        i, k = fdp.ConsumeIntInRange(0, n - 1), fdp.ConsumeIntInRange(0, 2)
+        s[name][i, k] = draw_float(fdp, s[name][i, k])
+    return s
+
+
+def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
+    """bc.Cluster: a refusal naming an argument, or velocities and spins whose momentum is
+    the incoming one (to the step control's rounding), contacts that push (P >= 0), within
+    Coulomb's cone, with heat >= 0, and kinetic energy out plus heat = energy in."""
+    n = pick(fdp, [2, 2, 3, 3, 4, 5]) if fdp.ConsumeIntInRange(0, 15) else pick(fdp, [0, 1, 23])
+    balls = []
+    for _ in range(n):
+        if fdp.ConsumeIntInRange(0, 31) == 0:
+            balls.append(pick(fdp, [1.0, None, "ball"]))
+        elif fdp.ConsumeIntInRange(0, 3) == 0:
+            balls.append(draw_ball(fdp) or bc.Ball(mass=M, radius=R))
+        else:
+            balls.append(bc.Ball(mass=M, radius=R))
+    kw = {"balls": balls}
+    kw.update(draw_keywords(fdp, {"mu": 0.06}, set()))
+    if fdp.ConsumeIntInRange(0, 3):
+        kw.update(draw_keywords(fdp, {"youngs_modulus": 5.4e9, "poisson_ratio": 0.34}, set()))
+    else:
+        kw.update(draw_keywords(fdp, {"stiffness": 4.5e8}, set()))
+    k = fdp.ConsumeIntInRange(0, 3)
+    if k:
+        kw["damping"] = pick(fdp, ["hunt-crossley", "kuwabara-kono", None, "x"])
+        if k == 1:
+            kw.update(draw_keywords(fdp, {"coefficient": 0.05}, set()))
+        else:
+            kw.update(draw_keywords(fdp, {"restitution": 0.93, "at_speed": 1.0}, set()))
+    if fdp.ConsumeIntInRange(0, 7) == 0:
+        kw["stick"] = pick(fdp, [False, True, 1.0])
+    what = f"Cluster({kw})"
+    model = constructed(bc.Cluster, kw, CLUSTER_ARGS)
+    if model is None:
+        return
+    states = cluster_states(fdp, model.balls)
+    call = {}
+    draw_rtol(fdp, call, True)
+    if isinstance(call.get("rtol"), float) and 0 < call["rtol"] < 1e-10:
+        call["rtol"] = 1e-10  # the work of one input stays bounded
+    what += f".resolve({states}, {call})"
+    try:
+        out = model.resolve(**states, **call)
+    except Exception as e:  # noqa: BLE001
+        refusal(e, ["positions", "velocities", "spins", "balls", "rtol"], what)
+        return
+    nb = len(model.balls)
+    for name in ("velocities", "spins", "positions"):
+        a = np.asarray(out[name])
+        if a.shape != (nb, 3) or not np.all(np.isfinite(a)):
+            raise Finding(f"{what}: {name} {a!r}")
+    m = np.array([b.mass for b in model.balls])
+    r = np.array([b.radius for b in model.balls])
+    inertia = np.array([b.alpha for b in model.balls]) * m * r * r
+    v0, w0 = states["velocities"], states["spins"]
+    v1, w1 = out["velocities"], out["spins"]
+    scale = float(np.sum(m * np.linalg.norm(v0, axis=1)))
+    if np.any(np.abs(m @ v1 - m @ v0) > 1e-9 * scale + 1e-300):
+        raise Finding(f"{what}: momentum {m @ v0} -> {m @ v1}")
+    k0 = 0.5 * float(np.sum(m * np.sum(v0 * v0, 1)) + np.sum(inertia * np.sum(w0 * w0, 1)))
+    k1 = 0.5 * float(np.sum(m * np.sum(v1 * v1, 1)) + np.sum(inertia * np.sum(w1 * w1, 1)))
+    heat = 0.0
+    tol = tolerance(call, 1e-6)
+    for c in out["contacts"]:
+        i, j = c["pair"]
+        if not (0 <= i < j < nb) or not c["impulse"] >= 0 or not c["heat"] >= -tol * k0:
+            raise Finding(f"{what}: contact {c}")
+        if np.linalg.norm(c["friction_impulse"]) > model.mu * c["impulse"] * (1 + 1e-6) + 1e-300:
+            raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
+        heat += c["heat"]
+    if k1 > k0 * (1 + tol) or abs(k0 - k1 - heat) > tol * k0 + 1e-300:
+        raise Finding(f"{what}: energy {k0} -> {k1} with heat {heat}")
 
 
 def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
@@ -601,7 +750,10 @@ def test_one_input(data: bytes) -> None:
     if bc is None:
         load_package()
     fdp = atheris.FuzzedDataProvider(data)
-    surface = fdp.ConsumeIntInRange(0, 11)
+    surface = fdp.ConsumeIntInRange(0, 13)
+    if surface in (12, 13):
+        surface_cluster(fdp)
+        return
     if surface in (8, 9):
         surface_plane(fdp)
         return

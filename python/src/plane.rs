@@ -383,11 +383,16 @@ impl BallPlane {
             .map_err(|e| {
                 (
                     i,
-                    renamed(
-                        renamed(renamed(e, "incoming.velocity", "v"), "incoming.spin", "w"),
-                        "friction.mu",
-                        "mu",
-                    ),
+                    [
+                        ("incoming.velocity", "v"),
+                        ("incoming.spin", "w"),
+                        ("friction.mu", "mu"),
+                        ("plane.normal", "normal"),
+                        // Hertz's contact time out of the doubles' range: the materials.
+                        ("contact.profile.duration", "youngs_modulus, poisson_ratio"),
+                    ]
+                    .iter()
+                    .fold(e, |e, (from, to)| renamed(e, from, to)),
                 )
             })?;
             let (v, w) = (o.velocity, o.spin);
