@@ -682,9 +682,13 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     tol = tolerance(call, 1e-6)
     for c in out["contacts"]:
         i, j = c["pair"]
-        if not (0 <= i < j < nb) or not c["impulse"] >= 0 or not c["heat"] >= -tol * k0:
+        # The impulse is a state of the stepping: a contact that closes at zero compression
+        # between balls moving together carries rounding (-1.3e-17 N s of 0.3 N s of
+        # momentum), so it is >= 0 to the rounding of the momentum.
+        if (not (0 <= i < j < nb) or not c["impulse"] >= -1e-12 * scale
+                or not c["heat"] >= -tol * k0):
             raise Finding(f"{what}: contact {c}")
-        if np.linalg.norm(c["friction_impulse"]) > model.mu * c["impulse"] * (1 + 1e-6) + 1e-300:
+        if np.linalg.norm(c["friction_impulse"]) > model.mu * max(c["impulse"], 0.0) * (1 + 1e-6) + 1e-12 * scale:
             raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
         heat += c["heat"]
     if k1 > k0 * (1 + tol) or abs(k0 - k1 - heat) > tol * k0 + 1e-300:

@@ -8,7 +8,7 @@ use crate::inputs::float_array;
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{
     resolve_cluster, Cluster as Kernel, ClusterBall, ClusterLaw, ClusterSettings, ContactLaw,
-    Damping, Error, Material, PairDamping, StopReason,
+    Damping, Error, HertzContact, Material, PairDamping, StopReason,
 };
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -31,7 +31,9 @@ const DEFAULT_RTOL: f64 = billiard_contact::CLUSTER_DEFAULT_RTOL;
 /// slip stops sticks (the stick rule, default True).
 ///
 /// The keyword names are the scene file's: [balls] youngs_modulus and poisson_ratio,
-/// [contact.law] stiffness, damping, coefficient, restitution and at_speed.
+/// [contact.law] stiffness, damping, coefficient, restitution and at_speed. A calibrated
+/// damping is solved here, once per kind of pair (a head-on run each); balls that are not
+/// all identical are calibrated again on every resolve.
 ///
 /// Bad values raise ValueError naming the keyword, e.g. "mu = -1: finite, in [0, 1e6]".
 #[pyclass(frozen, module = "billiard_contact._core", name = "Cluster")]
@@ -179,7 +181,40 @@ fn law_of(
             "not given (nor stiffness)",
             "youngs_modulus and poisson_ratio, or stiffness",
         )),
-        (None, Some(m)) => Ok(ClusterLaw::Materials(vec![m; balls.len()], pair_damping)),
+        (None, Some(m)) => {
+            // Each distinct pair's law, built (and its calibration checked) here, once: for
+            // identical balls that one law is every pair's (the kernel would build the same
+            // law from the materials, on every resolve).
+            let mut laws: Vec<(billiard_contact::Ball, billiard_contact::Ball, ContactLaw)> =
+                Vec::new();
+            for (i, a) in balls.iter().enumerate() {
+                for b in &balls[i + 1..] {
+                    let (a, b) = (a.ball, b.ball);
+                    if laws.iter().any(|l| (l.0, l.1) == (a, b)) {
+                        continue;
+                    }
+                    let k = HertzContact::between((&a, &m), (&b, &m), 1.0)
+                        .map_err(|e| to_py(keyword(e)))?
+                        .stiffness;
+                    let reduced = a.mass() * b.mass() / (a.mass() + b.mass());
+                    let law = match pair_damping {
+                        PairDamping::None => ContactLaw::elastic(k),
+                        PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
+                        PairDamping::Restitution {
+                            damping,
+                            restitution,
+                            at_speed,
+                        } => ContactLaw::calibrated(k, damping, restitution, at_speed, reduced),
+                    }
+                    .map_err(|e| to_py(keyword(e)))?;
+                    laws.push((a, b, law));
+                }
+            }
+            Ok(match laws.as_slice() {
+                [(_, _, law)] => ClusterLaw::Same(*law),
+                _ => ClusterLaw::Materials(vec![m; balls.len()], pair_damping),
+            })
+        }
         (Some(k), None) => {
             let law = match pair_damping {
                 PairDamping::None => ContactLaw::elastic(k),

@@ -187,6 +187,9 @@ def test_pickles_and_copies_to_an_equal_model_with_the_same_answers():
         (dict(balls=[BALL] * 2, mu=0.1, stiffness=1e9, restitution=0.9),
          ["restitution, at_speed", "together"]),
         (dict(balls=[BALL] * 2, mu=0.1, stiffness=-1.0), ["stiffness = -1"]),
+        # The calibration is checked when the model is built, not at its first resolve.
+        (dict(balls=[BALL] * 3, mu=0.1, youngs_modulus=E, poisson_ratio=NU, restitution=0.93,
+              at_speed=1.0), ["restitution = 0.93", "hunt-crossley"]),
         (dict(balls=[BALL] * 2, mu=0.1, youngs_modulus=E, poisson_ratio=0.7),
          ["poisson_ratio = 0.7"]),
     ],
