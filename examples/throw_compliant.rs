@@ -163,7 +163,7 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, shots: &[Shot]) -> Re
     let panels: [Panel<DB>; 2] = [
         (
             &left,
-            "Throw, mu = 0.06, e = 1",
+            "Throw, mu = 0.06, e = 1 (any speed: 0.447-3.129 m/s)",
             "throw (degrees)",
             |s| s.throw,
             4.0,
@@ -191,39 +191,37 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, shots: &[Shot]) -> Re
             .label_style((FONT, 14))
             .draw()
             .map_err(e)?;
-        for (k, speed) in SPEEDS.iter().enumerate() {
-            let c = COLOURS[k];
-            for roll in [false, true] {
-                let pts: Vec<&Shot> = shots
-                    .iter()
-                    .filter(|s| s.roll == roll && s.speed == *speed)
-                    .collect();
-                let name = if roll { "roll" } else { "stun" };
-                let width = if roll { 1 } else { 2 };
-                chart
-                    .draw_series(LineSeries::new(
-                        pts.iter().map(|s| (s.cut, pick(s)[0])),
-                        c.stroke_width(width),
-                    ))
-                    .map_err(e)?
-                    .label(format!("{name} {speed} m/s, rigid stick"))
-                    .legend(move |(x, y)| {
-                        PathElement::new([(x, y), (x + 20, y)], c.stroke_width(width))
-                    });
-                chart
-                    .draw_series(
-                        pts.iter()
-                            .map(|s| Circle::new((s.cut, pick(s)[1]), 3, c.filled())),
-                    )
-                    .map_err(e)?
-                    .label(format!("{name} {speed} m/s, compliant"))
-                    .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
-            }
+        // With a constant mu the three speeds give the same curves (the CSV has all three;
+        // they agree to rounding): one speed is drawn, a colour a shot.
+        let speed = SPEEDS[1];
+        for (k, roll) in [false, true].into_iter().enumerate() {
+            let c = COLOURS[2 * k];
+            let pts: Vec<&Shot> = shots
+                .iter()
+                .filter(|s| s.roll == roll && s.speed == speed)
+                .collect();
+            let name = if roll { "rolling cue ball" } else { "stun" };
+            chart
+                .draw_series(LineSeries::new(
+                    pts.iter().map(|s| (s.cut, pick(s)[0])),
+                    c.stroke_width(2),
+                ))
+                .map_err(e)?
+                .label(format!("{name}, rigid stick"))
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], c.stroke_width(2)));
+            chart
+                .draw_series(
+                    pts.iter()
+                        .map(|s| Circle::new((s.cut, pick(s)[1]), 3, c.filled())),
+                )
+                .map_err(e)?
+                .label(format!("{name}, compliant (Mindlin)"))
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
         }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperLeft)
-            .label_font((FONT, 11))
+            .label_font((FONT, 13))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
