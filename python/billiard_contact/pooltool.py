@@ -79,6 +79,10 @@ does not approach the cushion or one in the air goes to ``fallback`` (``install`
 engine's previous model there); circular segments (the pockets' jaws) keep the engine's
 model.
 
+``install(engine, cluster=True)`` makes the engine's resolver a ``ClusterResolver``: a
+ball-ball event whose balls touch others (a rack, frozen balls) is resolved for all of
+them together by the library's ``Cluster`` (``CLUSTER_TOUCH_GAP``; docs/python.md).
+
 These models are not registered with pooltool's serialisation (its registries of models
 are closed enumerations), so a resolver using them cannot be saved to ``resolver.yaml``;
 install them in code.
@@ -95,9 +99,10 @@ import pooltool.constants as const
 from pooltool.objects.ball.datatypes import Ball, BallState
 from pooltool.physics.resolve.ball_ball.core import CoreBallBallCollision
 from pooltool.physics.resolve.ball_cushion.core import CoreBallLCushionCollision
+from pooltool.physics.resolve.resolver import Resolver
 
 from billiard_contact import Ball as _LibBall
-from billiard_contact import BallBall, BallCushion, SpeedDependentFriction
+from billiard_contact import BallBall, BallCushion, Cluster, SpeedDependentFriction
 
 
 def _first_found(*names: str) -> Any:
@@ -404,6 +409,107 @@ class BilliardContactCushion(CoreBallLCushionCollision):
             raise ValueError(f'rule = "{self.rule}": "stronge" or "newton"')
 
 
+#: Balls whose surfaces are at most this far apart (m) count as touching when a ball-ball
+#: event gathers its cluster: ten times the 1e-6 m gap pooltool leaves between two balls it
+#: resolves (``const.MIN_DIST``), so a rack that pooltool has spaced that way is one cluster.
+CLUSTER_TOUCH_GAP = 1e-5
+
+
+@attrs.define
+class ClusterResolver(Resolver):
+    """pooltool's resolver, but a ball-ball event whose two balls touch others (surfaces
+    within ``touch_gap``, default ``CLUSTER_TOUCH_GAP``, through any chain of touching balls:
+    a rack, a frozen combination, a row of frozen balls) resolves all of them together with
+    the library's ``Cluster`` instead of the pair alone; a pair that touches no other ball,
+    and a cluster the library refuses (balls overlapping), go to ``ball_ball`` as before.
+
+    ``cluster_options`` are ``Cluster``'s keywords (docs/python.md): by default resin balls
+    (``youngs_modulus=5.4e9``, ``poisson_ratio=0.34``), Hunt-Crossley damping calibrated to
+    the mean of the balls' ``e_b`` at ``at_speed=1.0`` m/s, and mu the mean of their
+    ``u_b``. Every ball of the cluster leaves with the library's velocity and spin
+    (``sliding``; in a 2D engine without vertical velocity) and keeps its position, as the
+    two-ball model does; only the event's two balls are in the event's record (pooltool's
+    events name two agents).
+    """
+
+    cluster_options: dict = attrs.field(factory=dict)
+    touch_gap: float = CLUSTER_TOUCH_GAP
+    is_3d: bool = False
+    _models: dict = attrs.field(factory=dict, init=False, repr=False, eq=False)
+
+    def resolve(self, shot: Any, event: Any) -> None:
+        ids = getattr(event, "ids", ())
+        if str(getattr(event, "event_type", "")).lower().endswith("ball_ball") and len(ids) == 2:
+            members = self._cluster_of(shot, ids)
+            if len(members) > 2 and self._resolve_cluster(shot, members, event.time):
+                for agent in event.agents:
+                    agent.set_final(shot.balls[agent.id])
+                return
+        super().resolve(shot, event)
+
+    def _cluster_of(self, shot: Any, ids: tuple) -> list:
+        """The balls touching the event's pair, through chains of touching balls (pocketed
+        balls left out), the pair first."""
+        free = [k for k, b in shot.balls.items() if b.state.s != const.pocketed]
+        pos = {k: np.asarray(shot.balls[k].state.rvw[0], float) for k in free}
+        rad = {k: shot.balls[k].params.R for k in free}
+        members, todo = list(ids), list(ids)
+        while todo:
+            i = todo.pop()
+            for j in free:
+                if j in members:
+                    continue
+                if np.linalg.norm(pos[j] - pos[i]) - rad[i] - rad[j] <= self.touch_gap:
+                    members.append(j)
+                    todo.append(j)
+        return members
+
+    def _model(self, balls: list) -> Cluster:
+        params = [b.params for b in balls]
+        key = tuple((p.m, p.R, p.e_b, p.u_b) for p in params)
+        model = self._models.get(key)
+        if model is None:
+            kw = {
+                "youngs_modulus": 5.4e9,
+                "poisson_ratio": 0.34,
+                "damping": "hunt-crossley",
+                "restitution": _mean([p.e_b for p in params]),
+                "at_speed": 1.0,
+                "mu": _mean([p.u_b for p in params]),
+            }
+            kw.update(self.cluster_options)
+            alpha = kw.pop("alpha", 0.4)
+            if kw.get("restitution") == 1.0 and "coefficient" not in self.cluster_options:
+                kw.pop("restitution")
+                kw.pop("at_speed", None)
+                kw["damping"] = None
+            lib_balls = [_LibBall(p.m, p.R, alpha) for p in params]
+            model = Cluster(balls=lib_balls, **kw)
+            self._models[key] = model
+        return model
+
+    def _resolve_cluster(self, shot: Any, members: list, time: float) -> bool:
+        balls = [shot.balls[k] for k in members]
+        rvw = np.array([np.asarray(b.state.rvw, float) for b in balls])
+        try:
+            out = self._model(balls).resolve(rvw[:, 0], rvw[:, 1], rvw[:, 2])
+        except ValueError:
+            return False  # overlapping balls: the pair alone, as pooltool would
+        for b, r, v, w in zip(balls, rvw[:, 0], out["velocities"], out["spins"]):
+            v = np.array(v)
+            if not self.is_3d:
+                v[2] = 0.0
+            if np.array_equal(v, b.state.rvw[1]) and np.array_equal(w, b.state.rvw[2]):
+                continue  # a ball the cluster did not move keeps its state
+            b.state = BallState(np.array([r, v, w]), const.sliding, time)
+        return True
+
+
+def _mean(xs: list) -> float:
+    """The mean; the value itself when all are equal (a mean of equal numbers may round)."""
+    return float(xs[0]) if all(x == xs[0] for x in xs) else float(np.mean(xs))
+
+
 def _time_to_distance(c: np.ndarray, b: np.ndarray, target: float) -> Optional[float]:
     """The time t of least |t| at which |c + t b| = target (c: the centres' offset, b: the
     relative velocity), or None when there is none (no relative motion, or the paths never
@@ -425,6 +531,8 @@ def install(
     *,
     cushion: bool = True,
     cushion_options: Optional[dict] = None,
+    cluster: bool = False,
+    cluster_options: Optional[dict] = None,
     **options: Any,
 ) -> BilliardContact:
     """Makes ``BilliardContact(**options)`` the ball-ball model of ``engine`` (pooltool
@@ -438,6 +546,10 @@ def install(
     model (a cushion outside R < height < 2R, a ball in the air) to the engine's previous
     model (its ``fallback``); circular cushion segments (the pockets' jaws) keep the
     engine's model. ``cushion=False`` leaves the cushions to the engine.
+
+    With ``cluster=True`` the engine's resolver becomes a ``ClusterResolver`` with the same
+    strategies: a ball-ball event whose balls touch others (a rack, frozen balls) is
+    resolved for all of them at once by the library's ``Cluster(**cluster_options)``.
 
     ``is_3d`` is the engine's (``engine.is_3d``; False for 0.6's engine, which has none):
     in a 3D engine the vertical velocity is kept unless ``keep_vertical_velocity=False``
@@ -466,4 +578,10 @@ def install(
         cushion_kwargs.setdefault("is_3d", options["is_3d"])
         cushion_kwargs.setdefault("fallback", previous)
         resolver.ball_linear_cushion = BilliardContactCushion(**cushion_kwargs)
+    if cluster:
+        fields = {f.name: getattr(resolver, f.name) for f in attrs.fields(type(resolver))
+                  if f.init and f.name not in ("cluster_options", "touch_gap", "is_3d")}
+        engine.resolver = ClusterResolver(
+            **fields, cluster_options=dict(cluster_options or {}), is_3d=options["is_3d"]
+        )
     return model
