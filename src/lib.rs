@@ -153,7 +153,9 @@ pub use scene::types::{Incoming, PlaneIncoming, Scene};
 pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
 pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
-pub use tangential::impact::resolve_sphere_plane_compliant;
+pub use tangential::impact::{
+    resolve_sphere_plane_compliant, resolve_sphere_plane_compliant_damped,
+};
 pub use tangential::outcome::{CompliantOutcome, CompliantPairOutcome, CompliantTraceRow};
 pub use tangential::pair::{resolve_sphere_sphere_compliant, CompliantSphere};
 

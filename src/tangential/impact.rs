@@ -32,6 +32,7 @@ use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::settings::SolverSettings;
 use crate::base::validate::finite;
+use crate::model::contact_law::{ContactLaw, Damping};
 use crate::model::material::{sphere_plane_stiffness, Material};
 use crate::model::params::{Ball, MU_MAX};
 use crate::tangential::outcome::{CompliantOutcome, CompliantTraceRow};
@@ -70,6 +71,8 @@ pub(crate) struct Contact {
     mu: f64,
     /// k_n = (4/3) E* sqrt(R) (N / m^1.5).
     k_n: f64,
+    /// The normal law: Hertz's k_n with its damping (none: elastic Hertz).
+    law: ContactLaw,
     /// 8 G* sqrt(R) (N / m^1.5): k_t = this sqrt(delta).
     k_t0: f64,
     n: Vector3<f64>,
@@ -85,12 +88,9 @@ enum Mode {
 }
 
 impl Contact {
-    fn normal_force(&self, delta: f64) -> f64 {
-        if delta > 0.0 {
-            self.k_n * delta * delta.sqrt()
-        } else {
-            0.0
-        }
+    /// F_n (N) in state `y`: k_n delta^1.5 with the law's damping on delta' (clipped at 0).
+    fn normal_force(&self, y: &Z) -> f64 {
+        self.law.force(y[0], y[1])
     }
 
     fn tangential_stiffness(&self, delta: f64) -> f64 {
@@ -121,7 +121,7 @@ impl Contact {
 
     /// The force on the ball: the spring's, capped by mu F_n.
     fn applied(&self, y: &Z) -> [f64; 2] {
-        let cap = self.mu * self.normal_force(y[0]);
+        let cap = self.mu * self.normal_force(y);
         let s = (y[7] * y[7] + y[8] * y[8]).sqrt();
         if s > cap {
             if s > 0.0 {
@@ -148,8 +148,12 @@ impl Contact {
 
     /// The rate of the cap mu F_n.
     fn cap_rate(&self, y: &Z) -> f64 {
-        if y[0] > 0.0 {
+        if y[0] <= 0.0 {
+            0.0
+        } else if self.law.damping() == Damping::None {
             self.mu * 1.5 * self.k_n * y[0].sqrt() * y[1]
+        } else if self.normal_force(y) > 0.0 {
+            self.mu * self.law.force_rate(y[0], y[1], self.mass)
         } else {
             0.0
         }
@@ -158,7 +162,7 @@ impl Contact {
     /// Whether the spring slides in state `y`: it is on the cap and sticking would carry it
     /// past.
     fn slides(&self, y: &Z) -> bool {
-        let cap = self.mu * self.normal_force(y[0]);
+        let cap = self.mu * self.normal_force(y);
         let s = (y[7] * y[7] + y[8] * y[8]).sqrt();
         if cap <= 0.0 || s <= 0.0 || s < cap * (1.0 - 1e-9) {
             return false;
@@ -168,7 +172,7 @@ impl Contact {
     }
 
     fn rhs(&self, y: &Z, mode: Mode) -> Z {
-        let f_n = self.normal_force(y[0]);
+        let f_n = self.normal_force(y);
         let f = self.applied(y);
         let f_lab = f[0] * self.t1 + f[1] * self.t2;
         let torque = (-self.radius * self.n).cross(&f_lab);
@@ -210,7 +214,7 @@ impl Contact {
     /// Puts the spring back on the cap when it is past it, or (`sliding`: a step that slid
     /// and slides on) when it has drifted off it by the step's error.
     fn project(&self, y: &mut Z, sliding: bool) {
-        let cap = self.mu * self.normal_force(y[0]);
+        let cap = self.mu * self.normal_force(y);
         let s = (y[7] * y[7] + y[8] * y[8]).sqrt();
         if (s > cap || sliding) && s > 0.0 {
             y[7] *= cap / s;
@@ -231,7 +235,7 @@ impl Contact {
         CompliantTraceRow {
             time: t,
             compression: y[0],
-            normal_force: self.normal_force(y[0]),
+            normal_force: self.normal_force(y),
             tangential_force: lab(f),
             displacement: lab(xi),
             slip: lab(u),
@@ -308,6 +312,8 @@ pub(crate) struct Bodies {
     pub(crate) g_star: f64,
     /// The factor on Mindlin's k_t (1: Mindlin).
     pub(crate) shear_factor: f64,
+    /// The damping of the normal force and its coefficient (beta in s/m, gamma in s).
+    pub(crate) damping: (Damping, f64),
 }
 
 /// What the stepping returns: the final state in the contact's basis and the contact's
@@ -433,6 +439,7 @@ pub(crate) fn run(
         partner: b.partner,
         mu,
         k_n,
+        law: ContactLaw::new(k_n, b.damping.0, b.damping.1)?,
         k_t0: b.shear_factor * 8.0 * b.g_star * radius.sqrt(),
         n,
         t1,
@@ -484,6 +491,7 @@ pub(crate) fn run(
     let mut trace = vec![c.row(t, &y, mode)];
     let (mut steps, mut rejected) = (0u64, 0u64);
     let mut max_compression = 0.0f64;
+    let mut max_normal_force = 0.0f64;
     let contact_time = loop {
         if steps + rejected >= MAX_STEPS {
             return Err(Error::TooManySteps {
@@ -509,13 +517,15 @@ pub(crate) fn run(
             };
             continue;
         }
-        let ended = y_new[0] <= 0.0;
+        // The contact ends where the law's force returns to 0 for good: delta = 0, or
+        // delta + gamma delta' = 0 under Kuwabara-Kono (its separation function).
+        let ended = c.law.separation(y_new[0], y_new[1]) <= 0.0;
         let turned = y[1] > 0.0 && y_new[1] <= 0.0;
         let switched = c.mu > 0.0
             && match mode {
                 Mode::Stick => {
                     let s = (y_new[7] * y_new[7] + y_new[8] * y_new[8]).sqrt();
-                    s > c.mu * c.normal_force(y_new[0]) * (1.0 + CAP_MARGIN)
+                    s > c.mu * c.normal_force(&y_new) * (1.0 + CAP_MARGIN)
                 }
                 Mode::Slide => !c.slides(&y_new),
             };
@@ -529,9 +539,12 @@ pub(crate) fn run(
         t += h;
         y = y_new;
         max_compression = max_compression.max(y[0]);
+        max_normal_force = max_normal_force.max(c.normal_force(&y));
         if ended {
-            // The zero of delta inside the last (tiny) step, from its rate.
-            let end = t - y[0] / y[1].min(-f64::MIN_POSITIVE);
+            // The zero of the separation inside the last (tiny) step, from its rate (delta';
+            // the damped term's rate is gamma delta'' = -gamma F_n / m*, and F_n = 0 there).
+            let sep = c.law.separation(y[0], y[1]);
+            let end = t - sep / y[1].min(-f64::MIN_POSITIVE);
             trace.push(c.row(end, &y, mode));
             break end;
         }
@@ -548,7 +561,7 @@ pub(crate) fn run(
         slip_in: slip0.norm(),
         contact_time,
         max_compression,
-        max_normal_force: c.normal_force(max_compression),
+        max_normal_force,
         steps,
         rejected,
         trace,
@@ -610,6 +623,58 @@ pub fn resolve_sphere_plane_compliant(
     normal: Vector3<f64>,
     settings: &SolverSettings,
 ) -> Result<CompliantOutcome, Error> {
+    resolve_sphere_plane_compliant_damped(
+        ball,
+        ball_material,
+        plane_material,
+        (Damping::None, 0.0),
+        mu,
+        v,
+        w,
+        normal,
+        settings,
+    )
+}
+
+/// [`resolve_sphere_plane_compliant`] with a damped normal force: `damping` is the law and
+/// its coefficient (Hunt and Crossley's beta in s/m, Kuwabara and Kono's gamma in s;
+/// docs/contact-law.md), on Hertz's stiffness k_n = (4/3) E* sqrt(R) of the materials; the
+/// contact ends where the force returns to zero (delta + gamma delta' = 0 under
+/// Kuwabara-Kono), and Coulomb's cap follows the damped force. To reach a restitution e at
+/// an approach speed, calibrate the coefficient with [`ContactLaw::calibrated`] on the
+/// stiffness [`HertzContact::sphere_plane`](crate::HertzContact::sphere_plane) gives and
+/// the ball's mass. `(Damping::None, 0.0)` is the elastic kernel, bit for bit.
+///
+/// ```
+/// use billiard_contact::nalgebra::Vector3;
+/// use billiard_contact::*;
+/// // Chung and Ooi's Test 3: an aluminium-oxide sphere at 3.9 m/s along the normal of a
+/// // rigid plane, damped to a restitution of 0.6.
+/// let r = 0.0025;
+/// let ball = Ball::new(4000.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r, r, 0.4)?;
+/// let alumina = Material::new(3.8e11, 0.23)?;
+/// let k = HertzContact::sphere_plane(&ball, &alumina, None, 3.9)?.stiffness;
+/// let law = ContactLaw::calibrated(k, Damping::HuntCrossley, 0.6, 3.9, ball.mass())?;
+/// let v = Vector3::new(0.0, -3.9, 0.0);
+/// let out = resolve_sphere_plane_compliant_damped(
+///     &ball, alumina, None, (law.damping(), law.coefficient()), 0.0, v, Vector3::zeros(),
+///     Vector3::y(), &SolverSettings::default(),
+/// )?;
+/// assert!((out.velocity.y - 0.6 * 3.9).abs() < 1e-6 * 3.9);
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn resolve_sphere_plane_compliant_damped(
+    ball: &Ball,
+    ball_material: Material,
+    plane_material: Option<Material>,
+    damping: (Damping, f64),
+    mu: f64,
+    v: Vector3<f64>,
+    w: Vector3<f64>,
+    normal: Vector3<f64>,
+    settings: &SolverSettings,
+) -> Result<CompliantOutcome, Error> {
     check_mu(mu)?;
     let n = unit_normal(
         "plane.normal",
@@ -640,6 +705,7 @@ pub fn resolve_sphere_plane_compliant(
         effective_radius: radius,
         g_star,
         shear_factor: 1.0,
+        damping,
     };
     let r = run(&bodies, mu, v, w, Vector3::zeros(), n, settings)?;
     let velocity = r.g_out();

@@ -12,6 +12,7 @@
 use crate::base::error::Error;
 use crate::base::settings::SolverSettings;
 use crate::base::validate::positive;
+use crate::model::contact_law::Damping;
 use crate::model::material::{hertz_stiffness, reduced_mass, Material};
 use crate::model::params::Ball;
 use crate::tangential::impact::{
@@ -130,6 +131,7 @@ pub fn resolve_sphere_sphere_compliant(
         effective_radius,
         g_star,
         shear_factor: shear_stiffness_factor,
+        damping: (Damping::None, 0.0),
     };
     let r = run(&bodies, mu, g, a.spin, b.spin, -n, settings)?;
     let impulse = mass * (r.g_out() - g);
