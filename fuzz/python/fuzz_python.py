@@ -387,7 +387,7 @@ CUSHION_OUT = {"v": 3, "w": 3, "impulse": 0, "impulse_compression": 0, "impulse_
                "events": None, "steps": 0, "evaluations": 0}
 RULES = ["stronge", "newton", "Stronge", "poisson", ""]
 MINDLIN_ARGS = ["tangential", "youngs_modulus", "poisson_ratio", "plane_youngs_modulus",
-                "plane_poisson_ratio", "restitution"]
+                "plane_poisson_ratio", "restitution", "damping", "coefficient", "at_speed"]
 MINDLIN_OUT = {"v": 3, "w": 3, "impulse": 0, "tangential_impulse": 0, "contact_time": 0,
                "rebound_angle": None}
 CLUSTER_ARGS = ["balls", "mu", "youngs_modulus", "poisson_ratio", "stiffness", "damping",
@@ -519,6 +519,11 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
         kw.update(draw_keywords(fdp, {"youngs_modulus": 5.4e9, "poisson_ratio": 0.34,
                                       "plane_youngs_modulus": 2e11, "plane_poisson_ratio": 0.3},
                                 {"plane_youngs_modulus", "plane_poisson_ratio"}))
+        if fdp.ConsumeIntInRange(0, 2) == 0:
+            kw["damping"] = pick(fdp, ["hunt-crossley", "kuwabara-kono", None, "x"])
+            kw.update(draw_keywords(fdp, {"coefficient": 0.05, "at_speed": 3.9,
+                                          "restitution": 0.8},
+                                    {"coefficient", "at_speed", "restitution"}))
     model = constructed(bc.BallPlane, kw, PLANE_ARGS + MINDLIN_ARGS)
     if model is None:
         return
@@ -564,8 +569,9 @@ def surface_plane(fdp: atheris.FuzzedDataProvider) -> None:
 
 
 def surface_plane_mindlin(fdp: atheris.FuzzedDataProvider, model, kw: dict) -> None:
-    """The compliant plane: elastic, so no energy created (to its tolerance); the tangential
-    impulse within Coulomb's mu P (the spring's force is capped at mu F_n at every instant)."""
+    """The compliant plane: elastic or damped, so no energy created (to its tolerance); the
+    tangential impulse within Coulomb's mu P (the spring's force is capped at mu F_n at every
+    instant)."""
     n = pick(fdp, [1, 1, 2, 3])
     single = n == 1 and fdp.ConsumeBool()
     rows = draw_rows(fdp, n, ["v", "w", "normal"], plane_row)

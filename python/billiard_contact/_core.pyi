@@ -283,7 +283,9 @@ class BallPlane:
     "mindlin": Hertz's normal force and Mindlin's tangential spring under Coulomb's cap
     (docs/tangential.md), from the ball's material (youngs_modulus in Pa, poisson_ratio)
     and the plane's (plane_youngs_modulus, plane_poisson_ratio; a plane without them is
-    rigid); elastic, so restitution 1.
+    rigid); elastic (restitution 1) unless damping is "hunt-crossley" or "kuwabara-kono",
+    with its coefficient (s/m or s) or calibrated so that a normal impact at at_speed (m/s)
+    has the restitution.
 
     Bad values raise ValueError naming the keyword, e.g. "mass = -1: > 0 kg".
     """
@@ -301,6 +303,9 @@ class BallPlane:
         poisson_ratio: Optional[float] = None,
         plane_youngs_modulus: Optional[float] = None,
         plane_poisson_ratio: Optional[float] = None,
+        damping: Optional[Literal["hunt-crossley", "kuwabara-kono"]] = None,
+        coefficient: Optional[float] = None,
+        at_speed: Optional[float] = None,
     ) -> None: ...
     @property
     def tangential(self) -> Literal["rigid", "mindlin"]: ...

@@ -11,8 +11,8 @@ use billiard_contact::details::{plane_impact, PlaneImpact};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::profile::HalfSine;
 use billiard_contact::{
-    resolve_sphere_plane_compliant, solve_plane, Ball, Contact, Error, Friction, ImpulseRule,
-    Material, Method, PlaneCollision, SolverSettings,
+    resolve_sphere_plane_compliant_damped, solve_plane, Ball, Contact, ContactLaw, Damping, Error,
+    Friction, HertzContact, ImpulseRule, Material, Method, PlaneCollision, SolverSettings,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -47,9 +47,21 @@ pub struct BallPlane {
     contact: Contact,
     mu: f64,
     restitution: f64,
-    /// The tangential law: `None` the rigid stick rule, else Mindlin's spring between the
-    /// ball's material and the plane's (`None`: a rigid plane).
-    mindlin: Option<(Material, Option<Material>)>,
+    /// The tangential law: `None` the rigid stick rule, else Mindlin's spring.
+    mindlin: Option<Mindlin>,
+}
+
+/// The compliant contact: Mindlin's spring between the ball's material and the plane's
+/// (`None`: a rigid plane), on Hertz's force with its damping.
+#[derive(Clone, Copy, PartialEq)]
+struct Mindlin {
+    ball: Material,
+    plane: Option<Material>,
+    /// The damping law and its coefficient (beta in s/m or gamma in s), as run.
+    law: (Damping, f64),
+    /// The keywords it came from: a coefficient given, or the speed of the calibration.
+    coefficient: Option<f64>,
+    at_speed: Option<f64>,
 }
 
 /// The rows of a compliant run, as output columns.
@@ -302,15 +314,35 @@ impl BallPlane {
     }
 }
 
-/// The tangential law from the keywords: `None` for "rigid" (no material may be given: the
-/// stick rule does not use one), the ball's and the plane's (or a rigid plane's `None`)
-/// materials for "mindlin" (elastic Hertz, so restitution 1).
+/// The damping law named `name`, or None.
+fn damping_named(name: Option<&str>) -> Result<Damping, Error> {
+    match name {
+        None | Some("none") => Ok(Damping::None),
+        Some("hunt-crossley") => Ok(Damping::HuntCrossley),
+        Some("kuwabara-kono") => Ok(Damping::KuwabaraKono),
+        Some(other) => Err(Error::invalid(
+            "damping",
+            format!("{other:?}"),
+            "None, \"hunt-crossley\" or \"kuwabara-kono\"",
+        )),
+    }
+}
+
+/// The tangential law from the keywords: `None` for "rigid" (no material or damping may be
+/// given: the stick rule uses none), for "mindlin" the ball's and the plane's (or a rigid
+/// plane's `None`) materials and the normal force's damping: elastic (restitution 1), a
+/// coefficient, or calibrated to the restitution at `at_speed`.
+#[allow(clippy::too_many_arguments)]
 fn mindlin_of(
+    ball_model: &Ball,
     tangential: &str,
     restitution: f64,
     ball: [Option<f64>; 2],
     plane: [Option<f64>; 2],
-) -> Result<Option<(Material, Option<Material>)>, Error> {
+    damping: Option<&str>,
+    coefficient: Option<f64>,
+    at_speed: Option<f64>,
+) -> Result<Option<Mindlin>, Error> {
     let material = |[e, nu]: [Option<f64>; 2], names: [&str; 2]| match (e, nu) {
         (Some(e), Some(nu)) => Material::new(e, nu).map(Some).map_err(|err| {
             renamed(
@@ -328,13 +360,15 @@ fn mindlin_of(
     };
     let ball = material(ball, ["youngs_modulus", "poisson_ratio"])?;
     let plane = material(plane, ["plane_youngs_modulus", "plane_poisson_ratio"])?;
+    let law = damping_named(damping)?;
     match tangential {
-        "rigid" => match (ball, plane) {
-            (None, None) => Ok(None),
+        "rigid" => match (ball, plane, damping, coefficient, at_speed) {
+            (None, None, None, None, None) => Ok(None),
             _ => Err(Error::invalid(
                 "tangential",
-                "\"rigid\" with a material",
-                "tangential=\"mindlin\" with the materials (the rigid stick rule uses none)",
+                "\"rigid\" with a material or a damping",
+                "tangential=\"mindlin\" with the materials and damping (the rigid stick \
+                 rule uses none)",
             )),
         },
         "mindlin" => {
@@ -345,14 +379,62 @@ fn mindlin_of(
                     "the ball's material (Mindlin's spring and Hertz's force need it)",
                 ));
             };
-            if restitution != 1.0 {
-                return Err(Error::invalid(
-                    "restitution",
-                    restitution,
-                    "1 with tangential=\"mindlin\" (the compliant contact is elastic Hertz)",
-                ));
-            }
-            Ok(Some((ball, plane)))
+            let named = |e: Error| {
+                renamed(
+                    renamed(
+                        renamed(e, "contact.law.coefficient", "coefficient"),
+                        "contact.law.restitution",
+                        "restitution",
+                    ),
+                    "contact.law.at_speed",
+                    "at_speed",
+                )
+            };
+            let run_law = match (law, coefficient, at_speed) {
+                (Damping::None, None, None) if restitution == 1.0 => (Damping::None, 0.0),
+                (Damping::None, c, v) if c.is_some() || v.is_some() => {
+                    return Err(Error::invalid(
+                        "damping",
+                        "None with coefficient= or at_speed=",
+                        "\"hunt-crossley\" or \"kuwabara-kono\" (elastic Hertz takes neither)",
+                    ))
+                }
+                (Damping::None, _, _) => {
+                    return Err(Error::invalid(
+                        "restitution",
+                        format!("{restitution} with damping None"),
+                        "1 (elastic Hertz), or a damping law (\"hunt-crossley\", \
+                         \"kuwabara-kono\") with coefficient= or at_speed=",
+                    ))
+                }
+                (d, Some(c), None) if restitution == 1.0 => {
+                    ContactLaw::new(1.0, d, c).map_err(named)?;
+                    (d, c)
+                }
+                (d, None, Some(v)) => {
+                    let k = HertzContact::sphere_plane(ball_model, &ball, plane.as_ref(), v)
+                        .map_err(named)?
+                        .stiffness;
+                    let l = ContactLaw::calibrated(k, d, restitution, v, ball_model.mass())
+                        .map_err(named)?;
+                    (l.damping(), l.coefficient())
+                }
+                _ => {
+                    return Err(Error::invalid(
+                        "coefficient, at_speed",
+                        "both or neither given (or a coefficient with restitution)",
+                        "coefficient= (restitution left at 1), or restitution= with \
+                         at_speed= to calibrate it",
+                    ))
+                }
+            };
+            Ok(Some(Mindlin {
+                ball,
+                plane,
+                law: run_law,
+                coefficient,
+                at_speed,
+            }))
         }
         other => Err(Error::invalid(
             "tangential",
@@ -369,7 +451,7 @@ impl BallPlane {
         &self,
         views: &[Strided; 3],
         n: usize,
-        (ball, plane): (Material, Option<Material>),
+        mindlin: Mindlin,
         settings: &SolverSettings,
     ) -> Result<CompliantRows, (usize, Error)> {
         let one = |i: usize| -> Result<[f64; 10], (usize, Error)> {
@@ -377,8 +459,16 @@ impl BallPlane {
             if v.dot(&normal) >= 0.0 {
                 return Ok([v.x, v.y, v.z, w.x, w.y, w.z, 0.0, 0.0, 0.0, f64::NAN]);
             }
-            let o = resolve_sphere_plane_compliant(
-                &self.ball, ball, plane, self.mu, v, w, normal, settings,
+            let o = resolve_sphere_plane_compliant_damped(
+                &self.ball,
+                mindlin.ball,
+                mindlin.plane,
+                mindlin.law,
+                self.mu,
+                v,
+                w,
+                normal,
+                settings,
             )
             .map_err(|e| {
                 (
@@ -484,10 +574,12 @@ impl BallPlane {
     #[pyo3(signature = (*, mass, radius, alpha = 0.4, mu, restitution = 1.0,
                         tangential = "rigid".to_string(), youngs_modulus = None,
                         poisson_ratio = None, plane_youngs_modulus = None,
-                        plane_poisson_ratio = None),
+                        plane_poisson_ratio = None, damping = None, coefficient = None,
+                        at_speed = None),
            text_signature = "(*, mass, radius, alpha=0.4, mu, restitution=1.0, \
                              tangential='rigid', youngs_modulus=None, poisson_ratio=None, \
-                             plane_youngs_modulus=None, plane_poisson_ratio=None)")]
+                             plane_youngs_modulus=None, plane_poisson_ratio=None, \
+                             damping=None, coefficient=None, at_speed=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         #[pyo3(from_py_with = crate::args::mass)] mass: f64,
@@ -500,17 +592,24 @@ impl BallPlane {
         #[pyo3(from_py_with = crate::args::poisson_ratio)] poisson_ratio: Option<f64>,
         #[pyo3(from_py_with = crate::args::plane_youngs_modulus)] plane_youngs_modulus: Option<f64>,
         #[pyo3(from_py_with = crate::args::plane_poisson_ratio)] plane_poisson_ratio: Option<f64>,
+        #[pyo3(from_py_with = crate::args::damping)] damping: Option<String>,
+        #[pyo3(from_py_with = crate::args::coefficient)] coefficient: Option<f64>,
+        #[pyo3(from_py_with = crate::args::at_speed)] at_speed: Option<f64>,
     ) -> PyResult<Self> {
+        let ball = Ball::in_section("ball", mass, radius, alpha)
+            .map_err(|e| to_py(renamed(e, "ball.", "")))?;
+        let friction = Friction::constant(mu).map_err(|e| to_py(renamed(e, "contact.", "")))?;
         let mindlin = mindlin_of(
+            &ball,
             &tangential,
             restitution,
             [youngs_modulus, poisson_ratio],
             [plane_youngs_modulus, plane_poisson_ratio],
+            damping.as_deref(),
+            coefficient,
+            at_speed,
         )
         .map_err(to_py)?;
-        let ball = Ball::in_section("ball", mass, radius, alpha)
-            .map_err(|e| to_py(renamed(e, "ball.", "")))?;
-        let friction = Friction::constant(mu).map_err(|e| to_py(renamed(e, "contact.", "")))?;
         let impulse =
             ImpulseRule::restitution(restitution).map_err(|e| to_py(renamed(e, "contact.", "")))?;
         Ok(BallPlane {
@@ -553,7 +652,7 @@ impl BallPlane {
             Some(float_array("normal", normal)?),
         ];
         let (views, n, single) = strided(&NAMES, &arrays)?;
-        if let Some(materials) = self.mindlin {
+        if let Some(mindlin) = self.mindlin {
             if let Some(m) = method {
                 return Err(to_py(Error::invalid(
                     "method",
@@ -568,7 +667,7 @@ impl BallPlane {
                 .flatten()
                 .map(|a| a.try_readonly())
                 .collect::<Result<Vec<_>, _>>()?;
-            let rows = py.detach(|| self.compliant_rows(&views, n, materials, &settings));
+            let rows = py.detach(|| self.compliant_rows(&views, n, mindlin, &settings));
             drop(borrows);
             drop(arrays);
             let rows = rows.map_err(|(i, e)| failure_error(i, Failure::Input(e), single))?;
@@ -724,13 +823,18 @@ impl BallPlane {
         kwargs.set_item("alpha", self.ball.alpha())?;
         kwargs.set_item("mu", self.mu)?;
         kwargs.set_item("restitution", self.restitution)?;
-        if let Some((ball, plane)) = self.mindlin {
+        if let Some(m) = self.mindlin {
             kwargs.set_item("tangential", "mindlin")?;
-            kwargs.set_item("youngs_modulus", ball.youngs_modulus())?;
-            kwargs.set_item("poisson_ratio", ball.poisson_ratio())?;
-            if let Some(p) = plane {
+            kwargs.set_item("youngs_modulus", m.ball.youngs_modulus())?;
+            kwargs.set_item("poisson_ratio", m.ball.poisson_ratio())?;
+            if let Some(p) = m.plane {
                 kwargs.set_item("plane_youngs_modulus", p.youngs_modulus())?;
                 kwargs.set_item("plane_poisson_ratio", p.poisson_ratio())?;
+            }
+            if m.law.0 != Damping::None {
+                kwargs.set_item("damping", m.law.0.name())?;
+                kwargs.set_item("coefficient", m.coefficient)?;
+                kwargs.set_item("at_speed", m.at_speed)?;
             }
         }
         Ok((PyTuple::empty(py), kwargs))
@@ -750,18 +854,27 @@ impl BallPlane {
             self.mu,
             self.restitution
         );
-        if let Some((ball, plane)) = self.mindlin {
+        if let Some(m) = self.mindlin {
             s += &format!(
                 ", tangential=\"mindlin\", youngs_modulus={:?}, poisson_ratio={:?}",
-                ball.youngs_modulus(),
-                ball.poisson_ratio()
+                m.ball.youngs_modulus(),
+                m.ball.poisson_ratio()
             );
-            if let Some(p) = plane {
+            if let Some(p) = m.plane {
                 s += &format!(
                     ", plane_youngs_modulus={:?}, plane_poisson_ratio={:?}",
                     p.youngs_modulus(),
                     p.poisson_ratio()
                 );
+            }
+            if m.law.0 != Damping::None {
+                s += &format!(", damping={:?}", m.law.0.name());
+                if let Some(c) = m.coefficient {
+                    s += &format!(", coefficient={c:?}");
+                }
+                if let Some(v) = m.at_speed {
+                    s += &format!(", at_speed={v:?}");
+                }
             }
         }
         s + ")"
