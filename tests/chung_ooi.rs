@@ -143,7 +143,10 @@ fn chung_ooi_test_3_restitution() {
                 .unwrap();
                 let ratio = o.velocity.y / v_n;
                 println!("test 3 {name} {damping:?} e = {e}: rebound {ratio:.9}");
-                assert!((ratio - e).abs() < 1e-6, "{name} {damping:?} e = {e}: {ratio}");
+                assert!(
+                    (ratio - e).abs() < 1e-6,
+                    "{name} {damping:?} e = {e}: {ratio}"
+                );
                 let ke = o.kinetic_energy_out / o.kinetic_energy_in;
                 assert!((ke - e * e).abs() < 2e-6, "{name} {damping:?} {e}: {ke}");
             }

@@ -82,7 +82,12 @@ impl Collision {
         let m = balls.pair_mass();
         let impulse = contact.impulse.impulse(m, u0)?;
         let slip = incoming.slip_of(&balls);
-        let s0 = planar_length(slip);
+        // A slip below the smallest normal double (a cut of 5e-309 degrees) has no digits
+        // left, and its square, which the sliding equations take, underflows to 0: it is
+        // no slip at all.
+        let s0 = Some(planar_length(slip))
+            .filter(|s| s.is_normal())
+            .unwrap_or(0.0);
         let direction = if s0 > 0.0 { Some(slip / s0) } else { None };
         let r = balls.a.radius();
         let rb = balls.b.radius();
