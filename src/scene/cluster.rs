@@ -111,6 +111,12 @@ pub(crate) fn scene_fields(e: Error, rtol_field: &str) -> Error {
                 "cluster.mu" => "contact.mu".to_string(),
                 "cluster.rtol" => rtol_field.to_string(),
                 "cluster.materials" => "balls".to_string(),
+                // Two balls that overlap: their positions.
+                other if other.contains(", ") => other
+                    .split(", ")
+                    .map(|b| format!("{}.position", b.trim_start_matches("cluster.")))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 other => other.replace("cluster.", ""),
             };
             Error::InvalidParameter {
@@ -120,6 +126,20 @@ pub(crate) fn scene_fields(e: Error, rtol_field: &str) -> Error {
             }
         }
         other => other,
+    }
+}
+
+/// The TOML reader's message `m`, with a missing section explained for a cluster scene.
+fn cluster_message(m: String) -> String {
+    match m
+        .strip_prefix("missing section [")
+        .and_then(|r| r.split_once(']'))
+    {
+        Some((name, _)) => format!(
+            "missing section [{name}]: a cluster scene needs [[balls]] (one per ball), \
+             [contact] (mu) and [contact.law] (docs/formats.md#cluster-scene)"
+        ),
+        None => m,
     }
 }
 
@@ -237,7 +257,7 @@ impl ClusterScene {
         let raw: RawClusterScene = serde_path_to_error::deserialize(toml::Deserializer::new(text))
             .map_err(|e| Error::Scene {
                 path: shown.clone(),
-                message: explain_toml_error(text, &e),
+                message: cluster_message(explain_toml_error(text, &e)),
             })?;
         let mut balls = Vec::with_capacity(raw.balls.len());
         let mut materials = Vec::with_capacity(raw.balls.len());
