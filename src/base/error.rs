@@ -183,8 +183,9 @@ pub enum Error {
     /// A cluster's run (docs/cluster.md) that ended before every contact opened: its step
     /// control stalled (`step-too-small`) or it reached its work bound (`work-bound`).
     #[error(
-        "the cluster's run stopped ({stop}) at t = {time:.4e} s after {steps} steps with \
-         contacts still compressed or closing; a looser rtol, or fewer balls at once"
+        "the cluster's run stopped ({stop}) at t = {} after {steps} steps with \
+         contacts still compressed or closing; a looser rtol, or fewer balls at once",
+        crate::base::number::si(*.time, "s", 5)
     )]
     ClusterStopped {
         /// Why it stopped, as the report names it.

@@ -2,7 +2,7 @@
 //! text summary, with the run's balances (momentum, energy against heat).
 
 use crate::base::error::Error;
-use crate::base::number::decimal;
+use crate::base::number::{count, decimal, sci, shortest, si};
 use crate::cluster::params::ClusterBall;
 use crate::cluster::resolve::{ClusterOutcome, ClusterSettings};
 use crate::model::params::Ball;
@@ -188,7 +188,7 @@ fn law_text(scene: &ClusterScene) -> String {
     };
     match &scene.materials {
         Some(_) => format!("{damping}, stiffness of each pair from its balls' materials"),
-        None => format!("{damping}, stiffness {:e} N/m^1.5", law.stiffness()),
+        None => format!("{damping}, stiffness {} N/m^1.5", sci(law.stiffness(), 6)),
     }
 }
 
@@ -203,12 +203,12 @@ pub(crate) fn cluster_summary(
     let mut s = String::new();
     s += &format!("{}\n", scene.name);
     s += &format!(
-        "  {} balls; {}; mu {}; stick {}; rtol {:e}\n",
-        out.balls.len(),
+        "  {}; {}; mu {}; stick {}; rtol {}\n",
+        count(out.balls.len() as u64, "ball", "balls"),
         law_text(scene),
         decimal(scene.cluster.mu(), 6),
         if settings.stick { "on" } else { "off" },
-        settings.rtol,
+        shortest(settings.rtol),
     );
     s += "  ball  velocity out (m/s)                      spin out (rad/s)\n";
     for (i, o) in out.balls.iter().enumerate() {
@@ -220,26 +220,33 @@ pub(crate) fn cluster_summary(
     );
     for c in &out.contacts {
         let stick = c.stick_time.map_or("never sticks".to_string(), |t| {
-            format!("sticks at {t:.4e} s")
+            format!("sticks at {}", si(t, "s", 5))
         });
         s += &format!(
-            "  ({}, {})  impulse {:.6e} N s  duration {:.4e} s  heat {:.4e} J  {stick}\n",
-            c.pair.0, c.pair.1, c.normal_impulse, c.duration, c.heat,
+            "  ({}, {})  impulse {} N s  duration {}  heat {}  {stick}\n",
+            c.pair.0,
+            c.pair.1,
+            decimal(c.normal_impulse, 7),
+            si(c.duration, "s", 5),
+            si(c.heat, "J", 5),
         );
     }
     s += &format!(
-        "  energy in {:.6e} J, out {:.6e} J, heat {:.3e} J (balance error {:.1e}); momentum \
-         error {:.1e}\n",
-        b.energy_in, b.energy_out, b.heat, b.energy_balance_error, b.momentum_error,
+        "  energy in {}, out {}, heat {} (balance error {}); momentum error {}\n",
+        si(b.energy_in, "J", 7),
+        si(b.energy_out, "J", 7),
+        si(b.heat, "J", 5),
+        sci(b.energy_balance_error, 2),
+        sci(b.momentum_error, 2),
     );
     s += &format!(
-        "  {} at t = {:.4e} s: {} steps ({} rejected), {} evaluations, {} events\n",
+        "  {} at t = {}: {} ({} rejected), {}, {}\n",
         stop_name(out.stop),
-        out.time,
-        out.stats.steps,
+        si(out.time, "s", 5),
+        count(out.stats.steps, "step", "steps"),
         out.stats.rejected,
-        out.stats.evaluations,
-        out.stats.events,
+        count(out.stats.evaluations, "evaluation", "evaluations"),
+        count(out.stats.events, "event", "events"),
     );
     s
 }
