@@ -126,6 +126,58 @@ fn bad_values_are_refused_naming_the_field_with_the_balls_index() {
     ] {
         refused(&bin(&["run", &path]), &want);
     }
+    // The law's stiffness: from every ball's material or given, never a mix.
+    let material = "youngs_modulus = 5.4e9\npoisson_ratio = 0.34\n";
+    let none = text.replace(material, "");
+    let given = |name: &str, extra: &str| {
+        variant(
+            &dir,
+            name,
+            &none,
+            "model = \"hertz\"",
+            &format!("model = \"hertz\"\nstiffness = 4.5e8\n{extra}"),
+        )
+    };
+    refused(
+        &bin(&[
+            "run",
+            &variant(&dir, "no_k.toml", &none, "[contact]", "[contact]"),
+        ]),
+        &["contact.law.stiffness = missing", "youngs_modulus"],
+    );
+    // balls[1] without its material, the others with theirs.
+    let second = text.find("position = [0.05715").unwrap();
+    let mixed = format!(
+        "{}{}",
+        &text[..second].trim_end_matches(material),
+        &text[second..]
+    );
+    refused(
+        &bin(&[
+            "run",
+            &variant(&dir, "mixed.toml", &mixed, "[contact]", "[contact]"),
+        ]),
+        &["balls[1].youngs_modulus", "missing", "every ball"],
+    );
+    // One calibrated law for every pair needs identical balls.
+    let unequal = given(
+        "unequal.toml",
+        "damping = \"hunt-crossley\"\nrestitution = 0.9\nat_speed = 1.0",
+    );
+    let unequal_text = std::fs::read_to_string(&unequal).unwrap().replacen(
+        "position = [0.05715",
+        "alpha = 0.5\nposition = [0.05715",
+        1,
+    );
+    std::fs::write(&unequal, unequal_text).unwrap();
+    refused(
+        &bin(&["run", &unequal]),
+        &["contact.law.stiffness", "balls[1] unlike balls[0]"],
+    );
+    refused(
+        &bin(&["run", &given("effects.toml", "[effects]\nfriction = false")]),
+        &["effects.friction: unknown key", "stick"],
+    );
     // A missing section is explained for a cluster scene.
     let cut = &text[..text.find("[contact]").unwrap()];
     let path = dir.join("no_contact.toml");
@@ -185,6 +237,18 @@ fn options_that_do_not_apply_are_refused_naming_them() {
         &bin(&["run", &path, "--rtol", "0.5"]),
         &["--rtol = 0.5", "1e-2"],
     );
+    // [effects] stick = false is taken and reported.
+    let dir = fresh_dir("cluster_stick_off");
+    let off = variant(
+        &dir,
+        "off.toml",
+        &cradle3(),
+        "[contact]",
+        "[effects]\nstick = false\n[contact]",
+    );
+    let j = json(&["run", &off, "--json", "--rtol", "1e-9"]);
+    assert_eq!(j["stick"], false);
+    assert_eq!(j["rtol"], 1e-9);
     // The commands that vary two balls refuse a cluster scene.
     refused(&bin(&["sweep", &path]), &["cluster scene", "run"]);
 }
@@ -341,25 +405,32 @@ fn three_ball_cradle_matches_the_hertz_chain_by_rk4() {
     eprintln!("rk4 chain {reference:?}, h vs h/2: {own:.1e} m/s");
     assert!(own < 2e-11, "the reference is not converged: {own:e}");
     assert!((reference[2] - 1.0).abs() > 1e-3, "{reference:?}");
-    let j = json(&[
-        "run",
-        &scene("cluster_cradle_3.toml"),
-        "--json",
-        "--rtol",
-        "1e-13",
-    ]);
-    check_shape(&j, 3);
-    for (i, b) in j["balls"].as_array().unwrap().iter().enumerate() {
-        let v = vector3(&b["velocity"]);
-        eprintln!(
-            "ball {i}: {:.1e} m/s from the chain",
-            (v.x - reference[i]).abs()
-        );
-        assert!(
-            (v - Vector3::new(reference[i], 0.0, 0.0)).amax() < 3e-11,
-            "ball {i}: {v} vs {}",
-            reference[i]
-        );
+    // The shipped scene (each pair's k from the balls' materials), and the same balls with
+    // k given as contact.law.stiffness (computed here).
+    let dir = fresh_dir("cluster_cradle_stiffness");
+    let material = "youngs_modulus = 5.4e9\npoisson_ratio = 0.34\n";
+    let given = variant(
+        &dir,
+        "given_k.toml",
+        &cradle3().replace(material, ""),
+        "model = \"hertz\"",
+        &format!("model = \"hertz\"\nstiffness = {k:?}"),
+    );
+    for path in [scene("cluster_cradle_3.toml"), given] {
+        let j = json(&["run", &path, "--json", "--rtol", "1e-13"]);
+        check_shape(&j, 3);
+        for (i, b) in j["balls"].as_array().unwrap().iter().enumerate() {
+            let v = vector3(&b["velocity"]);
+            eprintln!(
+                "ball {i}: {:.1e} m/s from the chain",
+                (v.x - reference[i]).abs()
+            );
+            assert!(
+                (v - Vector3::new(reference[i], 0.0, 0.0)).amax() < 3e-11,
+                "{path} ball {i}: {v} vs {}",
+                reference[i]
+            );
+        }
     }
 }
 
