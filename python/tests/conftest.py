@@ -12,7 +12,14 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
-SCENES = sorted((REPO / "data" / "scenes").glob("*.toml"))
+# The two-ball, plane and cushion scenes: `run` and the command resolve them alike. Cluster
+# scenes ([[balls]], docs/formats.md#cluster-scene) are run by the command only, not yet by
+# bc.run.
+SCENES = sorted(
+    p
+    for p in (REPO / "data" / "scenes").glob("*.toml")
+    if "[[balls]]" not in p.read_text()
+)
 
 
 def _cli_path() -> Path:

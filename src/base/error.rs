@@ -180,6 +180,22 @@ pub enum Error {
         segment_start: f64,
     },
 
+    /// A cluster's run (docs/cluster.md) that ended before every contact opened: its step
+    /// control stalled (`step-too-small`) or it reached its work bound (`work-bound`).
+    #[error(
+        "the cluster's run stopped ({stop}) at t = {} after {steps} steps with \
+         contacts still compressed or closing; a looser rtol, or fewer balls at once",
+        crate::base::number::si(*.time, "s", 5)
+    )]
+    ClusterStopped {
+        /// Why it stopped, as the report names it.
+        stop: &'static str,
+        /// Time the run covered (s).
+        time: f64,
+        /// Accepted steps.
+        steps: u64,
+    },
+
     /// A computed quantity is NaN or infinite (an integrated state, a report or trace
     /// value): the run failed.
     #[error("non-finite result: {field} = {value}")]

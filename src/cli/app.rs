@@ -84,11 +84,15 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// `run`: a cushion scene ([cushion]) by `cli::cushion`, any other by `cli::run`.
+/// `run`: a cushion scene ([cushion]) by `cli::cushion`, a cluster scene ([[balls]]) by
+/// `cli::cluster`, any other by `cli::run`.
 fn run(args: &crate::cli::run::RunArgs) -> Result<(), crate::base::error::Error> {
     if let Some(path) = &args.scene {
         if let Some(scene) = crate::cli::cushion::cushion_scene(path)? {
             return crate::cli::cushion::run(args, &scene);
+        }
+        if let Some(scene) = crate::cli::cluster::cluster_scene(path)? {
+            return crate::cli::cluster::run(args, &scene);
         }
     }
     crate::cli::run::run(args)

@@ -7,6 +7,7 @@
 mod app;
 mod batch;
 mod choice;
+mod cluster;
 mod common;
 mod cushion;
 mod rebound;

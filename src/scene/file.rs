@@ -187,10 +187,10 @@ struct RawContact {
     law: Option<RawLaw>,
 }
 
-/// `[contact.law]` as written.
+/// `[contact.law]` as written (also a cluster scene's, `scene::cluster`).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawLaw {
+pub(crate) struct RawLaw {
     #[serde(deserialize_with = "name")]
     model: LawModel,
     stiffness: Option<f64>,
@@ -211,7 +211,7 @@ enum LawModel {
 
 impl RawLaw {
     /// The law as the builder takes it.
-    fn spec(&self) -> LawSpec {
+    pub(crate) fn spec(&self) -> LawSpec {
         let LawModel::Hertz = self.model;
         LawSpec {
             stiffness: self.stiffness,
@@ -456,6 +456,13 @@ pub fn is_cushion_scene(text: &str) -> bool {
         .is_ok_and(|t| t.get("cushion").is_some_and(toml::Value::is_table))
 }
 
+/// Whether scene text is a cluster scene (`scene::cluster`): its `balls` is an array of
+/// tables (`[[balls]]`), not the two-ball `[balls]` table. Text that is not TOML is not.
+pub fn is_cluster_scene(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .is_ok_and(|t| t.get("balls").is_some_and(toml::Value::is_array))
+}
+
 impl Scene {
     /// Reads and validates a scene file; relative profile files resolve beside it.
     pub fn load(path: &Path) -> Result<Self, Error> {
@@ -481,6 +488,14 @@ impl Scene {
                 path: shown,
                 message: "a cushion scene ([cushion], docs/cushion.md): `run` resolves it, \
                           `rebound` sweeps its incidence, `batch --scene` runs its rows; \
+                          this needs a scene of two balls or a plane"
+                    .into(),
+            });
+        }
+        if is_cluster_scene(text) {
+            return Err(Error::Scene {
+                path: shown,
+                message: "a cluster scene ([[balls]], docs/cluster.md): `run` resolves it; \
                           this needs a scene of two balls or a plane"
                     .into(),
             });
@@ -573,7 +588,9 @@ fn plane_material(p: &RawPlane) -> Result<Option<Material>, Error> {
     }
 }
 
-fn vec3(field: &str, v: V3) -> Result<Vector3<f64>, Error> {
+/// The vector `v` of the field `field`, every component finite (else an error naming
+/// `field[i]`).
+pub(crate) fn vec3(field: &str, v: V3) -> Result<Vector3<f64>, Error> {
     let v = v.0;
     for (i, x) in v.iter().enumerate() {
         if !x.is_finite() {

@@ -3,6 +3,7 @@
 //! which fills a builder), and run.
 
 pub(crate) mod builder;
+pub(crate) mod cluster;
 pub(crate) mod cushion;
 pub(crate) mod file;
 pub(crate) mod overrides;
