@@ -1,0 +1,10 @@
+//! Fuzz target `tangential`: the promises are in `fuzz/checks.rs` (`check_tangential`).
+#![no_main]
+
+#[path = "../checks.rs"]
+#[allow(dead_code)]
+mod checks;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    checks::check_tangential(data);
+});
