@@ -335,9 +335,14 @@ pub fn resolve_cushion(
             // jam bound, a negative work or impulse) where an adaptive run resolves the
             // impact: the step count is what is wrong, and the adaptive run's refusal, if it
             // refuses, is the answer.
-            (Err(e @ (Error::NonFinite { .. } | Error::InvalidParameter { .. })), _)
-                if s.method() == Method::Rk4 =>
-            {
+            (
+                Err(
+                    e @ (Error::NonFinite { .. }
+                    | Error::InvalidParameter { .. }
+                    | Error::StepSizeTooSmall { .. }),
+                ),
+                _,
+            ) if s.method() == Method::Rk4 => {
                 return Err(rk4_astray(ball, cushion, v, w, &s, e.to_string()).unwrap_or(e));
             }
             (Ok(out), _) if s.method() == Method::Rk4 && negative_part(&out).is_some() => {
