@@ -44,6 +44,13 @@ const EVENT_TRIALS: usize = 100;
 /// needed friction comes out of a linear solve accurate to about 1e-12.
 const RELEASE_SLACK: f64 = 1e-9;
 
+/// Most fixed-point iterations of the directions of contacts released together.
+const RELEASE_ITERATIONS: usize = 30;
+
+/// Change of a released contact's sliding direction (a unit vector) at which its fixed-point
+/// iteration stops: well below the step control's tolerances.
+const RELEASE_DIRECTION_TOL: f64 = 1e-12;
+
 /// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
 const FIRST_STEP: f64 = 1e-3;
 
@@ -172,6 +179,11 @@ struct Active {
     /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
     /// friction keeps while a step is located: the slip's at the start of the step.
     seed: Vector3<f64>,
+    /// The slip (m/s) the contact had when it was last released from sticking: the rounding
+    /// left by the stick solve (s_t' = 0 holds the slip of the stop, not exactly zero). The
+    /// direction of a released contact's sliding is that of its slip since the release,
+    /// s_t - offset, so that this residue, of arbitrary direction, does not set it.
+    offset: Vector3<f64>,
     /// Whether the force has been positive.
     loaded: bool,
     /// Time of the closing (s).
@@ -198,6 +210,12 @@ struct Forces {
     /// Per contact: normal force (N), friction on ball i (N), tangential slip (m/s),
     /// closing rate (m/s), compression (m).
     contact: Vec<ContactForce>,
+}
+
+/// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
+fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
+    let r = acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
+    r - c.n * r.dot(&c.n)
 }
 
 /// The system of one segment: its balls, its contact set and the friction.
@@ -252,20 +270,19 @@ impl System<'_> {
             let (d, w) = self.compression(y, c);
             let f = c.law.force(d, w);
             let s = self.slip(y, c);
+            let sr = s - c.offset;
             let friction = match c.mode {
                 Mode::Sliding if f > 0.0 && self.mu > 0.0 => {
-                    let dir = if self.frozen {
+                    let sn = sr.norm();
+                    let dir = if self.frozen || sn <= floor {
                         c.seed
                     } else {
-                        if s.dot(&c.seed) <= 0.0 {
+                        // A slip above the floor against the step's direction has gone
+                        // through zero: its friction flipped inside the step.
+                        if sr.dot(&c.seed) <= 0.0 {
                             self.reversed.set(true);
                         }
-                        let sn = s.norm();
-                        if sn > floor {
-                            s / sn
-                        } else {
-                            c.seed
-                        }
+                        sr / sn
                     };
                     -dir * (self.mu * f)
                 }
@@ -600,6 +617,7 @@ impl Run<'_> {
             law: self.cluster.law(i, j),
             mode: Mode::Sliding,
             seed: t0,
+            offset: Vector3::zeros(),
             loaded: false,
             start: self.t,
             stick_time: None,
@@ -658,7 +676,10 @@ impl Run<'_> {
     /// The event function of `e` at state `y` (positive before the event).
     fn event_value(&self, sys: &System<'_>, y: &[f64], e: Event) -> f64 {
         match e {
-            Event::Stop(k) => sys.slip(y, &self.active[k]).dot(&self.active[k].seed),
+            Event::Stop(k) => {
+                let c = &self.active[k];
+                (sys.slip(y, c) - c.offset).dot(&c.seed)
+            }
             Event::Open(k) => {
                 let c = &self.active[k];
                 let (d, w) = sys.compression(y, c);
@@ -772,7 +793,7 @@ impl Run<'_> {
                     .active
                     .iter()
                     .map(|c| {
-                        let s = sys.slip(&self.y, c);
+                        let s = sys.slip(&self.y, c) - c.offset;
                         (s.norm() > SLIP_FLOOR * self.v_ref).then(|| s.normalize())
                     })
                     .collect();
@@ -796,16 +817,29 @@ impl Run<'_> {
             let mut frozen = false;
             let mut evals = sys.evaluations.get();
             let reversed = sys.reversed.get();
-            if err <= 1.0 && reversed {
+            let mut events = Vec::new();
+            if reversed && err.is_finite() {
                 // A slip reversed inside the step: redo it with the friction along each
-                // sliding contact's direction at its start (as two balls do), so that the
-                // stop is a clean crossing.
+                // sliding contact's direction at its start (as two balls do), so that a stop
+                // is a clean crossing. Taken when it crosses a stop or another event within
+                // the tolerance; otherwise the reversal was one a stage saw but the step does
+                // not end in (or a slip at the floor's rounding whose friction is nothing),
+                // and the step is judged as it came.
                 let fsys = self.system(true);
                 let mut df = vec![0.0; self.y.len()];
                 fsys.derivative(&self.y, &mut df);
-                (y1, err) = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
+                let (yf, ef) = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
                 evals += fsys.evaluations.get();
-                frozen = true;
+                if ef <= 1.0 {
+                    let ev = self.crossings(&fsys, &self.y, &yf);
+                    if !ev.is_empty() {
+                        (y1, err, frozen, events) = (yf, ef, true, ev);
+                    }
+                } else if err <= 1.0 {
+                    // The frozen step fails the tolerance where the free one passed: too
+                    // long for a located stop, shorter.
+                    err = ef;
+                }
             }
             self.stats.evaluations += evals;
             if err > 1.0 || !err.is_finite() {
@@ -815,13 +849,8 @@ impl Run<'_> {
                 continue;
             }
             let sys = self.system(frozen);
-            let events = self.crossings(&sys, &self.y, &y1);
-            if frozen && events.is_empty() {
-                // The reversal was inside the stages only: a smaller step.
-                self.stats.rejected += 1;
-                h *= 0.5;
-                k0 = Some(d0);
-                continue;
+            if !frozen {
+                events = self.crossings(&sys, &self.y, &y1);
             }
             if events.is_empty() {
                 self.stats.steps += 1;
@@ -882,22 +911,75 @@ impl Run<'_> {
     }
 
     /// After a step: marks the loaded contacts and releases the stuck ones whose friction
-    /// exceeds mu f.
+    /// exceeds mu f, one at a time, the one in excess by the largest fraction first, the
+    /// stick solve redone without it (a release changes the friction the others need: in a
+    /// tight rack two contacts of one ball were released together and the second's slip
+    /// then ran against the direction it was released along). The released contacts then
+    /// slide along directions consistent with their slips' rates (`release_directions`).
     fn after_step(&mut self) {
-        let sys = self.system(false);
-        let fs = sys.forces(&self.y);
-        self.stats.evaluations += 1;
-        for (c, (f, fr, _, _, _)) in self.active.iter_mut().zip(&fs.contact) {
-            if *f > 0.0 {
-                c.loaded = true;
-            }
-            if c.mode == Mode::Stuck {
-                let cap = self.cluster.mu * f;
-                let need = fr.norm();
-                if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
-                    c.mode = Mode::Sliding;
-                    c.seed = -fr / need;
+        let mut released = Vec::new();
+        loop {
+            let sys = self.system(false);
+            let fs = sys.forces(&self.y);
+            self.stats.evaluations += 1;
+            let mut worst: Option<(usize, f64)> = None;
+            for (k, (c, (f, fr, _, _, _))) in self.active.iter_mut().zip(&fs.contact).enumerate() {
+                if *f > 0.0 {
+                    c.loaded = true;
                 }
+                if c.mode == Mode::Stuck {
+                    let cap = self.cluster.mu * f;
+                    let need = fr.norm();
+                    if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
+                        let excess = (need - cap) / need;
+                        if worst.is_none_or(|w| excess > w.1) {
+                            worst = Some((k, excess));
+                        }
+                    }
+                }
+            }
+            let Some((k, _)) = worst else { break };
+            let (fr, sl) = (fs.contact[k].1, fs.contact[k].2);
+            let c = &mut self.active[k];
+            c.mode = Mode::Sliding;
+            c.seed = -fr / fr.norm();
+            c.offset = sl;
+            released.push(k);
+        }
+        if !released.is_empty() {
+            self.release_directions(&released);
+        }
+    }
+
+    /// The sliding directions of contacts just released from sticking: each slides along its
+    /// slip's rate, s_t' = lambda e with lambda > 0, the friction -mu f e of every released
+    /// contact included (found by fixed-point iteration from e = -F / |F|, F the friction
+    /// the contact needed to stick). For one contact whose balls are free otherwise, -F / |F|
+    /// is already this direction; coupled through shared balls, it need not be.
+    fn release_directions(&mut self, released: &[usize]) {
+        for _ in 0..RELEASE_ITERATIONS {
+            let sys = self.system(false);
+            let fs = sys.forces(&self.y);
+            self.stats.evaluations += 1;
+            let mut moved: f64 = 0.0;
+            let dirs: Vec<Option<Vector3<f64>>> = released
+                .iter()
+                .map(|&k| {
+                    let c = &self.active[k];
+                    let r = slip_rate(&fs.acc, c);
+                    let rn = r.norm();
+                    (rn > 0.0).then(|| r / rn)
+                })
+                .collect();
+            for (&k, d) in released.iter().zip(dirs) {
+                if let Some(d) = d {
+                    let c = &mut self.active[k];
+                    moved = moved.max((d - c.seed).norm());
+                    c.seed = d;
+                }
+            }
+            if moved <= RELEASE_DIRECTION_TOL {
+                break;
             }
         }
     }
