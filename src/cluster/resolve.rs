@@ -51,6 +51,17 @@ const RELEASE_ITERATIONS: usize = 30;
 /// iteration stops: well below the step control's tolerances.
 const RELEASE_DIRECTION_TOL: f64 = 1e-12;
 
+/// Slip rate (relative to mu f over the lighter ball's mass) under which a released
+/// contact keeps -F / |F| as its direction: a contact released where its needed friction
+/// just reaches mu f (a located release) starts with a slip rate of zero, whose direction
+/// is rounding; its slip then grows along the excess -F / |F|.
+const RELEASE_RATE_FLOOR: f64 = 1e-6;
+
+/// Normal impulse (relative to the lighter ball's momentum at the reference speed) under
+/// which a contact is not recorded: the touching balls of a rack at rest press on each other
+/// by the rounding of their positions (1e-22 N s), which is no contact.
+const RECORD_FLOOR: f64 = 1e-14;
+
 /// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
 const FIRST_STEP: f64 = 1e-3;
 
@@ -179,10 +190,12 @@ struct Active {
     /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
     /// friction keeps while a step is located: the slip's at the start of the step.
     seed: Vector3<f64>,
-    /// The slip (m/s) the contact had when it was last released from sticking: the rounding
-    /// left by the stick solve (s_t' = 0 holds the slip of the stop, not exactly zero). The
-    /// direction of a released contact's sliding is that of its slip since the release,
-    /// s_t - offset, so that this residue, of arbitrary direction, does not set it.
+    /// The slip (m/s) the contact had when it last stuck or was released: the residue of
+    /// the located stop (its part across the direction that stopped, in 3D) and of the
+    /// stick solve's rounding, which s_t' = 0 then holds. The contact's slip is measured
+    /// from it (s_t - offset): a released contact slides along its slip since the release,
+    /// not along this residue of arbitrary direction. (The heat is friction's work on the
+    /// whole slip, so that the energy balances exactly.)
     offset: Vector3<f64>,
     /// Whether the force has been positive.
     loaded: bool,
@@ -292,7 +305,7 @@ impl System<'_> {
             contact.push((f, friction, s, w, d));
         }
         if self.active.iter().any(|c| c.mode == Mode::Stuck) {
-            self.stuck(y, &mut acc, &mut contact);
+            self.stuck(&mut acc, &mut contact);
         }
         Forces { acc, contact }
     }
@@ -311,11 +324,16 @@ impl System<'_> {
     /// The friction of the stuck contacts: the tangential forces F_d (2 unknowns each, in the
     /// tangent basis) for which every stuck slip has zero rate, s_t' = 0, given the other
     /// forces; coupled through the balls the contacts share (docs/cluster.md#the-stick-solve).
-    fn stuck(&self, y: &[f64], acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
-        let _ = y;
+    /// A stuck contact without normal force carries no friction (Coulomb's bound mu f is
+    /// 0): the touching balls of a rack at rest start stuck, and before this they passed
+    /// the friction of sticking through a contact that did not yet press.
+    fn stuck(&self, acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
         let stuck: Vec<usize> = (0..self.active.len())
-            .filter(|&k| self.active[k].mode == Mode::Stuck)
+            .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > 0.0)
             .collect();
+        if stuck.is_empty() {
+            return;
+        }
         let k = stuck.len();
         let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
         let mut b = DVector::<f64>::zeros(2 * k);
@@ -433,6 +451,9 @@ enum Event {
     Stop(usize),
     /// Contact (index) opens: the law's separation function reaches 0.
     Open(usize),
+    /// Stuck contact (index) slips: the friction it needs to stick reaches mu f; event
+    /// function mu f - |F|.
+    Release(usize),
     /// Pair (i, j) not in the set closes.
     Close(usize, usize),
 }
@@ -644,7 +665,7 @@ impl Run<'_> {
         let c = self.active.remove(k);
         let o = PER_BALL * self.nb() + PER_CONTACT * k;
         let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
-        if c.loaded || acc[0] > 0.0 {
+        if acc[0] > RECORD_FLOOR * self.m_min * self.v_ref {
             self.records.push(ContactRecord {
                 pair: (c.i, c.j),
                 normal: c.n,
@@ -661,6 +682,26 @@ impl Run<'_> {
     /// Whether pair (i, j) is in the contact set.
     fn in_set(&self, i: usize, j: usize) -> bool {
         self.active.iter().any(|c| c.i == i && c.j == j)
+    }
+
+    /// Closes the pairs not in the set that press (separation function >= 0 from the
+    /// centres' distance) and approach. A contact opened at its located zero can sit a
+    /// rounding past it (its frozen normal is not the line of centres): its closing event,
+    /// which starts from separation < 0, would never see the crossing, and in a 16-ball
+    /// break at rtol 1e-10 two balls of the rack passed through each other that way.
+    fn close_pressing(&mut self) {
+        let nb = self.nb();
+        for i in 0..nb {
+            for j in i + 1..nb {
+                if self.in_set(i, j) || self.gap_function(&self.y, i, j) < 0.0 {
+                    continue;
+                }
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                if p.dot(&(pos(&self.y, nb + j) - pos(&self.y, nb + i))) < 0.0 {
+                    self.close(i, j);
+                }
+            }
+        }
     }
 
     /// The law's separation function of a pair not in the set, from its centres' distance.
@@ -686,12 +727,26 @@ impl Run<'_> {
                 c.law.separation(d, w)
             }
             Event::Close(i, j) => -self.gap_function(y, i, j),
+            Event::Release(k) => {
+                let (f, fr, ..) = sys.forces(y).contact[k];
+                self.cluster.mu * f - fr.norm()
+            }
         }
     }
 
     /// The events crossed between `y0` and `y1`.
     fn crossings(&self, sys: &System<'_>, y0: &[f64], y1: &[f64]) -> Vec<Event> {
         let mut out = Vec::new();
+        if self.active.iter().any(|c| c.mode == Mode::Stuck) {
+            // The friction each stuck contact needs against its bound, at both ends.
+            let (f0, f1) = (sys.forces(y0), sys.forces(y1));
+            for (k, c) in self.active.iter().enumerate() {
+                let g = |x: &ContactForce| self.cluster.mu * x.0 - x.1.norm();
+                if c.mode == Mode::Stuck && g(&f0.contact[k]) > 0.0 && g(&f1.contact[k]) <= 0.0 {
+                    out.push(Event::Release(k));
+                }
+            }
+        }
         for (k, c) in self.active.iter().enumerate() {
             if c.mode == Mode::Sliding && self.cluster.mu > 0.0 {
                 let e = Event::Stop(k);
@@ -728,6 +783,29 @@ impl Run<'_> {
             }
         }
         out
+    }
+
+    /// The stuck contacts without normal force at the current state that press at `y1` with
+    /// a friction past mu f there, with that friction (N).
+    fn loading_slips(&self, sys: &System<'_>, y1: &[f64]) -> Vec<(usize, Vector3<f64>)> {
+        let idle: Vec<usize> = (0..self.active.len())
+            .filter(|&k| {
+                let c = &self.active[k];
+                let (d, w) = sys.compression(&self.y, c);
+                c.mode == Mode::Stuck && c.law.force(d, w) <= 0.0
+            })
+            .collect();
+        if idle.is_empty() || self.cluster.mu == 0.0 {
+            return Vec::new();
+        }
+        let fs = sys.forces(y1);
+        idle.into_iter()
+            .filter_map(|k| {
+                let (f, fr, ..) = fs.contact[k];
+                (f > 0.0 && fr.norm() > self.cluster.mu * f * (1.0 + RELEASE_SLACK))
+                    .then_some((k, fr))
+            })
+            .collect()
     }
 
     /// The time inside the step `h` from `y` (derivative `k0`) at which `e` happens, by regula
@@ -775,6 +853,7 @@ impl Run<'_> {
                 return Ok(StopReason::WorkBound);
             }
             self.drop_quiet();
+            self.close_pressing();
             if self.active.is_empty() {
                 if !self.fly() {
                     return Ok(StopReason::Separated);
@@ -849,6 +928,24 @@ impl Run<'_> {
                 continue;
             }
             let sys = self.system(frozen);
+            let loading = self.loading_slips(&sys, &y1);
+            if !loading.is_empty() {
+                // A stuck contact without force at the start presses by the end and needs
+                // more friction than mu f: it slides from the start, along the friction it
+                // would need; the step is redone.
+                let sl: Vec<Vector3<f64>> = loading
+                    .iter()
+                    .map(|&(k, _)| sys.slip(&self.y, &self.active[k]))
+                    .collect();
+                let ks: Vec<usize> = loading.iter().map(|x| x.0).collect();
+                for (&(k, fr), sl) in loading.iter().zip(sl) {
+                    self.release(k, fr, sl);
+                }
+                self.release_directions(&ks);
+                self.stats.rejected += 1;
+                k0 = None;
+                continue;
+            }
             if !frozen {
                 events = self.crossings(&sys, &self.y, &y1);
             }
@@ -857,7 +954,7 @@ impl Run<'_> {
                 self.y = y1;
                 self.t += h;
                 h = DOPRI5_CONTROL.next(h, err);
-                self.after_step();
+                self.after_step(Vec::new());
                 continue;
             }
             let mut d = vec![0.0; self.y.len()];
@@ -879,6 +976,7 @@ impl Run<'_> {
             self.t += at;
             // Every event located at that time (or crossed by it), contacts removed last.
             let mut opened = Vec::new();
+            let mut released = Vec::new();
             for ((e, time), g) in events.iter().zip(&times).zip(&g) {
                 let happens = *time <= at
                     || match e {
@@ -891,21 +989,33 @@ impl Run<'_> {
                 self.stats.events += 1;
                 match *e {
                     Event::Stop(k) => {
+                        let sl = self.system(false).slip(&self.y, &self.active[k]);
                         let c = &mut self.active[k];
                         c.stick_time = Some(self.t - c.start);
+                        c.offset = sl;
                         if self.settings.stick {
                             c.mode = Mode::Stuck;
                         }
                     }
                     Event::Open(k) => opened.push(k),
+                    Event::Release(k) => released.push(k),
                     Event::Close(i, j) => self.close(i, j),
                 }
             }
+            if !released.is_empty() {
+                let fs = self.system(false).forces(&self.y);
+                self.stats.evaluations += 1;
+                for &k in &released {
+                    let (_, fr, sl, ..) = fs.contact[k];
+                    self.release(k, fr, sl);
+                }
+            }
+            // Released contacts slide from here: their directions before any index moves.
+            self.after_step(released);
             opened.sort_unstable();
             for k in opened.into_iter().rev() {
                 self.open(k);
             }
-            self.after_step();
             h = h.max(FIRST_STEP * self.tau0);
         }
     }
@@ -916,8 +1026,8 @@ impl Run<'_> {
     /// tight rack two contacts of one ball were released together and the second's slip
     /// then ran against the direction it was released along). The released contacts then
     /// slide along directions consistent with their slips' rates (`release_directions`).
-    fn after_step(&mut self) {
-        let mut released = Vec::new();
+    /// `released`: contacts already released by a located event.
+    fn after_step(&mut self, mut released: Vec<usize>) {
         loop {
             let sys = self.system(false);
             let fs = sys.forces(&self.y);
@@ -940,15 +1050,24 @@ impl Run<'_> {
             }
             let Some((k, _)) = worst else { break };
             let (fr, sl) = (fs.contact[k].1, fs.contact[k].2);
-            let c = &mut self.active[k];
-            c.mode = Mode::Sliding;
-            c.seed = -fr / fr.norm();
-            c.offset = sl;
+            self.release(k, fr, sl);
             released.push(k);
         }
         if !released.is_empty() {
             self.release_directions(&released);
         }
+    }
+
+    /// Contact `k` slides from now, first against the friction `fr` (N) it needed to stick,
+    /// its slip measured from `sl` (m/s), the slip it had stuck.
+    fn release(&mut self, k: usize, fr: Vector3<f64>, sl: Vector3<f64>) {
+        let c = &mut self.active[k];
+        c.mode = Mode::Sliding;
+        let n = fr.norm();
+        if n > 0.0 {
+            c.seed = -fr / n;
+        }
+        c.offset = sl;
     }
 
     /// The sliding directions of contacts just released from sticking: each slides along its
@@ -968,7 +1087,9 @@ impl Run<'_> {
                     let c = &self.active[k];
                     let r = slip_rate(&fs.acc, c);
                     let rn = r.norm();
-                    (rn > 0.0).then(|| r / rn)
+                    // The rate friction alone gives the slip: mu f over the lighter ball.
+                    let a = self.cluster.mu * fs.contact[k].0 / self.m_min;
+                    (rn > RELEASE_RATE_FLOOR * a).then(|| r / rn)
                 })
                 .collect();
             for (&k, d) in released.iter().zip(dirs) {
