@@ -62,6 +62,15 @@ const RELEASE_RATE_FLOOR: f64 = 1e-6;
 /// by the rounding of their positions (1e-22 N s), which is no contact.
 const RECORD_FLOOR: f64 = 1e-14;
 
+/// Normal force (relative to the impact's force scale, the lighter ball's momentum at the
+/// reference speed over the elastic contact time) under which a contact does not press for
+/// the stick rule: touching balls of a rack at rest press by the rounding of their
+/// positions (1e-17 N against a scale of 7e3 N at 8 m/s: 1e-21), and the friction such a
+/// contact needs to stick, and its bound, are rounding too; their difference changed sign
+/// at random and held the location of a release for a hundred trials. Kept far below any
+/// force that matters: at 1e-12 (7e-9 N) the 16-ball break's answer moved by 4e-7.
+const PRESS_FLOOR: f64 = 1e-16;
+
 /// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
 const FIRST_STEP: f64 = 1e-3;
 
@@ -238,6 +247,9 @@ struct System<'a> {
     mu: f64,
     /// Reference speed (m/s).
     v_ref: f64,
+    /// Normal force (N) under which a contact does not press for the stick rule
+    /// ([`PRESS_FLOOR`] of the impact's force scale).
+    f_floor: f64,
     /// Friction along each sliding contact's `seed` (the located step).
     frozen: bool,
     /// Set when a stage saw a sliding contact's slip reversed against its seed.
@@ -329,7 +341,7 @@ impl System<'_> {
     /// the friction of sticking through a contact that did not yet press.
     fn stuck(&self, acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
         let stuck: Vec<usize> = (0..self.active.len())
-            .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > 0.0)
+            .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > self.f_floor)
             .collect();
         if stuck.is_empty() {
             return;
@@ -408,7 +420,7 @@ impl System<'_> {
     /// One Dormand-Prince 5(4) step of size `h` from `y` (derivative `k0` there): the new
     /// state and its error norm, the root mean square of the local error over
     /// rtol (scale_i + |y_i|), positions on their scale alone.
-    fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> (Vec<f64>, f64) {
+    fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> StepOut {
         let n = y.len();
         let mut k = vec![vec![0.0; n]; 7];
         k[0].copy_from_slice(k0);
@@ -439,7 +451,70 @@ impl System<'_> {
             let q = h * e / (rtol * (scale[i] + mag));
             sum += q * q;
         }
-        (ys, (sum / n as f64).sqrt())
+        StepOut {
+            y: ys,
+            err: (sum / n as f64).sqrt(),
+            k,
+        }
+    }
+}
+
+/// One Dormand-Prince step: the new state, its error norm, and the seven stage
+/// derivatives (the last one at the new state).
+struct StepOut {
+    y: Vec<f64>,
+    err: f64,
+    k: Vec<Vec<f64>>,
+}
+
+/// Coefficients of the continuous extension of Dormand-Prince 5(4) (order 4), on stages
+/// 1, 3, 4, 5, 6, 7: E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential
+/// Equations I, 2nd ed., Springer (1993), section II.6 (the code DOPRI5's CONTD5).
+const DOPRI5_DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// The continuous extension of one step from `y0` (size `h`): per component, the
+/// coefficients of y(theta) = y0 + theta (dy + theta1 (bspl + theta (r4 + theta1 r5))),
+/// theta = x / h, theta1 = 1 - theta.
+struct Dense {
+    h: f64,
+    c: Vec<[f64; 5]>,
+}
+
+impl Dense {
+    fn new(y0: &[f64], s: &StepOut, h: f64) -> Dense {
+        let c = (0..y0.len())
+            .map(|i| {
+                let dy = s.y[i] - y0[i];
+                let bspl = h * s.k[0][i] - dy;
+                let r4 = dy - h * s.k[6][i] - bspl;
+                let r5: f64 = h * s
+                    .k
+                    .iter()
+                    .zip(DOPRI5_DENSE)
+                    .map(|(k, d)| d * k[i])
+                    .sum::<f64>();
+                [y0[i], dy, bspl, r4, r5]
+            })
+            .collect();
+        Dense { h, c }
+    }
+
+    /// Components `range` of the state at `x` (s from the step's start) into `out`.
+    fn fill(&self, x: f64, range: std::ops::Range<usize>, out: &mut [f64]) {
+        let th = x / self.h;
+        let th1 = 1.0 - th;
+        for i in range {
+            let [y0, dy, bspl, r4, r5] = self.c[i];
+            out[i] = y0 + th * (dy + th1 * (bspl + th * (r4 + th1 * r5)));
+        }
     }
 }
 
@@ -550,6 +625,7 @@ pub fn resolve_cluster(
         active: Vec::new(),
         records: Vec::new(),
         stats: ClusterStats::default(),
+        changes: 0,
     };
     let stop = run.go()?;
     let y = &run.y;
@@ -585,6 +661,9 @@ struct Run<'a> {
     active: Vec<Active>,
     records: Vec<ContactRecord>,
     stats: ClusterStats,
+    /// Changes of the contact set or of a contact's mode so far: a derivative kept from a
+    /// step is reused only at the same count.
+    changes: u64,
 }
 
 impl Run<'_> {
@@ -598,6 +677,7 @@ impl Run<'_> {
             active: &self.active,
             mu: self.cluster.mu,
             v_ref: self.v_ref,
+            f_floor: PRESS_FLOOR * self.m_min * self.v_ref / self.tau0,
             frozen,
             reversed: Cell::new(false),
             evaluations: Cell::new(0),
@@ -619,6 +699,7 @@ impl Run<'_> {
 
     /// Opens a contact between balls i < j at the current state.
     fn close(&mut self, i: usize, j: usize) {
+        self.changes += 1;
         let (xi, xj) = (pos(&self.y, i), pos(&self.y, j));
         let n = (xj - xi).normalize();
         let a = if n.x.abs() < 0.9 {
@@ -662,6 +743,7 @@ impl Run<'_> {
 
     /// Removes contact `k`, writing its record if it carried force.
     fn open(&mut self, k: usize) {
+        self.changes += 1;
         let c = self.active.remove(k);
         let o = PER_BALL * self.nb() + PER_CONTACT * k;
         let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
@@ -742,7 +824,13 @@ impl Run<'_> {
             let (f0, f1) = (sys.forces(y0), sys.forces(y1));
             for (k, c) in self.active.iter().enumerate() {
                 let g = |x: &ContactForce| self.cluster.mu * x.0 - x.1.norm();
-                if c.mode == Mode::Stuck && g(&f0.contact[k]) > 0.0 && g(&f1.contact[k]) <= 0.0 {
+                let (a, b) = (&f0.contact[k], &f1.contact[k]);
+                if c.mode == Mode::Stuck
+                    && a.0 > sys.f_floor
+                    && b.0 > sys.f_floor
+                    && g(a) > 0.0
+                    && g(b) <= 0.0
+                {
                     out.push(Event::Release(k));
                 }
             }
@@ -792,7 +880,7 @@ impl Run<'_> {
             .filter(|&k| {
                 let c = &self.active[k];
                 let (d, w) = sys.compression(&self.y, c);
-                c.mode == Mode::Stuck && c.law.force(d, w) <= 0.0
+                c.mode == Mode::Stuck && c.law.force(d, w) <= sys.f_floor
             })
             .collect();
         if idle.is_empty() || self.cluster.mu == 0.0 {
@@ -802,31 +890,44 @@ impl Run<'_> {
         idle.into_iter()
             .filter_map(|k| {
                 let (f, fr, ..) = fs.contact[k];
-                (f > 0.0 && fr.norm() > self.cluster.mu * f * (1.0 + RELEASE_SLACK))
+                (f > sys.f_floor && fr.norm() > self.cluster.mu * f * (1.0 + RELEASE_SLACK))
                     .then_some((k, fr))
             })
             .collect()
     }
 
-    /// The time inside the step `h` from `y` (derivative `k0`) at which `e` happens, by regula
-    /// falsi (Illinois), each trial one step of that size from `y`.
-    fn locate(&self, sys: &System<'_>, k0: &[f64], h: f64, y1: &[f64], e: Event) -> f64 {
-        let scale = self.scale();
+    /// The time inside the step of the continuous extension `dense` from the current state
+    /// (its end state `y1`) at which `e` happens, by regula falsi (Illinois) on the extension
+    /// (order 4: its error is that of the step). Only the components the event reads are
+    /// interpolated: the two balls' for a stop, an opening or a closing, all for a release.
+    fn locate(&self, sys: &System<'_>, dense: &Dense, y1: &[f64], e: Event) -> f64 {
+        let nb = self.nb();
+        let balls = match e {
+            Event::Stop(k) | Event::Open(k) => vec![self.active[k].i, self.active[k].j],
+            Event::Close(i, j) => vec![i, j],
+            Event::Release(_) => (0..nb).collect(),
+        };
         let mut lo = Bound {
             q: 0.0,
             g: self.event_value(sys, &self.y, e),
         };
         let mut hi = Bound {
-            q: h,
+            q: dense.h,
             g: self.event_value(sys, y1, e),
         };
         let mut side = Side::None;
+        let mut yx = self.y.clone();
         for _ in 0..EVENT_TRIALS {
             if hi.q - lo.q <= EVENT_X_TOL * self.tau0 || hi.g == 0.0 {
                 break;
             }
             let x = (lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g))).clamp(lo.q, hi.q);
-            let (yx, _) = sys.step(&self.y, k0, x, &scale, self.settings.rtol);
+            for &b in &balls {
+                for part in 0..3 {
+                    let o = part * 3 * nb + 3 * b;
+                    dense.fill(x, o..o + 3, &mut yx);
+                }
+            }
             let g = self.event_value(sys, &yx, e);
             side = illinois_update(&mut lo, &mut hi, side, x, g);
         }
@@ -847,7 +948,7 @@ impl Run<'_> {
             }
         }
         let mut h = FIRST_STEP * self.tau0;
-        let mut k0: Option<Vec<f64>> = None;
+        let mut k0: Option<(u64, Vec<f64>)> = None;
         loop {
             if self.stats.steps + self.stats.rejected >= CLUSTER_MAX_STEPS {
                 return Ok(StopReason::WorkBound);
@@ -885,19 +986,19 @@ impl Run<'_> {
             let scale = self.scale();
             let sys = self.system(false);
             let d0 = match k0.take() {
-                Some(k) => k,
-                None => {
+                Some((n, k)) if n == self.changes => k,
+                _ => {
                     let mut d = vec![0.0; self.y.len()];
                     sys.derivative(&self.y, &mut d);
                     d
                 }
             };
-            let (mut y1, mut err) = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
+            let mut out = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
             let mut frozen = false;
             let mut evals = sys.evaluations.get();
             let reversed = sys.reversed.get();
             let mut events = Vec::new();
-            if reversed && err.is_finite() {
+            if reversed && out.err.is_finite() {
                 // A slip reversed inside the step: redo it with the friction along each
                 // sliding contact's direction at its start (as two balls do), so that a stop
                 // is a clean crossing. Taken when it crosses a stop or another event within
@@ -907,28 +1008,29 @@ impl Run<'_> {
                 let fsys = self.system(true);
                 let mut df = vec![0.0; self.y.len()];
                 fsys.derivative(&self.y, &mut df);
-                let (yf, ef) = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
+                let fout = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
                 evals += fsys.evaluations.get();
-                if ef <= 1.0 {
-                    let ev = self.crossings(&fsys, &self.y, &yf);
+                if fout.err <= 1.0 {
+                    let ev = self.crossings(&fsys, &self.y, &fout.y);
                     if !ev.is_empty() {
-                        (y1, err, frozen, events) = (yf, ef, true, ev);
+                        (out, frozen, events) = (fout, true, ev);
                     }
-                } else if err <= 1.0 {
+                } else if out.err <= 1.0 {
                     // The frozen step fails the tolerance where the free one passed: too
                     // long for a located stop, shorter.
-                    err = ef;
+                    out.err = fout.err;
                 }
             }
             self.stats.evaluations += evals;
+            let err = out.err;
             if err > 1.0 || !err.is_finite() {
                 self.stats.rejected += 1;
                 h = DOPRI5_CONTROL.next(h, if err.is_finite() { err } else { 1e10 });
-                k0 = Some(d0);
+                k0 = Some((self.changes, d0));
                 continue;
             }
             let sys = self.system(frozen);
-            let loading = self.loading_slips(&sys, &y1);
+            let loading = self.loading_slips(&sys, &out.y);
             if !loading.is_empty() {
                 // A stuck contact without force at the start presses by the end and needs
                 // more friction than mu f: it slides from the start, along the friction it
@@ -947,24 +1049,32 @@ impl Run<'_> {
                 continue;
             }
             if !frozen {
-                events = self.crossings(&sys, &self.y, &y1);
+                events = self.crossings(&sys, &self.y, &out.y);
             }
             if events.is_empty() {
                 self.stats.steps += 1;
-                self.y = y1;
                 self.t += h;
                 h = DOPRI5_CONTROL.next(h, err);
-                self.after_step(Vec::new());
+                let last = out.k.swap_remove(6);
+                self.y = out.y;
+                // The last stage is the derivative at the new state (first same as last),
+                // the next step's first, unless the contacts' modes changed.
+                if !self.after_step(Vec::new()) && !frozen {
+                    k0 = Some((self.changes, last));
+                }
                 continue;
             }
-            let mut d = vec![0.0; self.y.len()];
-            sys.derivative(&self.y, &mut d);
+            // Each event's time on the step's continuous extension; the step then ends at
+            // the first.
+            let dense = Dense::new(&self.y, &out, h);
             let times: Vec<f64> = events
                 .iter()
-                .map(|&e| self.locate(&sys, &d, h, &y1, e))
+                .map(|&e| self.locate(&sys, &dense, &out.y, e))
                 .collect();
             let at = times.iter().copied().fold(f64::INFINITY, f64::min);
-            let (ya, _) = sys.step(&self.y, &d, at, &scale, self.settings.rtol);
+            let ya = sys
+                .step(&self.y, &out.k[0], at, &scale, self.settings.rtol)
+                .y;
             let g: Vec<f64> = events
                 .iter()
                 .map(|&e| self.event_value(&sys, &ya, e))
@@ -990,6 +1100,7 @@ impl Run<'_> {
                 match *e {
                     Event::Stop(k) => {
                         let sl = self.system(false).slip(&self.y, &self.active[k]);
+                        self.changes += 1;
                         let c = &mut self.active[k];
                         c.stick_time = Some(self.t - c.start);
                         c.offset = sl;
@@ -1027,7 +1138,8 @@ impl Run<'_> {
     /// then ran against the direction it was released along). The released contacts then
     /// slide along directions consistent with their slips' rates (`release_directions`).
     /// `released`: contacts already released by a located event.
-    fn after_step(&mut self, mut released: Vec<usize>) {
+    /// Returns whether any contact was released (the right-hand side changed).
+    fn after_step(&mut self, mut released: Vec<usize>) -> bool {
         loop {
             let sys = self.system(false);
             let fs = sys.forces(&self.y);
@@ -1056,11 +1168,13 @@ impl Run<'_> {
         if !released.is_empty() {
             self.release_directions(&released);
         }
+        !released.is_empty()
     }
 
     /// Contact `k` slides from now, first against the friction `fr` (N) it needed to stick,
     /// its slip measured from `sl` (m/s), the slip it had stuck.
     fn release(&mut self, k: usize, fr: Vector3<f64>, sl: Vector3<f64>) {
+        self.changes += 1;
         let c = &mut self.active[k];
         c.mode = Mode::Sliding;
         let n = fr.norm();
