@@ -1,8 +1,9 @@
 //! The cluster kernel (docs/cluster.md): a 16-ball break (cue ball at 8 m/s into a tight
 //! rack, Hertz with Hunt-Crossley damping calibrated to e = 0.95 at 1 m/s, mu = 0.06 at
 //! every contact) at rtol 1e-8 (target <= 5 ms); racks of N = 2, 4, 8, 16, 22 balls, whose
-//! time over (steps x contacts) is the cost per contact per step; two balls through the
-//! cluster path against `solve_law` at the same tolerance (target <= 3x).
+//! time over (steps x mean pressing contacts) is the cost per contact per step (printed with
+//! a self-timed median before criterion's runs); two balls through the cluster path against
+//! `solve_law` at the same tolerance (target <= 3x).
 
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
@@ -51,15 +52,31 @@ fn bench(cr: &mut Criterion) {
         rtol: 1e-8,
         stick: true,
     };
+    eprintln!(
+        "N | stop | steps | evaluations | mean contacts | time per run | per contact per step"
+    );
     for n in [2, 4, 8, 16, 22] {
         let c = rack(n, 8.0);
         let o = resolve_cluster(&c, &s).unwrap();
+        // The contacts pressing on average over the run: their durations over its time.
+        let mean: f64 = o.contacts.iter().map(|k| k.duration).sum::<f64>() / o.time;
+        // A self-timed estimate next to criterion's: the median of 31 runs.
+        let mut t: Vec<f64> = (0..31)
+            .map(|_| {
+                let t0 = std::time::Instant::now();
+                black_box(resolve_cluster(black_box(&c), &s).unwrap());
+                t0.elapsed().as_secs_f64()
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        let run = t[t.len() / 2];
         eprintln!(
-            "N = {n}: {:?}, {} steps, {} evaluations, {} contact episodes",
+            "{n} | {:?} | {} | {} | {mean:.1} | {:.3} ms | {:.2} us",
             o.stop,
             o.stats.steps,
             o.stats.evaluations,
-            o.contacts.len()
+            run * 1e3,
+            run / (o.stats.steps as f64 * mean) * 1e6
         );
         cr.bench_function(&format!("cluster_break_n{n}_rtol1e-8"), |b| {
             b.iter(|| resolve_cluster(black_box(&c), &s).unwrap())

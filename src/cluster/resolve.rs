@@ -44,6 +44,33 @@ const EVENT_TRIALS: usize = 100;
 /// needed friction comes out of a linear solve accurate to about 1e-12.
 const RELEASE_SLACK: f64 = 1e-9;
 
+/// Most fixed-point iterations of the directions of contacts released together.
+const RELEASE_ITERATIONS: usize = 30;
+
+/// Change of a released contact's sliding direction (a unit vector) at which its fixed-point
+/// iteration stops: well below the step control's tolerances.
+const RELEASE_DIRECTION_TOL: f64 = 1e-12;
+
+/// Slip rate (relative to mu f over the lighter ball's mass) under which a released
+/// contact keeps -F / |F| as its direction: a contact released where its needed friction
+/// just reaches mu f (a located release) starts with a slip rate of zero, whose direction
+/// is rounding; its slip then grows along the excess -F / |F|.
+const RELEASE_RATE_FLOOR: f64 = 1e-6;
+
+/// Normal impulse (relative to the lighter ball's momentum at the reference speed) under
+/// which a contact is not recorded: the touching balls of a rack at rest press on each other
+/// by the rounding of their positions (1e-22 N s), which is no contact.
+const RECORD_FLOOR: f64 = 1e-14;
+
+/// Normal force (relative to the impact's force scale, the lighter ball's momentum at the
+/// reference speed over the elastic contact time) under which a contact does not press for
+/// the stick rule: touching balls of a rack at rest press by the rounding of their
+/// positions (1e-17 N against a scale of 7e3 N at 8 m/s: 1e-21), and the friction such a
+/// contact needs to stick, and its bound, are rounding too; their difference changed sign
+/// at random and held the location of a release for a hundred trials. Kept far below any
+/// force that matters: at 1e-12 (7e-9 N) the 16-ball break's answer moved by 4e-7.
+const PRESS_FLOOR: f64 = 1e-16;
+
 /// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
 const FIRST_STEP: f64 = 1e-3;
 
@@ -172,6 +199,13 @@ struct Active {
     /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
     /// friction keeps while a step is located: the slip's at the start of the step.
     seed: Vector3<f64>,
+    /// The slip (m/s) the contact had when it last stuck or was released: the residue of
+    /// the located stop (its part across the direction that stopped, in 3D) and of the
+    /// stick solve's rounding, which s_t' = 0 then holds. The contact's slip is measured
+    /// from it (s_t - offset): a released contact slides along its slip since the release,
+    /// not along this residue of arbitrary direction. (The heat is friction's work on the
+    /// whole slip, so that the energy balances exactly.)
+    offset: Vector3<f64>,
     /// Whether the force has been positive.
     loaded: bool,
     /// Time of the closing (s).
@@ -200,6 +234,12 @@ struct Forces {
     contact: Vec<ContactForce>,
 }
 
+/// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
+fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
+    let r = acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
+    r - c.n * r.dot(&c.n)
+}
+
 /// The system of one segment: its balls, its contact set and the friction.
 struct System<'a> {
     bodies: &'a [Body],
@@ -207,6 +247,9 @@ struct System<'a> {
     mu: f64,
     /// Reference speed (m/s).
     v_ref: f64,
+    /// Normal force (N) under which a contact does not press for the stick rule
+    /// ([`PRESS_FLOOR`] of the impact's force scale).
+    f_floor: f64,
     /// Friction along each sliding contact's `seed` (the located step).
     frozen: bool,
     /// Set when a stage saw a sliding contact's slip reversed against its seed.
@@ -252,20 +295,19 @@ impl System<'_> {
             let (d, w) = self.compression(y, c);
             let f = c.law.force(d, w);
             let s = self.slip(y, c);
+            let sr = s - c.offset;
             let friction = match c.mode {
                 Mode::Sliding if f > 0.0 && self.mu > 0.0 => {
-                    let dir = if self.frozen {
+                    let sn = sr.norm();
+                    let dir = if self.frozen || sn <= floor {
                         c.seed
                     } else {
-                        if s.dot(&c.seed) <= 0.0 {
+                        // A slip above the floor against the step's direction has gone
+                        // through zero: its friction flipped inside the step.
+                        if sr.dot(&c.seed) <= 0.0 {
                             self.reversed.set(true);
                         }
-                        let sn = s.norm();
-                        if sn > floor {
-                            s / sn
-                        } else {
-                            c.seed
-                        }
+                        sr / sn
                     };
                     -dir * (self.mu * f)
                 }
@@ -275,7 +317,7 @@ impl System<'_> {
             contact.push((f, friction, s, w, d));
         }
         if self.active.iter().any(|c| c.mode == Mode::Stuck) {
-            self.stuck(y, &mut acc, &mut contact);
+            self.stuck(&mut acc, &mut contact);
         }
         Forces { acc, contact }
     }
@@ -294,11 +336,16 @@ impl System<'_> {
     /// The friction of the stuck contacts: the tangential forces F_d (2 unknowns each, in the
     /// tangent basis) for which every stuck slip has zero rate, s_t' = 0, given the other
     /// forces; coupled through the balls the contacts share (docs/cluster.md#the-stick-solve).
-    fn stuck(&self, y: &[f64], acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
-        let _ = y;
+    /// A stuck contact without normal force carries no friction (Coulomb's bound mu f is
+    /// 0): the touching balls of a rack at rest start stuck, and before this they passed
+    /// the friction of sticking through a contact that did not yet press.
+    fn stuck(&self, acc: &mut [[Vector3<f64>; 2]], contact: &mut [ContactForce]) {
         let stuck: Vec<usize> = (0..self.active.len())
-            .filter(|&k| self.active[k].mode == Mode::Stuck)
+            .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > self.f_floor)
             .collect();
+        if stuck.is_empty() {
+            return;
+        }
         let k = stuck.len();
         let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
         let mut b = DVector::<f64>::zeros(2 * k);
@@ -373,7 +420,7 @@ impl System<'_> {
     /// One Dormand-Prince 5(4) step of size `h` from `y` (derivative `k0` there): the new
     /// state and its error norm, the root mean square of the local error over
     /// rtol (scale_i + |y_i|), positions on their scale alone.
-    fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> (Vec<f64>, f64) {
+    fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> StepOut {
         let n = y.len();
         let mut k = vec![vec![0.0; n]; 7];
         k[0].copy_from_slice(k0);
@@ -404,7 +451,70 @@ impl System<'_> {
             let q = h * e / (rtol * (scale[i] + mag));
             sum += q * q;
         }
-        (ys, (sum / n as f64).sqrt())
+        StepOut {
+            y: ys,
+            err: (sum / n as f64).sqrt(),
+            k,
+        }
+    }
+}
+
+/// One Dormand-Prince step: the new state, its error norm, and the seven stage
+/// derivatives (the last one at the new state).
+struct StepOut {
+    y: Vec<f64>,
+    err: f64,
+    k: Vec<Vec<f64>>,
+}
+
+/// Coefficients of the continuous extension of Dormand-Prince 5(4) (order 4), on stages
+/// 1, 3, 4, 5, 6, 7: E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential
+/// Equations I, 2nd ed., Springer (1993), section II.6 (the code DOPRI5's CONTD5).
+const DOPRI5_DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// The continuous extension of one step from `y0` (size `h`): per component, the
+/// coefficients of y(theta) = y0 + theta (dy + theta1 (bspl + theta (r4 + theta1 r5))),
+/// theta = x / h, theta1 = 1 - theta.
+struct Dense {
+    h: f64,
+    c: Vec<[f64; 5]>,
+}
+
+impl Dense {
+    fn new(y0: &[f64], s: &StepOut, h: f64) -> Dense {
+        let c = (0..y0.len())
+            .map(|i| {
+                let dy = s.y[i] - y0[i];
+                let bspl = h * s.k[0][i] - dy;
+                let r4 = dy - h * s.k[6][i] - bspl;
+                let r5: f64 = h * s
+                    .k
+                    .iter()
+                    .zip(DOPRI5_DENSE)
+                    .map(|(k, d)| d * k[i])
+                    .sum::<f64>();
+                [y0[i], dy, bspl, r4, r5]
+            })
+            .collect();
+        Dense { h, c }
+    }
+
+    /// Components `range` of the state at `x` (s from the step's start) into `out`.
+    fn fill(&self, x: f64, range: std::ops::Range<usize>, out: &mut [f64]) {
+        let th = x / self.h;
+        let th1 = 1.0 - th;
+        for i in range {
+            let [y0, dy, bspl, r4, r5] = self.c[i];
+            out[i] = y0 + th * (dy + th1 * (bspl + th * (r4 + th1 * r5)));
+        }
     }
 }
 
@@ -416,6 +526,9 @@ enum Event {
     Stop(usize),
     /// Contact (index) opens: the law's separation function reaches 0.
     Open(usize),
+    /// Stuck contact (index) slips: the friction it needs to stick reaches mu f; event
+    /// function mu f - |F|.
+    Release(usize),
     /// Pair (i, j) not in the set closes.
     Close(usize, usize),
 }
@@ -512,6 +625,7 @@ pub fn resolve_cluster(
         active: Vec::new(),
         records: Vec::new(),
         stats: ClusterStats::default(),
+        changes: 0,
     };
     let stop = run.go()?;
     let y = &run.y;
@@ -547,6 +661,9 @@ struct Run<'a> {
     active: Vec<Active>,
     records: Vec<ContactRecord>,
     stats: ClusterStats,
+    /// Changes of the contact set or of a contact's mode so far: a derivative kept from a
+    /// step is reused only at the same count.
+    changes: u64,
 }
 
 impl Run<'_> {
@@ -560,6 +677,7 @@ impl Run<'_> {
             active: &self.active,
             mu: self.cluster.mu,
             v_ref: self.v_ref,
+            f_floor: PRESS_FLOOR * self.m_min * self.v_ref / self.tau0,
             frozen,
             reversed: Cell::new(false),
             evaluations: Cell::new(0),
@@ -581,6 +699,7 @@ impl Run<'_> {
 
     /// Opens a contact between balls i < j at the current state.
     fn close(&mut self, i: usize, j: usize) {
+        self.changes += 1;
         let (xi, xj) = (pos(&self.y, i), pos(&self.y, j));
         let n = (xj - xi).normalize();
         let a = if n.x.abs() < 0.9 {
@@ -600,6 +719,7 @@ impl Run<'_> {
             law: self.cluster.law(i, j),
             mode: Mode::Sliding,
             seed: t0,
+            offset: Vector3::zeros(),
             loaded: false,
             start: self.t,
             stick_time: None,
@@ -623,10 +743,11 @@ impl Run<'_> {
 
     /// Removes contact `k`, writing its record if it carried force.
     fn open(&mut self, k: usize) {
+        self.changes += 1;
         let c = self.active.remove(k);
         let o = PER_BALL * self.nb() + PER_CONTACT * k;
         let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
-        if c.loaded || acc[0] > 0.0 {
+        if acc[0] > RECORD_FLOOR * self.m_min * self.v_ref {
             self.records.push(ContactRecord {
                 pair: (c.i, c.j),
                 normal: c.n,
@@ -645,6 +766,26 @@ impl Run<'_> {
         self.active.iter().any(|c| c.i == i && c.j == j)
     }
 
+    /// Closes the pairs not in the set that press (separation function >= 0 from the
+    /// centres' distance) and approach. A contact opened at its located zero can sit a
+    /// rounding past it (its frozen normal is not the line of centres): its closing event,
+    /// which starts from separation < 0, would never see the crossing, and in a 16-ball
+    /// break at rtol 1e-10 two balls of the rack passed through each other that way.
+    fn close_pressing(&mut self) {
+        let nb = self.nb();
+        for i in 0..nb {
+            for j in i + 1..nb {
+                if self.in_set(i, j) || self.gap_function(&self.y, i, j) < 0.0 {
+                    continue;
+                }
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                if p.dot(&(pos(&self.y, nb + j) - pos(&self.y, nb + i))) < 0.0 {
+                    self.close(i, j);
+                }
+            }
+        }
+    }
+
     /// The law's separation function of a pair not in the set, from its centres' distance.
     fn gap_function(&self, y: &[f64], i: usize, j: usize) -> f64 {
         let nb = self.nb();
@@ -658,19 +799,42 @@ impl Run<'_> {
     /// The event function of `e` at state `y` (positive before the event).
     fn event_value(&self, sys: &System<'_>, y: &[f64], e: Event) -> f64 {
         match e {
-            Event::Stop(k) => sys.slip(y, &self.active[k]).dot(&self.active[k].seed),
+            Event::Stop(k) => {
+                let c = &self.active[k];
+                (sys.slip(y, c) - c.offset).dot(&c.seed)
+            }
             Event::Open(k) => {
                 let c = &self.active[k];
                 let (d, w) = sys.compression(y, c);
                 c.law.separation(d, w)
             }
             Event::Close(i, j) => -self.gap_function(y, i, j),
+            Event::Release(k) => {
+                let (f, fr, ..) = sys.forces(y).contact[k];
+                self.cluster.mu * f - fr.norm()
+            }
         }
     }
 
     /// The events crossed between `y0` and `y1`.
     fn crossings(&self, sys: &System<'_>, y0: &[f64], y1: &[f64]) -> Vec<Event> {
         let mut out = Vec::new();
+        if self.active.iter().any(|c| c.mode == Mode::Stuck) {
+            // The friction each stuck contact needs against its bound, at both ends.
+            let (f0, f1) = (sys.forces(y0), sys.forces(y1));
+            for (k, c) in self.active.iter().enumerate() {
+                let g = |x: &ContactForce| self.cluster.mu * x.0 - x.1.norm();
+                let (a, b) = (&f0.contact[k], &f1.contact[k]);
+                if c.mode == Mode::Stuck
+                    && a.0 > sys.f_floor
+                    && b.0 > sys.f_floor
+                    && g(a) > 0.0
+                    && g(b) <= 0.0
+                {
+                    out.push(Event::Release(k));
+                }
+            }
+        }
         for (k, c) in self.active.iter().enumerate() {
             if c.mode == Mode::Sliding && self.cluster.mu > 0.0 {
                 let e = Event::Stop(k);
@@ -709,25 +873,61 @@ impl Run<'_> {
         out
     }
 
-    /// The time inside the step `h` from `y` (derivative `k0`) at which `e` happens, by regula
-    /// falsi (Illinois), each trial one step of that size from `y`.
-    fn locate(&self, sys: &System<'_>, k0: &[f64], h: f64, y1: &[f64], e: Event) -> f64 {
-        let scale = self.scale();
+    /// The stuck contacts without normal force at the current state that press at `y1` with
+    /// a friction past mu f there, with that friction (N).
+    fn loading_slips(&self, sys: &System<'_>, y1: &[f64]) -> Vec<(usize, Vector3<f64>)> {
+        let idle: Vec<usize> = (0..self.active.len())
+            .filter(|&k| {
+                let c = &self.active[k];
+                let (d, w) = sys.compression(&self.y, c);
+                c.mode == Mode::Stuck && c.law.force(d, w) <= sys.f_floor
+            })
+            .collect();
+        if idle.is_empty() || self.cluster.mu == 0.0 {
+            return Vec::new();
+        }
+        let fs = sys.forces(y1);
+        idle.into_iter()
+            .filter_map(|k| {
+                let (f, fr, ..) = fs.contact[k];
+                (f > sys.f_floor && fr.norm() > self.cluster.mu * f * (1.0 + RELEASE_SLACK))
+                    .then_some((k, fr))
+            })
+            .collect()
+    }
+
+    /// The time inside the step of the continuous extension `dense` from the current state
+    /// (its end state `y1`) at which `e` happens, by regula falsi (Illinois) on the extension
+    /// (order 4: its error is that of the step). Only the components the event reads are
+    /// interpolated: the two balls' for a stop, an opening or a closing, all for a release.
+    fn locate(&self, sys: &System<'_>, dense: &Dense, y1: &[f64], e: Event) -> f64 {
+        let nb = self.nb();
+        let balls = match e {
+            Event::Stop(k) | Event::Open(k) => vec![self.active[k].i, self.active[k].j],
+            Event::Close(i, j) => vec![i, j],
+            Event::Release(_) => (0..nb).collect(),
+        };
         let mut lo = Bound {
             q: 0.0,
             g: self.event_value(sys, &self.y, e),
         };
         let mut hi = Bound {
-            q: h,
+            q: dense.h,
             g: self.event_value(sys, y1, e),
         };
         let mut side = Side::None;
+        let mut yx = self.y.clone();
         for _ in 0..EVENT_TRIALS {
             if hi.q - lo.q <= EVENT_X_TOL * self.tau0 || hi.g == 0.0 {
                 break;
             }
             let x = (lo.q + (hi.q - lo.q) * (lo.g / (lo.g - hi.g))).clamp(lo.q, hi.q);
-            let (yx, _) = sys.step(&self.y, k0, x, &scale, self.settings.rtol);
+            for &b in &balls {
+                for part in 0..3 {
+                    let o = part * 3 * nb + 3 * b;
+                    dense.fill(x, o..o + 3, &mut yx);
+                }
+            }
             let g = self.event_value(sys, &yx, e);
             side = illinois_update(&mut lo, &mut hi, side, x, g);
         }
@@ -748,12 +948,13 @@ impl Run<'_> {
             }
         }
         let mut h = FIRST_STEP * self.tau0;
-        let mut k0: Option<Vec<f64>> = None;
+        let mut k0: Option<(u64, Vec<f64>)> = None;
         loop {
             if self.stats.steps + self.stats.rejected >= CLUSTER_MAX_STEPS {
                 return Ok(StopReason::WorkBound);
             }
             self.drop_quiet();
+            self.close_pressing();
             if self.active.is_empty() {
                 if !self.fly() {
                     return Ok(StopReason::Separated);
@@ -772,7 +973,7 @@ impl Run<'_> {
                     .active
                     .iter()
                     .map(|c| {
-                        let s = sys.slip(&self.y, c);
+                        let s = sys.slip(&self.y, c) - c.offset;
                         (s.norm() > SLIP_FLOOR * self.v_ref).then(|| s.normalize())
                     })
                     .collect();
@@ -785,60 +986,95 @@ impl Run<'_> {
             let scale = self.scale();
             let sys = self.system(false);
             let d0 = match k0.take() {
-                Some(k) => k,
-                None => {
+                Some((n, k)) if n == self.changes => k,
+                _ => {
                     let mut d = vec![0.0; self.y.len()];
                     sys.derivative(&self.y, &mut d);
                     d
                 }
             };
-            let (mut y1, mut err) = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
+            let mut out = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
             let mut frozen = false;
             let mut evals = sys.evaluations.get();
             let reversed = sys.reversed.get();
-            if err <= 1.0 && reversed {
+            let mut events = Vec::new();
+            if reversed && out.err.is_finite() {
                 // A slip reversed inside the step: redo it with the friction along each
-                // sliding contact's direction at its start (as two balls do), so that the
-                // stop is a clean crossing.
+                // sliding contact's direction at its start (as two balls do), so that a stop
+                // is a clean crossing. Taken when it crosses a stop or another event within
+                // the tolerance; otherwise the reversal was one a stage saw but the step does
+                // not end in (or a slip at the floor's rounding whose friction is nothing),
+                // and the step is judged as it came.
                 let fsys = self.system(true);
                 let mut df = vec![0.0; self.y.len()];
                 fsys.derivative(&self.y, &mut df);
-                (y1, err) = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
+                let fout = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
                 evals += fsys.evaluations.get();
-                frozen = true;
+                if fout.err <= 1.0 {
+                    let ev = self.crossings(&fsys, &self.y, &fout.y);
+                    if !ev.is_empty() {
+                        (out, frozen, events) = (fout, true, ev);
+                    }
+                } else if out.err <= 1.0 {
+                    // The frozen step fails the tolerance where the free one passed: too
+                    // long for a located stop, shorter.
+                    out.err = fout.err;
+                }
             }
             self.stats.evaluations += evals;
+            let err = out.err;
             if err > 1.0 || !err.is_finite() {
                 self.stats.rejected += 1;
                 h = DOPRI5_CONTROL.next(h, if err.is_finite() { err } else { 1e10 });
-                k0 = Some(d0);
+                k0 = Some((self.changes, d0));
                 continue;
             }
             let sys = self.system(frozen);
-            let events = self.crossings(&sys, &self.y, &y1);
-            if frozen && events.is_empty() {
-                // The reversal was inside the stages only: a smaller step.
+            let loading = self.loading_slips(&sys, &out.y);
+            if !loading.is_empty() {
+                // A stuck contact without force at the start presses by the end and needs
+                // more friction than mu f: it slides from the start, along the friction it
+                // would need; the step is redone.
+                let sl: Vec<Vector3<f64>> = loading
+                    .iter()
+                    .map(|&(k, _)| sys.slip(&self.y, &self.active[k]))
+                    .collect();
+                let ks: Vec<usize> = loading.iter().map(|x| x.0).collect();
+                for (&(k, fr), sl) in loading.iter().zip(sl) {
+                    self.release(k, fr, sl);
+                }
+                self.release_directions(&ks);
                 self.stats.rejected += 1;
-                h *= 0.5;
-                k0 = Some(d0);
+                k0 = None;
                 continue;
+            }
+            if !frozen {
+                events = self.crossings(&sys, &self.y, &out.y);
             }
             if events.is_empty() {
                 self.stats.steps += 1;
-                self.y = y1;
                 self.t += h;
                 h = DOPRI5_CONTROL.next(h, err);
-                self.after_step();
+                let last = out.k.swap_remove(6);
+                self.y = out.y;
+                // The last stage is the derivative at the new state (first same as last),
+                // the next step's first, unless the contacts' modes changed.
+                if !self.after_step(Vec::new()) && !frozen {
+                    k0 = Some((self.changes, last));
+                }
                 continue;
             }
-            let mut d = vec![0.0; self.y.len()];
-            sys.derivative(&self.y, &mut d);
+            // Each event's time on the step's continuous extension; the step then ends at
+            // the first.
+            let dense = Dense::new(&self.y, &out, h);
             let times: Vec<f64> = events
                 .iter()
-                .map(|&e| self.locate(&sys, &d, h, &y1, e))
+                .map(|&e| self.locate(&sys, &dense, &out.y, e))
                 .collect();
             let at = times.iter().copied().fold(f64::INFINITY, f64::min);
-            let (ya, _) = sys.step(&self.y, &d, at, &scale, self.settings.rtol);
+            let ya = sys
+                .step(&self.y, &out.k[0], at, &scale, self.settings.rtol)
+                .y;
             let g: Vec<f64> = events
                 .iter()
                 .map(|&e| self.event_value(&sys, &ya, e))
@@ -850,6 +1086,7 @@ impl Run<'_> {
             self.t += at;
             // Every event located at that time (or crossed by it), contacts removed last.
             let mut opened = Vec::new();
+            let mut released = Vec::new();
             for ((e, time), g) in events.iter().zip(&times).zip(&g) {
                 let happens = *time <= at
                     || match e {
@@ -862,42 +1099,122 @@ impl Run<'_> {
                 self.stats.events += 1;
                 match *e {
                     Event::Stop(k) => {
+                        let sl = self.system(false).slip(&self.y, &self.active[k]);
+                        self.changes += 1;
                         let c = &mut self.active[k];
                         c.stick_time = Some(self.t - c.start);
+                        c.offset = sl;
                         if self.settings.stick {
                             c.mode = Mode::Stuck;
                         }
                     }
                     Event::Open(k) => opened.push(k),
+                    Event::Release(k) => released.push(k),
                     Event::Close(i, j) => self.close(i, j),
                 }
             }
+            if !released.is_empty() {
+                let fs = self.system(false).forces(&self.y);
+                self.stats.evaluations += 1;
+                for &k in &released {
+                    let (_, fr, sl, ..) = fs.contact[k];
+                    self.release(k, fr, sl);
+                }
+            }
+            // Released contacts slide from here: their directions before any index moves.
+            self.after_step(released);
             opened.sort_unstable();
             for k in opened.into_iter().rev() {
                 self.open(k);
             }
-            self.after_step();
             h = h.max(FIRST_STEP * self.tau0);
         }
     }
 
     /// After a step: marks the loaded contacts and releases the stuck ones whose friction
-    /// exceeds mu f.
-    fn after_step(&mut self) {
-        let sys = self.system(false);
-        let fs = sys.forces(&self.y);
-        self.stats.evaluations += 1;
-        for (c, (f, fr, _, _, _)) in self.active.iter_mut().zip(&fs.contact) {
-            if *f > 0.0 {
-                c.loaded = true;
-            }
-            if c.mode == Mode::Stuck {
-                let cap = self.cluster.mu * f;
-                let need = fr.norm();
-                if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
-                    c.mode = Mode::Sliding;
-                    c.seed = -fr / need;
+    /// exceeds mu f, one at a time, the one in excess by the largest fraction first, the
+    /// stick solve redone without it (a release changes the friction the others need: in a
+    /// tight rack two contacts of one ball were released together and the second's slip
+    /// then ran against the direction it was released along). The released contacts then
+    /// slide along directions consistent with their slips' rates (`release_directions`).
+    /// `released`: contacts already released by a located event.
+    /// Returns whether any contact was released (the right-hand side changed).
+    fn after_step(&mut self, mut released: Vec<usize>) -> bool {
+        loop {
+            let sys = self.system(false);
+            let fs = sys.forces(&self.y);
+            self.stats.evaluations += 1;
+            let mut worst: Option<(usize, f64)> = None;
+            for (k, (c, (f, fr, _, _, _))) in self.active.iter_mut().zip(&fs.contact).enumerate() {
+                if *f > 0.0 {
+                    c.loaded = true;
                 }
+                if c.mode == Mode::Stuck {
+                    let cap = self.cluster.mu * f;
+                    let need = fr.norm();
+                    if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
+                        let excess = (need - cap) / need;
+                        if worst.is_none_or(|w| excess > w.1) {
+                            worst = Some((k, excess));
+                        }
+                    }
+                }
+            }
+            let Some((k, _)) = worst else { break };
+            let (fr, sl) = (fs.contact[k].1, fs.contact[k].2);
+            self.release(k, fr, sl);
+            released.push(k);
+        }
+        if !released.is_empty() {
+            self.release_directions(&released);
+        }
+        !released.is_empty()
+    }
+
+    /// Contact `k` slides from now, first against the friction `fr` (N) it needed to stick,
+    /// its slip measured from `sl` (m/s), the slip it had stuck.
+    fn release(&mut self, k: usize, fr: Vector3<f64>, sl: Vector3<f64>) {
+        self.changes += 1;
+        let c = &mut self.active[k];
+        c.mode = Mode::Sliding;
+        let n = fr.norm();
+        if n > 0.0 {
+            c.seed = -fr / n;
+        }
+        c.offset = sl;
+    }
+
+    /// The sliding directions of contacts just released from sticking: each slides along its
+    /// slip's rate, s_t' = lambda e with lambda > 0, the friction -mu f e of every released
+    /// contact included (found by fixed-point iteration from e = -F / |F|, F the friction
+    /// the contact needed to stick). For one contact whose balls are free otherwise, -F / |F|
+    /// is already this direction; coupled through shared balls, it need not be.
+    fn release_directions(&mut self, released: &[usize]) {
+        for _ in 0..RELEASE_ITERATIONS {
+            let sys = self.system(false);
+            let fs = sys.forces(&self.y);
+            self.stats.evaluations += 1;
+            let mut moved: f64 = 0.0;
+            let dirs: Vec<Option<Vector3<f64>>> = released
+                .iter()
+                .map(|&k| {
+                    let c = &self.active[k];
+                    let r = slip_rate(&fs.acc, c);
+                    let rn = r.norm();
+                    // The rate friction alone gives the slip: mu f over the lighter ball.
+                    let a = self.cluster.mu * fs.contact[k].0 / self.m_min;
+                    (rn > RELEASE_RATE_FLOOR * a).then(|| r / rn)
+                })
+                .collect();
+            for (&k, d) in released.iter().zip(dirs) {
+                if let Some(d) = d {
+                    let c = &mut self.active[k];
+                    moved = moved.max((d - c.seed).norm());
+                    c.seed = d;
+                }
+            }
+            if moved <= RELEASE_DIRECTION_TOL {
+                break;
             }
         }
     }
