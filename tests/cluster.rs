@@ -612,3 +612,31 @@ fn cluster_break_16_balls_converges() {
         "{balance:?}"
     );
 }
+
+/// A stiffness so large that the Hertz compression at the cluster's speed drowns in the
+/// rounding of the positions is refused up front, naming the pair: a 3-ball row at 1 m/s with
+/// k = 1e35 N/m^1.5 compresses (5 m* v^2 / (4 k))^(2/5) = (5 0.085 / 4e35)^0.4 = 4.08e-15 m,
+/// below 1e-8 of 2r = 5.7e-10 m; the pool balls' k = 4.86e8 compresses 1.5e-4 m.
+#[test]
+fn a_compression_lost_in_rounding_is_refused() {
+    let ball = Ball::new(0.17, 0.028575, 0.4).unwrap();
+    let at = |x: f64, v: f64| ClusterBall {
+        ball,
+        position: Vector3::new(x, 0.0, 0.0),
+        velocity: Vector3::new(v, 0.0, 0.0),
+        spin: Vector3::zeros(),
+    };
+    let row = || vec![at(0.0, 1.0), at(0.05715, 0.0), at(0.1143, 0.0)];
+    let stiff = ContactLaw::elastic(1e35).unwrap();
+    let e = Cluster::new(row(), ClusterLaw::Same(stiff), 0.0).unwrap_err();
+    let msg = e.to_string();
+    assert!(e.is_bad_input(), "{msg}");
+    assert!(msg.contains("cluster.balls[0], cluster.balls[1]"), "{msg}");
+    assert!(msg.contains("compression of 4.07879"), "{msg}");
+    assert!(Cluster::new(
+        row(),
+        ClusterLaw::Same(ContactLaw::elastic(4.86e8).unwrap()),
+        0.0
+    )
+    .is_ok());
+}
