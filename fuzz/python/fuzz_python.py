@@ -20,7 +20,7 @@ with spins. The promise checked on every call:
   most mu times its normal impulse, and neither creates kinetic energy (the cushion with
   Stronge's rule; Newton's may, with friction: Kane and Levinson's paradox); a cluster
   keeps its momentum (to 1e-9), its contacts push, stay within Coulomb's cone and make
-  heat >= 0, and the kinetic energy out plus the heat is the energy in (to 1e-6); or
+  heat >= 0, and the kinetic energy out plus the heat is the energy in (to 1e3 rtol); or
 - it raises ValueError or TypeError whose message names the argument (a keyword of the
   call, or ``row i:`` and a field of the row).
 
@@ -659,12 +659,6 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
             kw.update(draw_keywords(fdp, {"restitution": 0.93, "at_speed": 1.0}, set()))
     if fdp.ConsumeIntInRange(0, 7) == 0:
         kw["stick"] = pick(fdp, [False, True, 1.0])
-    c = kw.get("coefficient")
-    if kw.get("damping") == "kuwabara-kono" and isinstance(c, float) and c > 1e-3:
-        # Known: the cluster's stepping stalls to its work bound (8 s) under Kuwabara-Kono
-        # damping of gamma = 0.05 s (gamma <= 1e-2 s resolves in ~60 steps); real balls have
-        # gamma of order 1e-6 s. Left out until the kernel bounds its work in time.
-        return
     what = f"Cluster({kw})"
     model = constructed(bc.Cluster, kw, CLUSTER_ARGS)
     if model is None:
@@ -703,7 +697,10 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     k0 = 0.5 * float(np.sum(m * np.sum(v0 * v0, 1)) + np.sum(inertia * np.sum(w0 * w0, 1)))
     k1 = 0.5 * float(np.sum(m * np.sum(v1 * v1, 1)) + np.sum(inertia * np.sum(w1 * w1, 1)))
     heat = 0.0
-    tol = tolerance(call, 1e-6)
+    # The energy balance to 1e3 rtol (1e-5 at the default 1e-8), as the Rust target holds it:
+    # heavy Kuwabara-Kono damping (gamma = 0.05 s) balanced to 2e-6 of the energy.
+    r = call.get("rtol")
+    tol = max(1e-5, 1e3 * r) if isinstance(r, float) and math.isfinite(r) else 1e-5
     for c in out["contacts"]:
         i, j = c["pair"]
         # The impulse is a state of the stepping: a contact that closes at zero compression
@@ -712,22 +709,14 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         if not (0 <= i < j < nb) or not c["impulse"] >= -1e-12 * scale:
             raise Finding(f"{what}: contact {c}")
         if not c["heat"] >= -tol * k0:
-            # Known: a contact with a fast-spinning, moving partner reported -2.8 J of heat
-            # (of 13 J) under Kuwabara-Kono damping; counted until the cluster kernel's heat
-            # accounting is fixed.
-            known("cluster: a contact's heat below zero", what)
+            raise Finding(f"{what}: a contact's heat below zero: {c}")
         cap = model.mu * max(c["impulse"], 0.0)
         excess = np.linalg.norm(c["friction_impulse"]) - cap - 1e-12 * scale
         if excess > 1e-6 * cap:
-            # A contact stuck from its closing (balls at rest touching) held friction past
-            # mu f within a step, 0.09 % of mu P over the contact: counted until the
-            # kernel's release is located within the step, a finding beyond 1 %.
-            if excess > 1e-2 * cap:
-                raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
-            known("cluster: a stuck contact's friction impulse above mu P by < 1 %", what)
+            raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
         heat += c["heat"]
     if k1 > k0 * (1 + tol) or abs(k0 - k1 - heat) > tol * k0 + 1e-300:
-        known("cluster: energy created or the heat balance broken", what)
+        raise Finding(f"{what}: energy {k0} -> {k1} with heat {heat}")
 
 
 def surface_cushion(fdp: atheris.FuzzedDataProvider) -> None:
