@@ -396,23 +396,7 @@ impl LawSpec {
                 };
                 ContactLaw::calibrated(stiffness, damping, e, v, mass)
             }
-            (Some(c), Some(e), _) => Err(Error::invalid(
-                COEFFICIENT_FIELD,
-                format!("{c} together with {RESTITUTION_FIELD} = {e}"),
-                "one of them: the coefficient, or the restitution (with at_speed) it is \
-                 calibrated to",
-            )),
-            (_, None, Some(v)) => Err(Error::invalid(
-                RESTITUTION_FIELD,
-                format!("missing, with {AT_SPEED_FIELD} = {v}"),
-                "given together with at_speed: the restitution the law has at that speed",
-            )),
-            (None, Some(e), None) => Err(Error::invalid(
-                AT_SPEED_FIELD,
-                format!("missing, with {RESTITUTION_FIELD} = {e}"),
-                "given together with restitution: the relative approach speed (m/s) at which \
-                 the law has it",
-            )),
+            (c, e, v) => Err(calibration_mismatch(c, e, v)),
         }
     }
 }
@@ -485,4 +469,36 @@ fn check_duration_source(spec: &ProfileSpec, material: Option<&Material>) -> Res
         ));
     }
     Ok(())
+}
+
+/// The refusal of a `[contact.law]` whose coefficient, restitution and at_speed do not go
+/// together (both the coefficient and the restitution, or the restitution or its speed
+/// alone): named as the scene file names them.
+pub(crate) fn calibration_mismatch(
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+) -> Error {
+    match (coefficient, restitution, at_speed) {
+        (Some(c), Some(e), _) => Error::invalid(
+            COEFFICIENT_FIELD,
+            format!("{c} together with {RESTITUTION_FIELD} = {e}"),
+            "one of them: the coefficient, or the restitution (with at_speed) it is \
+             calibrated to",
+        ),
+        (_, None, Some(v)) => Error::invalid(
+            RESTITUTION_FIELD,
+            format!("missing, with {AT_SPEED_FIELD} = {v}"),
+            "given together with at_speed: the restitution the law has at that speed",
+        ),
+        (_, e, _) => Error::invalid(
+            AT_SPEED_FIELD,
+            format!(
+                "missing, with {RESTITUTION_FIELD} = {}",
+                e.unwrap_or(f64::NAN)
+            ),
+            "given together with restitution: the relative approach speed (m/s) at which the \
+             law has it",
+        ),
+    }
 }

@@ -165,7 +165,6 @@ fn material_of(i: usize, b: &RawClusterBall) -> Result<Option<Material>, Error> 
 /// The damping of every pair from `[contact.law]`: the coefficient given (0 when a damping
 /// is named without one), or the restitution with its speed.
 fn pair_damping(spec: &LawSpec) -> Result<PairDamping, Error> {
-    use crate::model::contact_law::{AT_SPEED_FIELD, COEFFICIENT_FIELD, RESTITUTION_FIELD};
     match (spec.coefficient, spec.restitution, spec.at_speed) {
         (None, None, None) if spec.damping == Damping::None => Ok(PairDamping::None),
         (c, None, None) => Ok(PairDamping::Coefficient(spec.damping, c.unwrap_or(0.0))),
@@ -174,23 +173,7 @@ fn pair_damping(spec: &LawSpec) -> Result<PairDamping, Error> {
             restitution: e,
             at_speed: v,
         }),
-        (Some(c), Some(e), _) => Err(Error::invalid(
-            COEFFICIENT_FIELD,
-            format!("{c} together with {RESTITUTION_FIELD} = {e}"),
-            "one of them: the coefficient, or the restitution (with at_speed) it is \
-             calibrated to",
-        )),
-        (_, None, Some(v)) => Err(Error::invalid(
-            RESTITUTION_FIELD,
-            format!("missing, with {AT_SPEED_FIELD} = {v}"),
-            "given together with at_speed: the restitution the law has at that speed",
-        )),
-        (None, Some(e), None) => Err(Error::invalid(
-            AT_SPEED_FIELD,
-            format!("missing, with {RESTITUTION_FIELD} = {e}"),
-            "given together with restitution: the relative approach speed (m/s) at which the \
-             law has it",
-        )),
+        (c, e, v) => Err(crate::scene::builder::calibration_mismatch(c, e, v)),
     }
 }
 
