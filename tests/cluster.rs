@@ -1,6 +1,7 @@
 //! The cluster kernel (docs/cluster.md): two balls against the two-ball law, conservation,
 //! gaps against pairwise solves, Newton's cradle, a frozen combination.
 
+use crate::common::hertz_chain::hertz_chain_rk4;
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
 
@@ -330,45 +331,6 @@ fn cluster_with_gaps_is_pairwise() {
         assert!(e < 1e-10, "ball {b}: {:?} vs {v} ({e:e})", o.velocity);
     }
     eprintln!("gaps: {} contacts in order {pairs:?}", pairs.len());
-}
-
-/// The 1D Hertz chain m x_i'' = k [d_(i-1)]^(3/2) - k [d_i]^(3/2), d_i = x_i - x_(i+1) the
-/// overlap of neighbours i, i + 1 ([.] the positive part), integrated here by classical RK4
-/// at a fixed step, independently of the crate, until every overlap is gone and the
-/// velocities are ordered. Returns the final velocities.
-fn hertz_chain_rk4(k: f64, m: f64, v0: &[f64], h: f64) -> Vec<f64> {
-    let n = v0.len();
-    let f = |y: &[f64]| -> Vec<f64> {
-        let mut d = vec![0.0; 2 * n];
-        d[..n].copy_from_slice(&y[n..]);
-        for i in 0..n - 1 {
-            let o = y[i] - y[i + 1];
-            if o > 0.0 {
-                let f = k * o * o.sqrt();
-                d[n + i] -= f / m;
-                d[n + i + 1] += f / m;
-            }
-        }
-        d
-    };
-    let mut y: Vec<f64> = vec![0.0; n];
-    y.extend_from_slice(v0);
-    loop {
-        let add = |a: &[f64], b: &[f64], s: f64| -> Vec<f64> {
-            a.iter().zip(b).map(|(x, y)| x + s * y).collect()
-        };
-        let k1 = f(&y);
-        let k2 = f(&add(&y, &k1, h / 2.0));
-        let k3 = f(&add(&y, &k2, h / 2.0));
-        let k4 = f(&add(&y, &k3, h));
-        for i in 0..2 * n {
-            y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-        }
-        let apart = (0..n - 1).all(|i| y[i] - y[i + 1] < 0.0 && y[n + i] <= y[n + i + 1]);
-        if apart {
-            return y[n..].to_vec();
-        }
-    }
 }
 
 /// Newton's cradle: a tight line of five equal balls struck head on by the first at 1 m/s,

@@ -14,6 +14,7 @@ use std::f64::consts::PI;
 
 pub mod collision;
 pub mod compliant;
+pub mod hertz_chain;
 pub mod scene_file;
 pub mod table;
 pub mod unequal;
