@@ -57,7 +57,7 @@ pub enum Error {
     },
 
     /// A scene file that is not valid TOML or does not match the scene format.
-    #[error("{path}: {message}")]
+    #[error("{path}: {msg}", msg = one_line(message))]
     Scene {
         /// The scene file.
         path: PathBuf,
