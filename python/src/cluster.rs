@@ -86,13 +86,13 @@ fn bad(field: &str, value: impl std::fmt::Display, expected: &str) -> PyErr {
     to_py(Error::invalid(field, value, expected))
 }
 
-/// The damping law named `name` (None: elastic).
-fn damping_of(name: Option<&str>) -> PyResult<Damping> {
+/// The damping law named `name` (None: elastic), as the `damping=` keyword takes it.
+pub(crate) fn damping_of(name: Option<&str>) -> Result<Damping, Error> {
     match name {
         None | Some("none") => Ok(Damping::None),
         Some("hunt-crossley") => Ok(Damping::HuntCrossley),
         Some("kuwabara-kono") => Ok(Damping::KuwabaraKono),
-        Some(other) => Err(bad(
+        Some(other) => Err(Error::invalid(
             "damping",
             format!("{other:?}"),
             "None, \"hunt-crossley\" or \"kuwabara-kono\"",
@@ -222,30 +222,8 @@ fn law_of(
             })
         }
         (Some(k), None) => {
-            let law = match pair_damping {
-                PairDamping::None => ContactLaw::elastic(k),
-                PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
-                PairDamping::Restitution {
-                    damping,
-                    restitution,
-                    at_speed,
-                } => {
-                    // One law for every pair: calibrated on the first two balls' reduced
-                    // mass, so identical balls are what a given stiffness is for.
-                    if let Some(b) = balls.iter().skip(1).find(|b| b.ball != balls[0].ball) {
-                        return Err(bad(
-                            "stiffness",
-                            format!("one calibrated law with unequal balls ({})", b.__repr__()),
-                            "identical balls, or the balls' material (each pair calibrated \
-                             on its own reduced mass)",
-                        ));
-                    }
-                    let m = balls[0].ball.mass() / 2.0;
-                    ContactLaw::calibrated(k, damping, restitution, at_speed, m)
-                }
-            }
-            .map_err(|e| to_py(keyword(e)))?;
-            Ok(ClusterLaw::Same(law))
+            let kinds: Vec<billiard_contact::Ball> = balls.iter().map(|b| b.ball).collect();
+            ClusterLaw::same_stiffness(k, pair_damping, &kinds).map_err(|e| to_py(keyword(e)))
         }
     }
 }
@@ -327,7 +305,7 @@ impl Cluster {
             youngs_modulus,
             poisson_ratio,
             stiffness,
-            damping_of(damping.as_deref())?,
+            damping_of(damping.as_deref()).map_err(to_py)?,
             coefficient,
             restitution,
             at_speed,

@@ -314,20 +314,6 @@ impl BallPlane {
     }
 }
 
-/// The damping law named `name`, or None.
-fn damping_named(name: Option<&str>) -> Result<Damping, Error> {
-    match name {
-        None | Some("none") => Ok(Damping::None),
-        Some("hunt-crossley") => Ok(Damping::HuntCrossley),
-        Some("kuwabara-kono") => Ok(Damping::KuwabaraKono),
-        Some(other) => Err(Error::invalid(
-            "damping",
-            format!("{other:?}"),
-            "None, \"hunt-crossley\" or \"kuwabara-kono\"",
-        )),
-    }
-}
-
 /// The tangential law from the keywords: `None` for "rigid" (no material or damping may be
 /// given: the stick rule uses none), for "mindlin" the ball's and the plane's (or a rigid
 /// plane's `None`) materials and the normal force's damping: elastic (restitution 1), a
@@ -360,7 +346,7 @@ fn mindlin_of(
     };
     let ball = material(ball, ["youngs_modulus", "poisson_ratio"])?;
     let plane = material(plane, ["plane_youngs_modulus", "plane_poisson_ratio"])?;
-    let law = damping_named(damping)?;
+    let law = crate::cluster::damping_of(damping)?;
     match tangential {
         "rigid" => match (ball, plane, damping, coefficient, at_speed) {
             (None, None, None, None, None) => Ok(None),

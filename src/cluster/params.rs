@@ -257,3 +257,33 @@ fn pair_laws(balls: &[ClusterBall], law: ClusterLaw) -> Result<Vec<ContactLaw>, 
         }
     }
 }
+
+impl ClusterLaw {
+    /// One law for every pair, of the given stiffness `k` (N/m^1.5) and `damping`; a
+    /// calibrated damping needs identical balls (it is calibrated on their pair's reduced
+    /// mass m m / (m + m)), else an error naming `contact.law.stiffness` and the first ball
+    /// unlike the others.
+    pub fn same_stiffness(k: f64, damping: PairDamping, balls: &[Ball]) -> Result<Self, Error> {
+        let law = match damping {
+            PairDamping::None => ContactLaw::elastic(k),
+            PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
+            PairDamping::Restitution {
+                damping,
+                restitution,
+                at_speed,
+            } => {
+                if let Some(i) = balls.iter().position(|b| *b != balls[0]) {
+                    return Err(Error::invalid(
+                        crate::model::contact_law::STIFFNESS_FIELD,
+                        format!("{k} with balls[{i}] unlike balls[0] and a calibrated damping"),
+                        "identical balls (one law calibrated on their reduced mass), or every \
+                         ball's material (each pair calibrated on its own)",
+                    ));
+                }
+                let m = balls[0].mass();
+                ContactLaw::calibrated(k, damping, restitution, at_speed, m * m / (m + m))
+            }
+        }?;
+        Ok(ClusterLaw::Same(law))
+    }
+}

@@ -31,7 +31,7 @@ use crate::cluster::params::{Cluster, ClusterBall, ClusterLaw, PairDamping};
 use crate::cluster::resolve::{
     resolve_cluster, ClusterOutcome, ClusterSettings, StopReason, CLUSTER_DEFAULT_RTOL,
 };
-use crate::model::contact_law::{ContactLaw, Damping, STIFFNESS_FIELD};
+use crate::model::contact_law::{Damping, STIFFNESS_FIELD};
 use crate::model::material::Material;
 use crate::model::params::{Ball, ALPHA_SOLID};
 use crate::scene::builder::LawSpec;
@@ -177,31 +177,6 @@ fn pair_damping(spec: &LawSpec) -> Result<PairDamping, Error> {
     }
 }
 
-/// One law for every pair of a given stiffness `k` (N/m^1.5); a calibrated one needs
-/// identical balls (it is calibrated on their pair's reduced mass).
-fn same_law(k: f64, damping: PairDamping, balls: &[ClusterBall]) -> Result<ContactLaw, Error> {
-    match damping {
-        PairDamping::None => ContactLaw::elastic(k),
-        PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
-        PairDamping::Restitution {
-            damping,
-            restitution,
-            at_speed,
-        } => {
-            if let Some(i) = balls.iter().position(|b| b.ball != balls[0].ball) {
-                return Err(Error::invalid(
-                    STIFFNESS_FIELD,
-                    format!("{k} with balls[{i}] unlike balls[0] and a calibrated damping"),
-                    "identical balls (one law calibrated on their reduced mass), or every \
-                     ball's material (each pair calibrated on its own)",
-                ));
-            }
-            let m = balls[0].ball.mass();
-            ContactLaw::calibrated(k, damping, restitution, at_speed, m * m / (m + m))
-        }
-    }
-}
-
 impl ClusterScene {
     /// Reads and validates a cluster scene file.
     pub fn load(path: &Path) -> Result<Self, Error> {
@@ -260,7 +235,10 @@ impl ClusterScene {
         let damping = pair_damping(&spec)?;
         let with_material = materials.iter().filter(|m| m.is_some()).count();
         let (law, materials) = match (spec.stiffness, with_material) {
-            (Some(k), 0) => (ClusterLaw::Same(same_law(k, damping, &balls)?), None),
+            (Some(k), 0) => {
+                let kinds: Vec<Ball> = balls.iter().map(|b| b.ball).collect();
+                (ClusterLaw::same_stiffness(k, damping, &kinds)?, None)
+            }
             (Some(k), _) => {
                 let i = materials.iter().position(Option::is_some).unwrap_or(0);
                 return Err(Error::invalid(
