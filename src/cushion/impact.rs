@@ -306,25 +306,29 @@ pub fn resolve_cushion(
     trace: Option<&mut dyn FnMut(&CushionTraceRow)>,
 ) -> Result<CushionOutcome, Error> {
     let mut s = *settings;
+    let lock = self_locking(ball, cushion);
     loop {
-        match (attempt(ball, cushion, v, w, &s, None), stall_retry(&s)) {
+        match (
+            attempt(ball, cushion, v, w, &s, None),
+            stall_retry(&s),
+            lock,
+        ) {
             // Where friction can lock the ball between cushion and cloth, a stall is the
             // lock's chatter: tighter tolerances only spend more steps on it.
-            (Err(Error::TooManySteps { scaled_time, .. }), _)
-                if s.method() != Method::Rk4 && self_locking(ball, cushion).is_some() =>
+            (Err(Error::TooManySteps { scaled_time, .. }), _, Some(lock))
+                if s.method() != Method::Rk4 =>
             {
-                let lock = self_locking(ball, cushion).unwrap_or(0.0);
                 return Err(lock_refusal(cushion, lock, scaled_time));
             }
-            (Err(Error::TooManySteps { .. }), Some(tighter)) => s = tighter,
-            (Err(Error::TooManySteps { scaled_time, .. }), None)
+            (Err(Error::TooManySteps { .. }), Some(tighter), _) => s = tighter,
+            (Err(Error::TooManySteps { scaled_time, .. }), None, _)
                 if s.method() != Method::Rk4 && scaled_time > STALL_JAM_IMPULSE =>
             {
                 return Err(jam_refusal(cushion, &format!("{scaled_time:.2}")));
             }
             // rk4's fixed steps can stall where an adaptive run finds that the contacts jam,
             // lock or have no consistent state: that refusal is the answer.
-            (Err(e @ Error::TooManySteps { .. }), None) if s.method() == Method::Rk4 => {
+            (Err(e @ Error::TooManySteps { .. }), None, _) if s.method() == Method::Rk4 => {
                 let probe = SolverSettings::default().with_method(Method::Dop853);
                 return match resolve_cushion(ball, cushion, v, w, &probe, None) {
                     Err(refusal) if refusal.is_bad_input() => Err(refusal),
@@ -342,16 +346,24 @@ pub fn resolve_cushion(
                     | Error::StepSizeTooSmall { .. }),
                 ),
                 _,
+                _,
             ) if s.method() == Method::Rk4 => {
                 return Err(rk4_astray(ball, cushion, v, w, &s, e.to_string()).unwrap_or(e));
             }
-            (Ok(out), _) if s.method() == Method::Rk4 && negative_part(&out).is_some() => {
-                let cause = negative_part(&out).unwrap_or_default();
-                return Err(rk4_astray(ball, cushion, v, w, &s, cause).unwrap_or_else(|f| f));
+            (Ok(out), _, _) => {
+                if s.method() == Method::Rk4 {
+                    if let Some(cause) = negative_part(&out) {
+                        return Err(
+                            rk4_astray(ball, cushion, v, w, &s, cause).unwrap_or_else(|f| f)
+                        );
+                    }
+                }
+                return match trace {
+                    None => Ok(out),
+                    Some(_) => attempt(ball, cushion, v, w, &s, trace),
+                };
             }
-            (Ok(out), _) if trace.is_none() => return Ok(out),
-            (Ok(_), _) => return attempt(ball, cushion, v, w, &s, trace),
-            (Err(e), _) => return Err(e),
+            (Err(e), _, _) => return Err(e),
         }
     }
 }
