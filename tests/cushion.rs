@@ -443,6 +443,17 @@ fn bad_inputs_refused() {
         None,
     ));
     assert!(m.starts_with("ball.w"), "{m}");
+    // A ball with nearly all its mass at the centre: its contacts' slips change 1/alpha
+    // times faster than its velocity (found by fuzzing: alpha = 6.7e-7 ran past dop853's
+    // 100 000 steps with a solver failure naming nothing). The bound itself resolves.
+    let (hard_v, hard_w) = (Vector3::new(5.0, 5.5, 0.0), Vector3::from_element(-300.0));
+    for alpha in [6.72e-7, 9.9e-5] {
+        let tiny = Ball::new(M, R, alpha).unwrap();
+        let m = refused(resolve_cushion(&tiny, &good, hard_v, hard_w, &d, None));
+        assert!(m.starts_with("ball.alpha") && m.contains("1e-4"), "{m}");
+    }
+    let edge = Ball::new(M, R, 1e-4).unwrap();
+    assert!(resolve_cushion(&edge, &good, hard_v, hard_w, &d, None).is_ok());
     let m = refused(resolve_cushion(
         &b,
         &good,
