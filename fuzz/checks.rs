@@ -752,9 +752,11 @@ const CLUSTER_GLOBAL_FIELDS: usize = 6;
 ///   does not enter, only the rounding of each ball's velocity update;
 /// - every contact: its pair i < j < N, a unit normal, a normal impulse >= -1e-12 of the
 ///   momentum scale (a contact closing at zero compression carries rounding), heat >=
-///   -tol K_in, |friction impulse| <= mu P (to 1e-6 of it and 1e-12 of the momentum scale),
-///   the stick time within the contact;
-/// - energy: K_out <= K_in (1 + tol), tol = 1e3 rtol (the local error is rtol on each
+///   -tol K_in (with the stick rule: without it, friction keeps its direction past the stop
+///   and works against the reversed slip, as the two-ball law's does, eq 57), |friction
+///   impulse| <= mu P (to 1e-6 of it and 1e-12 of the momentum scale), the stick time
+///   within the contact;
+/// - energy: K_out <= K_in (1 + tol) (with the stick rule), tol = 1e3 rtol (the local error is rtol on each
 ///   state's scale per step; 1e3 covers some hundred steps per contact, where the tests
 ///   measure 48 rtol for a 7-ball rack), and for a run that separated K_in - K_out is the
 ///   heat summed, to tol K_in;
@@ -1056,7 +1058,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
                 "{what}: stick time of {c:?}"
             );
         }
-        if k0.is_finite() {
+        if k0.is_finite() && settings.stick {
             assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
         }
         let cap = mu * c.normal_impulse.max(0.0);
@@ -1070,7 +1072,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
     }
     if k0.is_finite() {
         assert!(
-            k1 <= k0 * (1.0 + tol),
+            k1 <= k0 * (1.0 + tol) || !settings.stick,
             "{what}: kinetic energy {k0:e} -> {k1:e}"
         );
         assert!(

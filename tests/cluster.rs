@@ -41,6 +41,7 @@ fn two_ball(
     u: Vector3<f64>,
     wa: Vector3<f64>,
     wb: Vector3<f64>,
+    stick: bool,
 ) -> (f64, Outcome, ClusterOutcome) {
     let friction = if mu > 0.0 {
         Friction::constant(mu).unwrap()
@@ -53,6 +54,7 @@ fn two_ball(
     };
     let effects = Effects {
         friction: mu > 0.0,
+        stick,
         ..Effects::default()
     };
     let c = Collision::new(ball(), contact, effects, CmState::new(u, wa, wb)).unwrap();
@@ -63,7 +65,11 @@ fn two_ball(
         at(Vector3::new(R, 0.0, 0.0), -u, wb),
     ];
     let cl = Cluster::new(balls, ClusterLaw::Same(law), mu).unwrap();
-    let out = resolve_cluster(&cl, &tight(1e-13)).unwrap();
+    let settings = ClusterSettings {
+        stick,
+        ..tight(1e-13)
+    };
+    let out = resolve_cluster(&cl, &settings).unwrap();
     assert_eq!(out.stop, StopReason::Separated);
     let x = &o.result.out;
     let v = u.norm();
@@ -83,6 +89,52 @@ fn laws() -> [ContactLaw; 3] {
         ContactLaw::new(k, Damping::HuntCrossley, 0.0789).unwrap(),
         ContactLaw::new(k, Damping::KuwabaraKono, 5.6e-6).unwrap(),
     ]
+}
+
+/// Without the stick rule the cluster's contact keeps friction along the direction it slid
+/// in when the slip stopped, as the two-ball law's stick = false does (eqs 22-23 read
+/// literally past the stop): the slip reverses and the heat falls. Both paths agree, each
+/// law: the slip stops early (S(0) = 0.1 m/s, p_stick = 0.04 N s < P ~ 0.3 N s) and with
+/// spins on both balls. Before, the cluster followed the reversed slip, flipping friction
+/// at each of its zeros, and ran to the work bound (two balls 0.002 rad off head-on at
+/// 0.5 m/s, mu 0.11, found by fuzzing; that case is the third below).
+#[test]
+fn cluster_two_balls_without_stick_agree_with_solve_law() {
+    let off = 0.002f64;
+    let cases = [
+        (
+            0.06,
+            Vector3::new(1.0, 0.05, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+        (
+            0.2,
+            Vector3::new(0.8, 0.02, 0.01),
+            Vector3::new(1.0, -2.0, 3.0),
+            Vector3::new(-1.0, 2.0, 0.0),
+        ),
+        (
+            0.11,
+            Vector3::new(0.25 * off.cos(), 0.25 * off.sin(), 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+    ];
+    for law in laws() {
+        for (mu, u, wa, wb) in cases {
+            let (err, o, out) = two_ball(law, mu, u, wa, wb, false);
+            assert!(
+                out.contacts[0].stick_time.is_some(),
+                "{} mu {mu}: the slip stops within the contact",
+                law.damping()
+            );
+            assert!(err < 1e-10, "{} mu {mu} u {u:?}: {err:e}", law.damping());
+            let rec = &out.contacts[0];
+            let p = o.law.unwrap().impulse;
+            assert!((rec.normal_impulse - p).abs() < 1e-10 * M * u.norm());
+        }
+    }
 }
 
 #[test]
@@ -119,7 +171,7 @@ fn cluster_two_balls_agree_with_solve_law() {
     ];
     for law in laws() {
         for (mu, u, wa, wb) in cases {
-            let (err, o, out) = two_ball(law, mu, u, wa, wb);
+            let (err, o, out) = two_ball(law, mu, u, wa, wb, true);
             eprintln!(
                 "{} mu {mu}: err {err:.2e} stick {:?} vs {:?}; steps {} evals {}",
                 law.damping(),

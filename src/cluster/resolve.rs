@@ -100,7 +100,8 @@ pub struct ClusterSettings {
     /// Relative tolerance of the step control (also the absolute one, on the natural scales).
     pub rtol: f64,
     /// Static friction once a contact's slip stops (the stick rule); off: friction keeps
-    /// acting along the last sliding direction while the slip reverses.
+    /// acting along the direction the contact slid in when its slip stopped, while the slip
+    /// reverses (the two-ball law's `stick = false`; its heat can then fall, eq 57).
     pub stick: bool,
 }
 
@@ -181,6 +182,12 @@ enum Mode {
     Sliding,
     /// Whatever keeps the slip zero (solved jointly with the other stuck contacts).
     Stuck,
+    /// Without the stick rule, once the slip has stopped: mu f along the direction the
+    /// contact slid in when it stopped (`seed`), whatever the slip does after (the two-ball
+    /// law's literal continuation of eqs 22-23 past the stop). Following the reversed slip
+    /// instead would flip the friction at every zero of the slip, and the steps would chase
+    /// that chatter to the work bound.
+    Continued,
 }
 
 /// A contact in the current set.
@@ -311,6 +318,7 @@ impl System<'_> {
                     };
                     -dir * (self.mu * f)
                 }
+                Mode::Continued if f > 0.0 && self.mu > 0.0 => -c.seed * (self.mu * f),
                 _ => Vector3::zeros(),
             };
             self.push(&mut acc, c, -c.n * f + friction);
@@ -1104,9 +1112,11 @@ impl Run<'_> {
                         let c = &mut self.active[k];
                         c.stick_time = Some(self.t - c.start);
                         c.offset = sl;
-                        if self.settings.stick {
-                            c.mode = Mode::Stuck;
-                        }
+                        c.mode = if self.settings.stick {
+                            Mode::Stuck
+                        } else {
+                            Mode::Continued
+                        };
                     }
                     Event::Open(k) => opened.push(k),
                     Event::Release(k) => released.push(k),
