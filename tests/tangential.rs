@@ -251,6 +251,28 @@ fn tangential_refuses_bad_inputs() {
             other => panic!("{name}: {other:?}"),
         }
     }
+    // A material so soft that Hertz's compression would pass the radius is no Hertz
+    // contact: a pool ball (0.17 kg, R = 28.575 mm) at 1 m/s on a rigid plane, nu = 0.3.
+    // delta_max = (5 m v^2 / (4 k_n))^(2/5), k_n = (4/3) E / (1 - nu^2) sqrt(R): E = 1 kPa
+    // gives k_n = 247 N/m^1.5 and delta_max = 0.060 m > R (refused); E = 100 kPa gives
+    // 0.0095 m < R (a rubbery ball, resolved).
+    let pool = Ball::new(0.17, 0.028575, 0.4).unwrap();
+    let down = Vector3::new(0.0, -1.0, 0.0);
+    let soft = |e: f64| {
+        let m = Material::new(e, 0.3).unwrap();
+        resolve_sphere_plane_compliant(&pool, m, None, 0.1, down, z, n, &s)
+    };
+    match soft(1e3) {
+        Err(e @ Error::InvalidParameter { .. }) => {
+            let msg = e.to_string();
+            assert!(
+                msg.starts_with("contact.profile.duration") && msg.contains("radius"),
+                "{msg}"
+            );
+        }
+        other => panic!("E = 1 kPa: {other:?}"),
+    }
+    assert!(soft(1e5).is_ok());
 }
 
 /// The plane's frame: the same impact on a plane of another normal, with the velocity and
