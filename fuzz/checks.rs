@@ -1086,11 +1086,6 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
 /// factor (work per input: the steps grow with the factor, 16,000 at 1000).
 pub const TANGENTIAL_MIN_TOL: f64 = 1e-11;
 pub const TANGENTIAL_MAX_SHEAR_FACTOR: f64 = 1e3;
-/// The smallest friction coefficient run (a smaller positive one is skipped): the kernel
-/// stalls past 1e6 steps at a very small mu (docs/tangential.md#what-is-left: the spring
-/// switches between stick and slide at every step), found by this target at mu = 1.9e-183
-/// on a pair; 1e-3 keeps the decoded range (0.01 to 1) and the stuck limit.
-pub const TANGENTIAL_MIN_MU: f64 = 1e-3;
 /// Offset of the tangential input's raw overrides.
 const TANGENTIAL_OVERRIDES: usize = 16;
 /// Fields a tangential override can set: mu, rtol, atol, v_A (3), w_A (3), v_B (3), w_B (3),
@@ -1135,8 +1130,7 @@ const TANGENTIAL_FIELDS: usize = 27;
 /// - the pair: the total momentum is the incoming one to 8 eps of sum m (|v| + |v'|) (the
 ///   balls leave with v_A + J/m_A and v_B - J/m_B).
 ///
-/// A raw rtol or atol in (0, 1e-11), a shear factor above 1e3 and a mu in (0, 1e-3) (the
-/// documented stall, `TANGENTIAL_MIN_MU`) are skipped (work).
+/// A raw rtol or atol in (0, 1e-11) and a shear factor above 1e3 are skipped (work).
 pub fn check_tangential(data: &[u8]) -> Verdict {
     if data.len() > 256 {
         return Verdict::Skipped;
@@ -1244,7 +1238,6 @@ pub fn check_tangential(data: &[u8]) -> Verdict {
         .iter()
         .any(|&t| t > 0.0 && t < TANGENTIAL_MIN_TOL)
         || (surface == 3 && factor > TANGENTIAL_MAX_SHEAR_FACTOR)
-        || (mu > 0.0 && mu < TANGENTIAL_MIN_MU)
     {
         return Verdict::Skipped;
     }
