@@ -273,6 +273,30 @@ fn tangential_refuses_bad_inputs() {
         other => panic!("E = 1 kPa: {other:?}"),
     }
     assert!(soft(1e5).is_ok());
+    // The two-ball law's bound on Kuwabara-Kono damping, gamma <= 1e12 tau_0
+    // (docs/contact-law.md), holds here too: tau_0 = 6.1 us for this impact, so gamma = 1e9 s
+    // is 1.6e14 tau_0.
+    let heavy = resolve_sphere_plane_compliant_damped(
+        &ball,
+        mat,
+        None,
+        (Damping::KuwabaraKono, 1e9),
+        0.1,
+        v,
+        z,
+        n,
+        &s,
+    );
+    match heavy {
+        Err(e @ Error::InvalidParameter { .. }) => {
+            let msg = e.to_string();
+            assert!(
+                msg.starts_with("contact.law.coefficient") && msg.contains("tau_0"),
+                "{msg}"
+            );
+        }
+        other => panic!("gamma = 1e9 s: {other:?}"),
+    }
 }
 
 /// A friction coefficient far below a double's rounding (mu = 5e-312, and 1e-100) acts as

@@ -323,7 +323,7 @@ pub(crate) fn largest_coefficient(damping: Damping, speed: f64, tau0: f64) -> f6
 /// Refuses a damping past [`HUNT_CROSSLEY_MAX_DAMPING`] or [`KUWABARA_KONO_MAX_DAMPING`] for
 /// an approach at `speed` (m/s) with the elastic contact time `tau0` (s), naming the
 /// coefficient and its largest value for this collision.
-fn damping_within_bound(law: &ContactLaw, speed: f64, tau0: f64) -> Result<(), Error> {
+pub(crate) fn damping_within_bound(law: &ContactLaw, speed: f64, tau0: f64) -> Result<(), Error> {
     use crate::base::number::{decimal, si};
     let largest = largest_coefficient(law.damping(), speed, tau0);
     if law.coefficient() <= largest {
