@@ -754,7 +754,8 @@ const CLUSTER_GLOBAL_FIELDS: usize = 6;
 ///   momentum scale (a contact closing at zero compression carries rounding), heat >=
 ///   -tol K_in (with the stick rule: without it, friction keeps its direction past the stop
 ///   and works against the reversed slip, as the two-ball law's does, eq 57), |friction
-///   impulse| <= mu P (to 1e-6 of it and 1e-12 of the momentum scale), the stick time
+///   impulse| <= mu P (to 1e-6 of it and 100 rtol of the momentum scale, the stepping's
+///   error of that state: `FRICTION_STEPS`), the stick time
 ///   within the contact;
 /// - energy: K_out <= K_in (1 + tol) (with the stick rule), tol = 1e3 rtol (the local error is rtol on each
 ///   state's scale per step; 1e3 covers some hundred steps per contact, where the tests
@@ -962,6 +963,12 @@ fn allow_stopped() -> bool {
 }
 
 /// The promises of `check_cluster` on a run's outcome.
+/// The friction impulse is a state of the stepping, its error held to rtol on the momentum
+/// scale per step: against a contact's cap mu P, 2.7e-4 of that scale in a rack, it is
+/// rtol times 3700 (an 8-ball rack at rtol 1e-8 reported 4.4e-5 of its cap past it; 1e-10,
+/// 1e-6 of it: the excess falls with rtol). The allowance is 100 steps' worth of it.
+const FRICTION_STEPS: f64 = 100.0;
+
 fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &ClusterOutcome) {
     let balls = cluster.balls();
     let n = balls.len();
@@ -1064,7 +1071,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         let cap = mu * c.normal_impulse.max(0.0);
         let excess = c.friction_impulse.norm() - cap - 1e-12 * scale;
         assert!(
-            excess <= 1e-6 * cap,
+            excess <= 1e-6 * cap + FRICTION_STEPS * settings.rtol * scale,
             "{what}: friction impulse {:e} above mu P = {cap:e} in {c:?}",
             c.friction_impulse.norm()
         );
