@@ -159,7 +159,9 @@ pub use tangential::impact::{
     resolve_sphere_plane_compliant, resolve_sphere_plane_compliant_damped,
 };
 pub use tangential::outcome::{CompliantOutcome, CompliantPairOutcome, CompliantTraceRow};
-pub use tangential::pair::{resolve_sphere_sphere_compliant, CompliantSphere};
+pub use tangential::pair::{
+    resolve_sphere_sphere_compliant, resolve_sphere_sphere_compliant_damped, CompliantSphere,
+};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who

@@ -199,6 +199,11 @@ impl Contact {
                 rate[1] - radial * e[1] + cap_rate * e[1],
             ];
         }
+        // The power the tangential force takes from the balls: -F_t.u (the force on ball 1
+        // at its contact point, -F_t on the partner's, so the pair's kinetic energy changes
+        // by F_t.u).
+        let u = self.slip(y);
+        let taken = -(f[0] * u[0] + f[1] * u[1]);
         [
             y[1],
             -f_n / self.mass,
@@ -212,6 +217,7 @@ impl Contact {
             partner_rate.x,
             partner_rate.y,
             partner_rate.z,
+            taken,
         ]
     }
 
@@ -244,6 +250,10 @@ impl Contact {
             displacement: lab(xi),
             slip: lab(u),
             sliding: mode == Mode::Slide,
+            relative_velocity: -y[1] * self.n + lab([y[2], y[3]]),
+            spin: Contact::spin(y),
+            partner_spin: Contact::partner_spin(y),
+            tangential_work: y[12],
         }
     }
 }
@@ -378,6 +388,7 @@ impl Run {
             normalised_rebound: chi * self.slip_out / v_n_out,
             kinetic_energy_in: kinetic_energy.0,
             kinetic_energy_out: kinetic_energy.1,
+            tangential_work: self.y[12],
             steps: self.steps,
             rejected: self.rejected,
             trace: self.trace,
@@ -483,6 +494,7 @@ pub(crate) fn run(
         partner_scale,
         partner_scale,
         partner_scale,
+        0.0,
     ];
     let (rtol, atol) = (settings.rtol(), settings.atol());
     let h_event = EVENT_FRACTION * t_hertz;
@@ -501,6 +513,7 @@ pub(crate) fn run(
         w2.x,
         w2.y,
         w2.z,
+        0.0,
     ];
     let mut t = 0.0;
     let mut h = FIRST_STEP_FRACTION * t_hertz;
