@@ -34,6 +34,9 @@ const STUCK_PHASE: f64 = 1e-6;
 /// 5(4) (seven stages, the first not reused: docs/tangential.md#stepping).
 const STAGES: u64 = 7;
 
+/// Turns a vector of the kernel's axes into the trace's frame.
+type ToFrame = Box<dyn Fn(&Vector3<f64>) -> Vector3<f64>>;
+
 /// One accepted step of a compliant run, in the frame of the run's trace (the paper's
 /// centre-of-mass frame, or a plane's equivalent pair's: docs/plane.md).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -117,11 +120,7 @@ pub(crate) fn run_compliant(
     let damping = (law.damping(), law.coefficient());
     let balls = &c.balls;
     // The kernel's call, its axes and how its vectors turn into the trace's frame.
-    let (kernel, out, to_frame): (
-        CompliantOutcome,
-        CmState,
-        Box<dyn Fn(&Vector3<f64>) -> Vector3<f64>>,
-    ) = match &scene.incoming {
+    let (kernel, out, to_frame): (CompliantOutcome, CmState, ToFrame) = match &scene.incoming {
         Incoming::Plane(p) => {
             // The scene's ball (the collision's is the equivalent pair's twin, of twice its
             // mass).
@@ -165,11 +164,14 @@ pub(crate) fn run_compliant(
                 1.0,
                 settings,
             )?;
-            let out = CmState::new(
-                (o.ball_a.velocity - o.velocity_b) / 2.0,
-                o.ball_a.spin,
-                o.spin_b,
-            );
+            // u = g / 2 from the kernel's outgoing relative velocity (its last row's, so that
+            // the trace ends on the reported state; (v_A' - v_B') / 2 differs by round-off).
+            let g_out = o
+                .ball_a
+                .trace
+                .last()
+                .map_or(o.ball_a.velocity - o.velocity_b, |r| r.relative_velocity);
+            let out = CmState::new(g_out / 2.0, o.ball_a.spin, o.spin_b);
             (o.ball_a, out, Box::new(|x: &Vector3<f64>| *x))
         }
     };
