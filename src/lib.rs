@@ -147,11 +147,12 @@ pub use outputs::report::Report;
 pub use outputs::trace_csv::CsvTrace;
 pub use scene::builder::{ForceSpec, LawSpec, SceneBuilder};
 pub use scene::cluster::ClusterScene;
+pub use scene::compliant::{CompliantRow, CompliantRun};
 pub use scene::cushion::CushionScene;
 pub use scene::file::{is_cluster_scene, is_cushion_scene};
 pub use scene::overrides::SolverOverrides;
 pub use scene::run::{run_scene, SceneOutcome};
-pub use scene::types::{Incoming, PlaneIncoming, Scene};
+pub use scene::types::{Incoming, PlaneIncoming, Scene, TangentialLaw};
 pub use solve::law_outcome::solve_law;
 pub use solve::outcome::{solve, LawOutcome, Outcome};
 pub use solve::plane::{solve_plane, solve_plane_law, PlaneCollision, PlaneOutcome};
@@ -159,7 +160,9 @@ pub use tangential::impact::{
     resolve_sphere_plane_compliant, resolve_sphere_plane_compliant_damped,
 };
 pub use tangential::outcome::{CompliantOutcome, CompliantPairOutcome, CompliantTraceRow};
-pub use tangential::pair::{resolve_sphere_sphere_compliant, CompliantSphere};
+pub use tangential::pair::{
+    resolve_sphere_sphere_compliant, resolve_sphere_sphere_compliant_damped, CompliantSphere,
+};
 
 /// For experts: the pieces under the entry points (the integrator driver, the closed-form
 /// batch kernel, the checks, a contact law's head-on run and calibration), for callers who

@@ -29,7 +29,7 @@ use billiard_contact::TraceRow;
 use billiard_contact::{
     solve, Ball, CmState, Contact, Friction, ImpulseRule, LabBall, Method, Sampling, SolverSettings,
 };
-use billiard_contact::{Incoming, Scene};
+use billiard_contact::{Incoming, Scene, TangentialLaw};
 use common::Exact;
 use nalgebra::{Rotation3, Unit, Vector3};
 use proptest::prelude::*;
@@ -634,6 +634,7 @@ proptest! {
             contact: Contact { friction: case.friction(), impulse: case.rule() },
             profile: case.profile(),
             law: None,
+            tangential: TangentialLaw::Rigid,
             incoming: Incoming::Lab(l),
             solver: case.settings(),
             solver_given: Default::default(),

@@ -59,6 +59,8 @@ mod stick_half_sine;
 mod table_closed_forms;
 mod tangential;
 mod tangential_pair;
+mod tangential_pair_damped;
+mod tangential_scenes;
 mod theta_constant_states;
 mod throw_stun_cuts;
 mod throw_sweep;

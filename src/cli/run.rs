@@ -18,7 +18,7 @@ use crate::outputs::trace_csv::CsvTrace;
 use crate::scene::overrides::SolverOverrides;
 use crate::scene::run::run_scene;
 use crate::scene::run::SceneOutcome;
-use crate::scene::types::Scene;
+use crate::scene::types::{Scene, TangentialLaw};
 use crate::table_phase::outcome::TableOutcome;
 use crate::table_phase::path::ball_path_rows;
 use clap::Args;
@@ -101,6 +101,14 @@ impl RunArgs {
         }
         if let Some(n) = self.samples {
             check_samples("--samples", n)?;
+            if scene.tangential == TangentialLaw::Mindlin {
+                return Err(Error::invalid(
+                    "--samples",
+                    n,
+                    "not with contact.tangential = \"mindlin\": its trace is a row per step of \
+                     the compliant kernel",
+                ));
+            }
             if self.trace.is_none() && self.plot_trace.is_none() {
                 return Err(Error::invalid(
                     "--samples",
@@ -177,7 +185,24 @@ pub(super) fn run(args: &RunArgs) -> Result<(), Error> {
     // The trace becomes visible only once the whole run, report included, succeeded; the
     // trace figure draws the same rows.
     let mut rows: Vec<TraceRow> = Vec::new();
+    let mindlin = scene.tangential == TangentialLaw::Mindlin;
     let (text, outcome) = match (&args.trace, args.plot_trace.is_some()) {
+        // A compliant run's rows are in its outcome, with the tangential columns.
+        (Some(path), plot) if mindlin => {
+            let file = AtomicFile::create(path)?;
+            let mut csv = CsvTrace::for_compliant(file, scene.plane()?)?;
+            let outcome = if plot {
+                run_scene(&scene, &settings, Some((&mut rows, sampling)))?
+            } else {
+                run_scene(&scene, &settings, None)?
+            };
+            let text = render(&outcome)?;
+            for r in outcome.compliant.iter().flat_map(|c| &c.rows) {
+                csv.compliant_row(r)?;
+            }
+            csv.finish()?.commit()?;
+            (text, outcome)
+        }
         (Some(path), plot) => {
             let file = AtomicFile::create(path)?;
             let mut csv = match scene.plane()? {

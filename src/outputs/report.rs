@@ -14,6 +14,7 @@ use crate::model::material::HertzContact;
 use crate::model::params::{Evaluate, Friction, FrictionLaw};
 use crate::model::state::{CmState, LabMotion};
 use crate::profile::force::ForceProfile;
+use crate::scene::compliant::CompliantRun;
 use crate::scene::run::SceneOutcome;
 use crate::scene::types::{Incoming, Scene};
 use crate::solve::check::Checks;
@@ -213,6 +214,54 @@ impl From<&LawOutcome> for ContactLawJson {
             peak_force: Num(l.peak_force),
             coefficient: Num(l.law.coefficient()),
             stiffness: Num(l.law.stiffness()),
+        }
+    }
+}
+
+/// What Mindlin's spring adds to the report (`compliant`, docs/formats.md#json-report):
+/// vectors in the frame of `cm_out` (the paper's, or a plane's equivalent pair's), SI units.
+#[derive(Debug, Serialize)]
+pub(crate) struct CompliantJson {
+    /// Coulomb's mu of the spring's cap (0 with the effect friction off).
+    pub mu: Num,
+    /// The spring's elastic displacement xi = -F_t / k_t at the end of the contact (m).
+    pub final_displacement: [Num; 3],
+    /// Whether the contact point's slip leaves against its incoming direction (s_out < 0).
+    pub slip_reversed: bool,
+    /// The tangential impulse on ball A (N s).
+    pub tangential_impulse: [Num; 3],
+    /// The largest |F_t| among the steps (N).
+    pub max_tangential_force: Num,
+    /// The work the tangential force took from the balls, -integral of F_t.u dt (J).
+    pub tangential_work: Num,
+    /// The contact point's angle of incidence atan(|u(0)| / U_n) (rad).
+    pub incidence_angle: Num,
+    /// Its rebound angle atan2(u'.e0, U_n') (rad): negative when the slip reversed.
+    pub rebound_angle: Num,
+    /// Maw, Barber and Fawcett's normalised incidence Psi_1 (absent without friction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normalised_incidence: Option<Num>,
+    /// Their normalised rebound Psi_2 (absent without friction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normalised_rebound: Option<Num>,
+}
+
+impl From<&CompliantRun> for CompliantJson {
+    fn from(c: &CompliantRun) -> Self {
+        let o = &c.outcome;
+        let plane = |v: nalgebra::Vector2<f64>| [Num(0.0), Num(v.x), Num(v.y)];
+        let finite = |x: f64| x.is_finite().then_some(Num(x));
+        CompliantJson {
+            mu: Num(c.mu),
+            final_displacement: plane(c.final_displacement),
+            slip_reversed: c.slip_reversed(),
+            tangential_impulse: plane(c.tangential_impulse),
+            max_tangential_force: Num(c.rows.iter().map(|r| r.force.norm()).fold(0.0, f64::max)),
+            tangential_work: Num(o.tangential_work),
+            incidence_angle: Num(o.incidence_angle),
+            rebound_angle: Num(o.rebound_angle),
+            normalised_incidence: finite(o.normalised_incidence),
+            normalised_rebound: finite(o.normalised_rebound),
         }
     }
 }
@@ -453,7 +502,7 @@ impl Serialize for Report<'_> {
         let (scene, run) = (self.scene, self.run);
         let o = &run.outcome;
         let r = &o.result;
-        let mut m = s.serialize_struct("Report", 27)?;
+        let mut m = s.serialize_struct("Report", 29)?;
         m.serialize_field("name", &scene.name)?;
         let (force, duration) = force_and_duration(scene, run);
         m.serialize_field("profile", force)?;
@@ -465,6 +514,16 @@ impl Serialize for Report<'_> {
         match &o.law {
             Some(l) => m.serialize_field("contact_law", &ContactLawJson::from(l))?,
             None => m.skip_field("contact_law")?,
+        }
+        match &run.compliant {
+            Some(c) => {
+                m.serialize_field("tangential", scene.tangential.name())?;
+                m.serialize_field("compliant", &CompliantJson::from(c))?;
+            }
+            None => {
+                m.skip_field("tangential")?;
+                m.skip_field("compliant")?;
+            }
         }
         m.serialize_field("effects", &scene.effects.simulated(&scene.contact.friction))?;
         match HeldFrictionJson::new(&scene.contact.friction, r.s0) {

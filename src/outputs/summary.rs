@@ -42,6 +42,24 @@ fn summary(scene: &Scene, so: &SceneOutcome) -> String {
     if let Some(l) = &o.law {
         s.push_str(&law_summary(l));
     }
+    if let Some(c) = &so.compliant {
+        let xi = c.final_displacement;
+        let _ = writeln!(
+            s,
+            "  tangential {}: Mindlin's spring under mu = {}; final displacement [{}, {}] m \
+             (y, z), slip {}, tangential work {}",
+            scene.tangential.name(),
+            decimal(c.mu, 6),
+            sci(xi.x, 6),
+            sci(xi.y, 6),
+            if c.slip_reversed() {
+                "reversed"
+            } else {
+                "kept its sense"
+            },
+            si(c.outcome.tangential_work, "J", 5),
+        );
+    }
     if let Ok(Some(h)) = scene.hertz() {
         let _ = writeln!(
             s,
@@ -79,7 +97,12 @@ fn summary(scene: &Scene, so: &SceneOutcome) -> String {
         .ok();
         return s;
     }
-    s.push_str(&contact_summary(r, o.stick_time, heat_round_off(scene, so)));
+    s.push_str(&contact_summary(
+        r,
+        o.stick_time,
+        heat_round_off(scene, so),
+        so.compliant.is_some(),
+    ));
     let fmt = |v: &Vector3<f64>| vec3_text(v, 9);
     if let Some((p, out)) = plane {
         let _ = writeln!(
@@ -164,7 +187,14 @@ fn heat_text(heat: f64, round_off: f64) -> String {
 
 /// The contact of a collision, human-readable: impulse, sliding, heat (within
 /// `heat_round_off` J of zero: 0).
-fn contact_summary(r: &ContactResult, stick_time: Option<f64>, heat_round_off: f64) -> String {
+/// Under Mindlin's spring (`compliant`) the stop of sliding is where the spring holds, and
+/// the sliding heat is the tangential force's work (docs/formats.md#json-report).
+fn contact_summary(
+    r: &ContactResult,
+    stick_time: Option<f64>,
+    heat_round_off: f64,
+    compliant: bool,
+) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let _ = writeln!(s, "  impulse P         {} N s", decimal(r.impulse, 10));
@@ -181,6 +211,15 @@ fn contact_summary(r: &ContactResult, stick_time: Option<f64>, heat_round_off: f
             .unwrap_or_else(|| "undefined (no slip)".into());
         let _ = writeln!(s, "  sliding S(0)      {:.9} m/s, theta {theta}", r.s0);
         match (r.sticks, stick_time) {
+            (true, Some(t)) if compliant => {
+                let _ = writeln!(
+                    s,
+                    "  spring holds      from t = {}, p = {} N s; S_out = {:.9} m/s",
+                    si(t, "s", 7),
+                    decimal(r.stick_impulse.unwrap_or(0.0), 7),
+                    r.s_out
+                );
+            }
             (true, Some(t)) => {
                 let _ = writeln!(
                     s,
@@ -205,8 +244,9 @@ fn contact_summary(r: &ContactResult, stick_time: Option<f64>, heat_round_off: f
     );
     let _ = writeln!(
         s,
-        "  heat H            {} (sliding {})",
+        "  heat H            {} ({} {})",
         heat_text(r.heat, heat_round_off),
+        if compliant { "tangential" } else { "sliding" },
         heat_text(r.heat_sliding, heat_round_off)
     );
     s

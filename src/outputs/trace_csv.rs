@@ -4,6 +4,7 @@ use crate::base::error::Error;
 use crate::base::number::shortest;
 use crate::base::validate::finite_output;
 use crate::model::trace::{TraceRow, TraceSink};
+use crate::scene::compliant::CompliantRow;
 use crate::solve::plane::PlaneCollision;
 use std::io::Write;
 
@@ -40,6 +41,13 @@ pub(crate) const PLANE_HEADER: [&str; 6] = [
     "spin_z (rad/s)",
 ];
 
+/// The header cells of a compliant run's columns (`contact.tangential = "mindlin"`,
+/// docs/tangential.md#scenes), written last: the tangential force on ball A and the spring's
+/// elastic displacement xi = -F_t / k_t, along y and z of the trace's frame, with Coulomb's
+/// cap mu f between them.
+pub(crate) const TANGENTIAL_HEADER: [&str; 5] =
+    ["F_t_y (N)", "F_t_z (N)", "mu f (N)", "xi_y (m)", "xi_z (m)"];
+
 /// Writes trace rows as CSV, streaming.
 pub struct CsvTrace<W: Write> {
     out: csv::Writer<W>,
@@ -48,6 +56,8 @@ pub struct CsvTrace<W: Write> {
     compression: bool,
     /// The ball meeting a plane, whose columns follow (plane scenes).
     plane: Option<PlaneCollision>,
+    /// Whether the tangential columns of a compliant run follow.
+    tangential: bool,
 }
 
 impl<W: Write> CsvTrace<W> {
@@ -68,7 +78,23 @@ impl<W: Write> CsvTrace<W> {
         CsvTrace::start(out, compression, Some(plane))
     }
 
+    /// The writer of a compliant run (`contact.tangential = "mindlin"`): the columns of a
+    /// contact law (and of the ball meeting `plane`, for a plane scene), then the tangential
+    /// force and the spring's displacement ([`CsvTrace::compliant_row`] writes them).
+    pub fn for_compliant(out: W, plane: Option<PlaneCollision>) -> Result<Self, Error> {
+        CsvTrace::start_with(out, true, plane, true)
+    }
+
     fn start(out: W, compression: bool, plane: Option<PlaneCollision>) -> Result<Self, Error> {
+        CsvTrace::start_with(out, compression, plane, false)
+    }
+
+    fn start_with(
+        out: W,
+        compression: bool,
+        plane: Option<PlaneCollision>,
+        tangential: bool,
+    ) -> Result<Self, Error> {
         let mut out = csv::Writer::from_writer(out);
         for cell in HEADER {
             out.write_field(cell)?;
@@ -81,13 +107,37 @@ impl<W: Write> CsvTrace<W> {
                 out.write_field(cell)?;
             }
         }
+        if tangential {
+            for cell in TANGENTIAL_HEADER {
+                out.write_field(cell)?;
+            }
+        }
         out.write_record(None::<&[u8]>)?;
         Ok(CsvTrace {
             out,
             rows: 0,
             compression,
             plane,
+            tangential,
         })
+    }
+
+    /// One row of a compliant run with its tangential cells (a writer made by
+    /// [`CsvTrace::for_compliant`]).
+    pub fn compliant_row(&mut self, r: &CompliantRow) -> Result<(), Error> {
+        self.cells(&r.row)?;
+        let (f, xi) = (r.force, r.displacement);
+        for (name, x) in TANGENTIAL_HEADER.iter().zip([f.x, f.y, r.cap, xi.x, xi.y]) {
+            let x = finite_output(x, || format!("trace column {name} at t = {}", r.row.t))?;
+            self.out.write_field(shortest(x + 0.0))?;
+        }
+        self.end_row()
+    }
+
+    fn end_row(&mut self) -> Result<(), Error> {
+        self.out.write_record(None::<&[u8]>)?;
+        self.rows += 1;
+        Ok(())
     }
 
     /// Rows written so far.
@@ -103,8 +153,9 @@ impl<W: Write> CsvTrace<W> {
     }
 }
 
-impl<W: Write> TraceSink for CsvTrace<W> {
-    fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
+impl<W: Write> CsvTrace<W> {
+    /// The cells of `r` up to the tangential columns.
+    fn cells(&mut self, r: &TraceRow) -> Result<(), Error> {
         for (name, v) in HEADER.iter().zip(r.values()) {
             match v {
                 Some(v) => {
@@ -128,9 +179,21 @@ impl<W: Write> TraceSink for CsvTrace<W> {
                 self.out.write_field(shortest(x + 0.0))?;
             }
         }
-        self.out.write_record(None::<&[u8]>)?;
-        self.rows += 1;
         Ok(())
+    }
+}
+
+/// A row without tangential cells: a compliant run's writer leaves them empty (its rows go
+/// through [`CsvTrace::compliant_row`]).
+impl<W: Write> TraceSink for CsvTrace<W> {
+    fn row(&mut self, r: &TraceRow) -> Result<(), Error> {
+        self.cells(r)?;
+        if self.tangential {
+            for _ in TANGENTIAL_HEADER {
+                self.out.write_field("")?;
+            }
+        }
+        self.end_row()
     }
 }
 

@@ -16,11 +16,11 @@ use crate::model::effects::Effects;
 use crate::model::material::{
     elastic_impact, hertz_stiffness, sphere_plane_stiffness, HertzContact, Material,
 };
-use crate::model::params::{Ball, BallPair, Contact, Friction, ImpulseRule};
+use crate::model::params::{Ball, BallPair, Contact, Friction, FrictionLaw, ImpulseRule};
 use crate::profile::hertz::Hertz;
 use crate::profile::spec::{Profile, ProfileSpec};
 use crate::scene::overrides::SolverOverrides;
-use crate::scene::types::{Incoming, PlaneIncoming, Scene};
+use crate::scene::types::{Incoming, PlaneIncoming, Scene, TangentialLaw};
 use crate::table_phase::params::{TableParams, TableSize};
 use std::path::{Path, PathBuf};
 
@@ -77,6 +77,7 @@ pub struct SceneBuilder {
     restitution: Option<f64>,
     impulse: Option<f64>,
     force: Option<ForceSpec>,
+    tangential: TangentialLaw,
     incoming: Result<Incoming, Error>,
     solver: SolverOverrides,
     effects: Effects,
@@ -100,6 +101,7 @@ impl SceneBuilder {
             restitution: None,
             impulse: None,
             force: None,
+            tangential: TangentialLaw::Rigid,
             incoming: Ok(incoming),
             solver: SolverOverrides::default(),
             effects: Effects::default(),
@@ -179,6 +181,15 @@ impl SceneBuilder {
     /// Where the normal force comes from.
     pub fn force(mut self, force: ForceSpec) -> Self {
         self.force = Some(force);
+        self
+    }
+
+    /// The tangential law (a scene file's `contact.tangential`; default rigid). `Mindlin`
+    /// needs a contact law ([`ForceSpec::Law`]) without a stiffness, the balls' material
+    /// (and for a plane the plane's, else the plane is rigid), a constant mu and the effect
+    /// `stick` on (docs/tangential.md#scenes).
+    pub fn tangential(mut self, law: TangentialLaw) -> Self {
+        self.tangential = law;
         self
     }
 
@@ -282,6 +293,9 @@ impl SceneBuilder {
                 ));
             }
         }
+        if self.tangential == TangentialLaw::Mindlin {
+            check_mindlin(&force, material.as_ref(), &self.friction, &self.effects)?;
+        }
         let law = match &force {
             ForceSpec::Law(law) => Some(law.build(&balls, material.as_ref(), plane.as_ref())?),
             ForceSpec::Profile(spec) => {
@@ -336,6 +350,7 @@ impl SceneBuilder {
             contact,
             profile,
             law,
+            tangential: self.tangential,
             incoming,
             solver,
             solver_given: self.solver,
@@ -440,6 +455,63 @@ fn approaching_plane(p: &PlaneIncoming) -> Result<f64, Error> {
         ));
     }
     Ok(v)
+}
+
+/// The field naming the tangential law.
+pub(crate) const TANGENTIAL_FIELD: &str = "contact.tangential";
+
+/// What `contact.tangential = "mindlin"` needs: a contact law whose stiffness follows from
+/// the balls' material (Hertz's, which Mindlin's spring shares), a constant mu (the spring's
+/// cap) and the stick effect (the spring decides when the contact point sticks).
+fn check_mindlin(
+    force: &ForceSpec,
+    material: Option<&Material>,
+    friction: &Friction,
+    effects: &Effects,
+) -> Result<(), Error> {
+    let refuse = |value: &str, accepted: &str| {
+        Err(Error::invalid(
+            TANGENTIAL_FIELD,
+            format!("\"mindlin\" {value}"),
+            accepted,
+        ))
+    };
+    let ForceSpec::Law(law) = force else {
+        return refuse(
+            "with [contact.profile]",
+            "\"mindlin\" with [contact.law] (model = \"hertz\"): Mindlin's spring needs the \
+             compression, which a prescribed profile does not give; or \"rigid\"",
+        );
+    };
+    if material.is_none() {
+        return refuse(
+            "without the balls' material",
+            "\"mindlin\" with [balls] youngs_modulus and poisson_ratio (Hertz's and Mindlin's \
+             stiffnesses follow from them); or \"rigid\"",
+        );
+    }
+    if let Some(k) = law.stiffness {
+        return refuse(
+            &format!("with contact.law.stiffness = {k}"),
+            "\"mindlin\" with the stiffness from [balls] youngs_modulus and poisson_ratio \
+             (leave out contact.law.stiffness); or \"rigid\"",
+        );
+    }
+    if let FrictionLaw::SpeedDependent { .. } = friction.law() {
+        return refuse(
+            "with a speed-dependent contact.mu",
+            "\"mindlin\" with a constant contact.mu (a number: the spring's cap mu F_n); or \
+             \"rigid\"",
+        );
+    }
+    if !effects.stick {
+        return refuse(
+            "with [effects] stick = false",
+            "\"mindlin\" with the effect stick on (the spring decides when the contact point \
+             sticks); or \"rigid\"",
+        );
+    }
+    Ok(())
 }
 
 /// The contact duration comes from exactly one place: the profile, or (for `hertz` and

@@ -12,6 +12,8 @@
 //! mu = 0.06          # or { model = "speed-dependent", a = 9.951e-3, b = 0.108, c = 1.088 }
 //!                    # (+ evaluate = "initial": mu(S(0)) held; default "along-contact")
 //! restitution = 1.0  # or: impulse = 0.17  (N s); not both; neither: restitution 1
+//! # tangential = "rigid"   # rigid (default: the stick rule) | mindlin (Mindlin's spring,
+//!                          # with [contact.law] and the balls' material: docs/tangential.md)
 //! [contact.profile]
 //! shape = "half-sine"    # half-sine | hertz | sine-power (exponent, default 1.5) | rectangle
 //!                        # | tabulated (file = "...", relative to the scene)
@@ -62,7 +64,7 @@ use crate::model::state::{CmState, LabBall};
 use crate::profile::spec::ProfileSpec;
 use crate::scene::builder::{ForceSpec, LawSpec, SceneBuilder};
 use crate::scene::overrides::{name, optional_name, SolverOverrides};
-use crate::scene::types::{Incoming, PlaneIncoming, Scene};
+use crate::scene::types::{Incoming, PlaneIncoming, Scene, TangentialLaw};
 use crate::table_phase::params::{TableParams, TableSettings, TableSize};
 use nalgebra::Vector3;
 use serde::de::{self, MapAccess, Visitor};
@@ -185,6 +187,8 @@ struct RawContact {
     impulse: Option<f64>,
     profile: Option<ProfileSpec>,
     law: Option<RawLaw>,
+    #[serde(default, deserialize_with = "optional_name")]
+    tangential: Option<TangentialLaw>,
 }
 
 /// `[contact.law]` as written (also a cluster scene's, `scene::cluster`).
@@ -525,6 +529,7 @@ impl Scene {
                 .unwrap_or_else(|| "scene".into())
         }))
         .force(force)
+        .tangential(raw.contact.tangential.unwrap_or_default())
         .solver(raw.solver.unwrap_or_default())
         .effects(raw.effects.unwrap_or_default())
         .files_relative_to(base)

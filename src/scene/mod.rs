@@ -4,6 +4,7 @@
 
 pub(crate) mod builder;
 pub(crate) mod cluster;
+pub(crate) mod compliant;
 pub(crate) mod cushion;
 pub(crate) mod file;
 pub(crate) mod overrides;

@@ -2,11 +2,13 @@
 //! form.
 
 use crate::base::error::Error;
+use crate::base::method::Method;
 use crate::base::settings::{check_samples, Sampling, SolverSettings};
 use crate::model::frame::{Frame, LabScene};
 use crate::model::state::{CmState, LabBall, LabMotion};
 use crate::model::trace::TraceSink;
-use crate::scene::types::{table_needs_lab_scene, LabFrame, Scene};
+use crate::scene::compliant::{run_compliant, CompliantRun};
+use crate::scene::types::{table_needs_lab_scene, LabFrame, Scene, TangentialLaw};
 use crate::solve::law_outcome::solve_law;
 use crate::solve::outcome::{solve, Outcome};
 use crate::table_phase::outcome::TableOutcome;
@@ -30,6 +32,10 @@ pub struct SceneOutcome {
     /// For a plane scene, the ball's outgoing velocity and spin (lab axes); the other fields
     /// are those of its equivalent pair (docs/plane.md).
     pub plane_out: Option<LabMotion>,
+    /// With `contact.tangential = "mindlin"`, what the compliant kernel adds (its outcome,
+    /// the spring's final displacement, the trace with the tangential force); `None` for the
+    /// rigid contact.
+    pub compliant: Option<CompliantRun>,
 }
 
 /// Runs `scene` with `settings`, optionally streaming a trace (centre-of-mass frame).
@@ -42,23 +48,44 @@ pub fn run_scene(
         check_samples("samples", *n)?;
     }
     let (collision, lab) = scene.collision()?;
-    let mut outcome = match &scene.law {
-        Some(law) => solve_law(&collision, law, settings, trace)?,
-        None => solve(&collision, &scene.profile, settings, trace)?,
+    let (mut outcome, compliant, settings) = match (scene.tangential, &scene.law) {
+        (TangentialLaw::Mindlin, _) => {
+            let (o, c) = run_compliant(scene, &collision, settings, trace)?;
+            // The kernel steps with its own Dormand-Prince 5(4) at the settings' tolerances.
+            (o, Some(c), settings.with_method(Method::Dopri5))
+        }
+        (TangentialLaw::Rigid, Some(law)) => (
+            solve_law(&collision, law, settings, trace)?,
+            None,
+            *settings,
+        ),
+        (TangentialLaw::Rigid, None) => (
+            solve(&collision, &scene.profile, settings, trace)?,
+            None,
+            *settings,
+        ),
     };
     let out = outcome.result.out;
     if let Some(plane) = scene.plane()? {
+        let plane_out = match &compliant {
+            Some(c) => LabMotion {
+                velocity: c.outcome.velocity,
+                spin: c.outcome.spin,
+            },
+            None => LabMotion {
+                velocity: plane.velocity_of(&out),
+                spin: plane.spin_of(&out),
+            },
+        };
         return Ok(SceneOutcome {
             outcome,
-            settings: *settings,
+            settings,
             cm_in: collision.incoming,
             lab_out: None,
             throw_angle_deg: None,
             table: None,
-            plane_out: Some(LabMotion {
-                velocity: plane.velocity_of(&out),
-                spin: plane.spin_of(&out),
-            }),
+            plane_out: Some(plane_out),
+            compliant,
         });
     }
     let (lab_out, throw, lab_momentum_error, table) = match lab {
@@ -101,12 +128,13 @@ pub fn run_scene(
     }
     Ok(SceneOutcome {
         outcome,
-        settings: *settings,
+        settings,
         cm_in: collision.incoming,
         lab_out,
         throw_angle_deg: throw,
         table,
         plane_out: None,
+        compliant,
     })
 }
 

@@ -16,6 +16,7 @@ use crate::solve::plane::{equivalent_state, PlaneCollision};
 use crate::table_phase::cloth::Table;
 use crate::table_phase::params::{TableParams, TableSize};
 use nalgebra::Vector3;
+use serde::Deserialize;
 use std::path::PathBuf;
 
 /// The incoming state as a scene gives it.
@@ -74,6 +75,28 @@ impl Incoming {
     }
 }
 
+/// The tangential law of a scene's contact (`[contact] tangential`, docs/tangential.md#scenes).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentialLaw {
+    /// The paper's rigid contact: the stick rule (eqs 14-35).
+    #[default]
+    Rigid,
+    /// Mindlin's elastic tangential spring under Coulomb's cap, with Hertz's normal force of
+    /// the materials (the compliant kernel, docs/tangential.md).
+    Mindlin,
+}
+
+impl TangentialLaw {
+    /// The name a scene file and the report give it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            TangentialLaw::Rigid => "rigid",
+            TangentialLaw::Mindlin => "mindlin",
+        }
+    }
+}
+
 /// A validated scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -93,6 +116,9 @@ pub struct Scene {
     pub profile: Profile,
     /// The contact law (`[contact.law]`), when the force comes from the compression.
     pub law: Option<ContactLaw>,
+    /// The tangential law (`contact.tangential`, default rigid). `Mindlin` comes with a
+    /// contact law, the balls' material and a constant mu (checked when built).
+    pub tangential: TangentialLaw,
     /// Incoming state.
     pub incoming: Incoming,
     /// Solver settings (`[solver]`, defaults when absent).

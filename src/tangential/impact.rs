@@ -247,6 +247,11 @@ impl Contact {
                 ]
             };
         }
+        // The power the tangential force takes from the balls: -F_t.u (the force on ball 1
+        // at its contact point, -F_t on the partner's, so the pair's kinetic energy changes
+        // by F_t.u).
+        let u = self.slip(y);
+        let taken = -(f[0] * u[0] + f[1] * u[1]);
         [
             y[1],
             -f_n / self.mass,
@@ -260,6 +265,7 @@ impl Contact {
             partner_rate.x,
             partner_rate.y,
             partner_rate.z,
+            taken,
         ]
     }
 
@@ -292,6 +298,10 @@ impl Contact {
             displacement: lab(xi),
             slip: lab(u),
             sliding: mode == Mode::Slide,
+            relative_velocity: -y[1] * self.n + lab([y[2], y[3]]),
+            spin: Contact::spin(y),
+            partner_spin: Contact::partner_spin(y),
+            tangential_work: y[12],
         }
     }
 }
@@ -426,6 +436,7 @@ impl Run {
             normalised_rebound: chi * self.slip_out / v_n_out,
             kinetic_energy_in: kinetic_energy.0,
             kinetic_energy_out: kinetic_energy.1,
+            tangential_work: self.y[12],
             steps: self.steps,
             rejected: self.rejected,
             trace: self.trace,
@@ -556,6 +567,7 @@ pub(crate) fn run(
         partner_scale,
         partner_scale,
         partner_scale,
+        0.0,
     ];
     let (rtol, atol) = (settings.rtol(), settings.atol());
     let h_event = EVENT_FRACTION * t_hertz;
@@ -574,6 +586,7 @@ pub(crate) fn run(
         w2.x,
         w2.y,
         w2.z,
+        0.0,
     ];
     let mut t = 0.0;
     let mut h = FIRST_STEP_FRACTION * t_hertz;

@@ -21,6 +21,17 @@ pub struct CompliantTraceRow {
     pub slip: Vector3<f64>,
     /// True while the spring slides (|F_t| = mu F_n).
     pub sliding: bool,
+    /// Ball 1's centre's velocity relative to the partner's, g = v_1 - v_2 (m/s; on a plane,
+    /// the ball's velocity).
+    pub relative_velocity: Vector3<f64>,
+    /// Ball 1's spin (rad/s).
+    pub spin: Vector3<f64>,
+    /// The partner's spin (rad/s; 0 for a plane).
+    pub partner_spin: Vector3<f64>,
+    /// The work the tangential force has taken from the balls so far, -integral of F_t.u dt
+    /// (J): the energy stored in the spring plus what sliding and the spring's unloading
+    /// rule have dissipated (docs/tangential.md#energy).
+    pub tangential_work: f64,
 }
 
 /// The result of [`crate::resolve_sphere_plane_compliant`].
@@ -36,7 +47,8 @@ pub struct CompliantOutcome {
     pub normal_impulse: f64,
     /// Tangential impulse of the partner on the ball (N s, in the tangent plane).
     pub tangential_impulse: Vector3<f64>,
-    /// Largest normal force (N), at the largest compression.
+    /// Largest normal force among the steps (N): at the largest compression when undamped;
+    /// under damping the force peaks earlier, between steps, and this samples it from below.
     pub max_normal_force: f64,
     /// Largest compression (m).
     pub max_compression: f64,
@@ -55,6 +67,11 @@ pub struct CompliantOutcome {
     pub kinetic_energy_in: f64,
     /// Kinetic energy after the contact (J).
     pub kinetic_energy_out: f64,
+    /// The work the tangential force took from the balls over the contact, -integral of
+    /// F_t.u dt (J): the spring ends unloaded (its force falls with the contact), so all of
+    /// it is dissipated, by sliding and by the spring's unloading rule. The rest of the
+    /// kinetic energy lost is the normal force's (its damping).
+    pub tangential_work: f64,
     /// Accepted steps.
     pub steps: u64,
     /// Rejected steps (error too large, or shortened to land on an event).

@@ -88,6 +88,61 @@ pub fn resolve_sphere_sphere_compliant(
     shear_stiffness_factor: f64,
     settings: &SolverSettings,
 ) -> Result<CompliantPairOutcome, Error> {
+    resolve_sphere_sphere_compliant_damped(
+        a,
+        b,
+        (Damping::None, 0.0),
+        normal,
+        mu,
+        shear_stiffness_factor,
+        settings,
+    )
+}
+
+/// [`resolve_sphere_sphere_compliant`] with a damped normal force, as
+/// [`resolve_sphere_plane_compliant_damped`](crate::resolve_sphere_plane_compliant_damped)
+/// on a plane: `damping` is the law and its coefficient (Hunt and Crossley's beta in s/m,
+/// Kuwabara and Kono's gamma in s; docs/contact-law.md) on the pair's Hertz stiffness
+/// k_n = (4/3) E* sqrt(R*); the contact ends where the force returns to zero, and
+/// Coulomb's cap follows the damped force. To reach a restitution e at a relative approach
+/// speed, calibrate the coefficient with [`ContactLaw::calibrated`](crate::ContactLaw::calibrated)
+/// on that stiffness ([`HertzContact::of_pair`](crate::HertzContact::of_pair) for two balls
+/// of one material) and the reduced mass m* = m_A m_B / (m_A + m_B).
+/// `(Damping::None, 0.0)` is the elastic kernel, bit for bit.
+///
+/// ```
+/// use billiard_contact::nalgebra::Vector3;
+/// use billiard_contact::*;
+/// // Two resin pool balls head on at 2 m/s and at rest, damped to e = 0.9 at 2 m/s.
+/// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+/// let resin = Material::new(5.4e9, 0.34)?;
+/// let pair = BallPair::identical(ball);
+/// let k = HertzContact::of_pair(&pair, &resin, 1.0)?.stiffness;
+/// let law = ContactLaw::calibrated(k, Damping::HuntCrossley, 0.9, 2.0, pair.reduced_mass())?;
+/// let sphere = |v: f64| CompliantSphere {
+///     ball,
+///     material: resin,
+///     velocity: Vector3::new(v, 0.0, 0.0),
+///     spin: Vector3::zeros(),
+/// };
+/// let out = resolve_sphere_sphere_compliant_damped(
+///     &sphere(2.0), &sphere(0.0), (law.damping(), law.coefficient()), Vector3::x(), 0.0, 1.0,
+///     &SolverSettings::default(),
+/// )?;
+/// let e = (out.velocity_b.x - out.ball_a.velocity.x) / 2.0;
+/// assert!((e - 0.9).abs() < 1e-6);
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn resolve_sphere_sphere_compliant_damped(
+    a: &CompliantSphere,
+    b: &CompliantSphere,
+    damping: (Damping, f64),
+    normal: Vector3<f64>,
+    mu: f64,
+    shear_stiffness_factor: f64,
+    settings: &SolverSettings,
+) -> Result<CompliantPairOutcome, Error> {
     check_mu(mu)?;
     let n = unit_normal(
         "contact.normal",
@@ -131,7 +186,7 @@ pub fn resolve_sphere_sphere_compliant(
         effective_radius,
         g_star,
         shear_factor: shear_stiffness_factor,
-        damping: (Damping::None, 0.0),
+        damping,
     };
     let r = run(&bodies, mu, g, a.spin, b.spin, -n, settings)?;
     let impulse = mass * (r.g_out() - g);

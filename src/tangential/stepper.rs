@@ -6,8 +6,10 @@
 //! layer and so cannot be imported); the test below checks each row sums to its node.
 
 /// Length of the stepped state: compression, its rate, ball 1's relative tangential velocity
-/// (2), its spin (3), the tangential spring's force (2) and the partner's spin (3).
-pub(crate) const DIM: usize = 12;
+/// (2), its spin (3), the tangential spring's force (2), the partner's spin (3) and the work
+/// the tangential force has taken from the balls (1; error scale 0: a quadrature along the
+/// path, which never steers the step).
+pub(crate) const DIM: usize = 13;
 
 /// The stepped state.
 pub(crate) type Z = [f64; DIM];

@@ -18,8 +18,9 @@ use super::FONT;
 use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::model::trace::TraceRow;
-use crate::outputs::trace_csv::{HEADER, PLANE_HEADER};
+use crate::outputs::trace_csv::{HEADER, PLANE_HEADER, TANGENTIAL_HEADER};
 use crate::profile::force::ForceProfile;
+use crate::scene::compliant::CompliantRow;
 use crate::scene::run::SceneOutcome;
 use crate::scene::types::Scene;
 use crate::solve::plane::PlaneCollision;
@@ -152,6 +153,9 @@ impl Panel {
 /// The trace's rows as the figure's curves.
 struct Columns<'a> {
     rows: &'a [TraceRow],
+    /// A compliant run's rows (`contact.tangential = "mindlin"`): the tangential force with
+    /// Coulomb's cap and the spring's displacement are drawn too.
+    compliant: Option<&'a [CompliantRow]>,
     /// The ball meeting a plane (plane scenes): its velocity and spin are drawn.
     plane: Option<PlaneCollision>,
     time: TimeAxis,
@@ -207,9 +211,75 @@ impl Columns<'_> {
         }
     }
 
-    /// The six panels; `slip_note` says whether and when sliding stops, `no_slip` that
-    /// S(0) = 0.
+    /// The compliant run's column `i` of [`TANGENTIAL_HEADER`] (its cells times `factor`)
+    /// against t.
+    fn tangential_curve(
+        &self,
+        rows: &[CompliantRow],
+        i: usize,
+        label: &str,
+        swatch: Swatch,
+        factor: f64,
+    ) -> Curve {
+        Curve {
+            column: TANGENTIAL_HEADER[i],
+            label: label.into(),
+            swatch,
+            points: rows
+                .iter()
+                .map(|r| {
+                    let x = [
+                        r.force.x,
+                        r.force.y,
+                        r.cap,
+                        r.displacement.x,
+                        r.displacement.y,
+                    ][i];
+                    (r.row.t * self.time.per_second, x * factor)
+                })
+                .collect(),
+            right_axis: false,
+        }
+    }
+
+    /// The compliant run's two panels: the tangential force against Coulomb's cap +-mu f(t),
+    /// and the spring's displacement.
+    fn tangential_panels(&self, rows: &[CompliantRow]) -> [Panel; 2] {
+        let cap = Swatch::line(STOP, 2).with_line(Line::Dashed);
+        let force = Panel::new(
+            "tangential force F_t(t) on ball A (y, z of the trace), cap +-mu f(t) dashed",
+            "force (N)",
+            vec![
+                self.tangential_curve(rows, 0, "F_t y", self.swatch(0), 1.0),
+                self.tangential_curve(rows, 1, "F_t z", self.swatch(1), 1.0),
+                self.tangential_curve(rows, 2, "mu f(t)", cap, 1.0),
+                self.tangential_curve(rows, 2, "-mu f(t)", cap, -1.0),
+            ],
+        );
+        let xi = Panel::new(
+            "spring displacement xi(t) = -F_t / k_t",
+            "xi (m)",
+            vec![
+                self.tangential_curve(rows, 3, "xi y", self.swatch(0), 1.0),
+                self.tangential_curve(rows, 4, "xi z", self.swatch(1), 1.0),
+            ],
+        );
+        [force, xi]
+    }
+
+    /// The six panels (eight for a compliant run); `slip_note` says whether and when
+    /// sliding stops, `no_slip` that S(0) = 0.
     fn panels(&self, slip_note: String, no_slip: bool) -> Vec<Panel> {
+        let mut panels = self.rigid_panels(slip_note, no_slip);
+        if let Some(rows) = self.compliant {
+            panels[5].title = "tangential work W_t(t) = -integral F_t.u dt (column H_sfr)".into();
+            panels.extend(self.tangential_panels(rows));
+        }
+        panels
+    }
+
+    /// The six panels of every run.
+    fn rigid_panels(&self, slip_note: String, no_slip: bool) -> Vec<Panel> {
         let p = Curve {
             right_axis: true,
             ..self.curve(
@@ -290,7 +360,12 @@ impl Columns<'_> {
 impl TraceFigure {
     /// The figure of `run` (a run of `scene`) from its trace `rows`.
     pub(crate) fn new(scene: &Scene, run: &SceneOutcome, rows: &[TraceRow]) -> Self {
-        let duration = scene.profile.duration();
+        // A compliant run's contact lasts as long as its kernel says (damping changes it
+        // from the elastic pulse's time unit).
+        let duration = match (&run.compliant, &run.outcome.law) {
+            (Some(_), Some(l)) => l.duration,
+            _ => scene.profile.duration(),
+        };
         let time = TimeAxis::for_duration(duration);
         let plane = scene.plane().ok().flatten();
         let frame = match plane {
@@ -299,6 +374,7 @@ impl TraceFigure {
         };
         let columns = Columns {
             rows,
+            compliant: run.compliant.as_ref().map(|c| c.rows.as_slice()),
             plane,
             time,
             marked: rows.len() <= MARKED_ROWS,
@@ -306,13 +382,15 @@ impl TraceFigure {
         let no_slip = rows.first().is_some_and(|r| r.theta.is_none());
         // With S(0) = 0 there is no sliding to stop.
         let stick = run.outcome.stick_time.filter(|_| !no_slip);
+        let compliant = run.compliant.is_some();
+        let stops = if compliant {
+            "the spring holds from"
+        } else {
+            "sliding stops at"
+        };
         let slip_note = match (no_slip, stick) {
             (true, _) => "no sliding: S(0) = 0".into(),
-            (false, Some(t)) => format!(
-                "sliding stops at t = {} {}",
-                short(t * time.per_second),
-                time.unit
-            ),
+            (false, Some(t)) => format!("{stops} t = {} {}", short(t * time.per_second), time.unit),
             (false, None) => "slides throughout the contact".into(),
         };
         TraceFigure {
@@ -322,7 +400,12 @@ impl TraceFigure {
                 method_text(scene, run, rows.len(), &time)
             ),
             subtitle: format!(
-                "{frame}, t from first touch to separation ({} {}){}{}",
+                "{frame}{}, t from first touch to separation ({} {}){}{}",
+                if compliant {
+                    ", Mindlin's tangential spring"
+                } else {
+                    ""
+                },
                 short(duration * time.per_second),
                 time.unit,
                 if columns.marked {
@@ -330,10 +413,10 @@ impl TraceFigure {
                 } else {
                     ""
                 },
-                if stick.is_some() {
-                    "; grey dashed line: sliding stops"
-                } else {
-                    ""
+                match (stick.is_some(), compliant) {
+                    (true, false) => "; grey dashed line: sliding stops",
+                    (true, true) => "; grey dashed line: the spring holds",
+                    (false, _) => "",
                 }
             ),
             time,
@@ -371,7 +454,7 @@ impl TraceFigure {
             (20, 14 + TITLE_FONT as i32 + 16),
             (FONT, SUBTITLE_FONT).into_font(),
         ))?;
-        let areas = body.split_evenly((3, 2));
+        let areas = body.split_evenly((self.panels.len().div_ceil(2), 2));
         for (panel, area) in self.panels.iter().zip(&areas) {
             self.draw_panel(area, panel)?;
         }
@@ -487,10 +570,13 @@ impl TraceFigure {
     /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
     /// command-line option in the error for another extension).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
+        // Three rows of panels in SIZE; a compliant run's fourth row adds a third of it.
+        let rows = self.panels.len().div_ceil(2).max(3) as u32;
+        let size = (SIZE.0, HEADER_PX + (SIZE.1 - HEADER_PX) * rows / 3);
         super::write_figure(
             option,
             path,
-            SIZE,
+            size,
             |root| self.draw(root),
             |root| self.draw(root),
         )
