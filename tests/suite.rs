@@ -33,6 +33,7 @@ mod cli_work_precision_values;
 mod closed_form_paper;
 mod cluster;
 mod cluster_scenes;
+mod cluster_trace;
 mod contact_law_checks;
 mod contact_law_scenes;
 mod convergence_profiles;
