@@ -298,6 +298,25 @@ impl ClusterTraceFigure {
             (columns, (LEGEND_W as i32 - 18) / 2),
             LEGEND_FONT,
         )?;
+        if self.pairs.iter().any(|(_, s)| s.width > 2) {
+            // A wide line: a later pair's curve lies on it.
+            let rows = entries.len().div_ceil(columns) as i32;
+            let y = 28 + rows * legend_row(LEGEND_FONT) + 12;
+            for (k, line) in [
+                "wide line: a later pair",
+                "has the same curve,",
+                "drawn over it",
+            ]
+            .iter()
+            .enumerate()
+            {
+                legend.draw(&Text::new(
+                    line.to_string(),
+                    (0, y + k as i32 * (LABEL_FONT as i32 + 4)),
+                    (FONT, LABEL_FONT).into_font(),
+                ))?;
+            }
+        }
         root.present()
     }
 
