@@ -532,10 +532,6 @@ mod tests {
             sliding.tangential_impulse
         );
         // The slip falls by k J = 0.9 m/s: S(0) to rounding (G and its inverse round-trip).
-        assert!(
-            (sliding.slip - s0).abs() <= 1e-12 * s0,
-            "{:e}",
-            sliding.slip
-        );
+        assert!((sliding.slip - s0).abs() <= 1e-12 * s0, "{:e}", sliding.slip);
     }
 }
