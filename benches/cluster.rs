@@ -2,7 +2,8 @@
 //! rack, Hertz with Hunt-Crossley damping calibrated to e = 0.95 at 1 m/s, mu = 0.06 at
 //! every contact) at rtol 1e-8 (target <= 5 ms); racks of N = 2, 4, 8, 16, 22 balls, whose
 //! time over (steps x mean pressing contacts) is the cost per contact per step (printed with
-//! a self-timed median before criterion's runs); two balls through the cluster path against
+//! a self-timed median before criterion's runs); the 16-ball break with a trace of a row per
+//! step; two balls through the cluster path against
 //! `solve_law` at the same tolerance (target <= 3x).
 
 use billiard_contact::nalgebra::Vector3;
@@ -82,6 +83,21 @@ fn bench(cr: &mut Criterion) {
             b.iter(|| resolve_cluster(black_box(&c), &s).unwrap())
         });
     }
+    // The 16-ball break with a trace taking a row per accepted step (the rows' forces
+    // evaluated apart, counted nowhere): the cost of a trace when one is asked for.
+    let c = rack(16, 8.0);
+    cr.bench_function("cluster_break_n16_rtol1e-8_traced", |b| {
+        b.iter(|| {
+            let mut rows = 0usize;
+            let mut sink = |r: &ClusterTraceRow<'_>| rows += r.contacts.len();
+            let trace = ClusterTrace {
+                sampling: ClusterSampling::Steps,
+                sink: &mut sink,
+            };
+            resolve_cluster_traced(black_box(&c), &s, trace).unwrap();
+            rows
+        })
+    });
     // Two balls: the cluster path and solve_law (dopri5, the same rtol).
     let c = rack(2, 1.0);
     let contact = Contact {

@@ -120,7 +120,8 @@ pub use cluster::params::{
     Cluster, ClusterBall, ClusterLaw, PairDamping, CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
 };
 pub use cluster::resolve::{
-    resolve_cluster, BallOut, ClusterOutcome, ClusterSettings, ClusterStats, ContactRecord,
+    resolve_cluster, resolve_cluster_traced, BallOut, ClusterOutcome, ClusterSampling,
+    ClusterSettings, ClusterStats, ClusterTrace, ClusterTraceRow, ContactRecord, ContactTrace,
     StopReason, CLUSTER_DEFAULT_RTOL, CLUSTER_MAX_STEPS,
 };
 pub use cushion::impact::resolve_cushion;

@@ -219,14 +219,10 @@ fn bad_values_are_refused_naming_the_field_with_the_balls_index() {
 fn options_that_do_not_apply_are_refused_naming_them() {
     let path = scene("cluster_cradle_3.toml");
     for (args, option) in [
-        (vec!["--trace", "x.csv"], "--trace"),
-        (vec!["--samples", "5"], "--samples"),
         (vec!["--method", "rk4"], "--method"),
         (vec!["--steps", "10"], "--steps"),
         (vec!["--path", "p.csv"], "--path"),
-        (vec!["--plot-trace", "t.png"], "--plot-trace"),
         (vec!["--atol", "1e-9"], "--atol"),
-        (vec!["--plot", "t.png"], "--plot"),
         (vec!["--time-transform", "false"], "--time-transform"),
     ] {
         let mut all = vec!["run", path.as_str()];

@@ -34,6 +34,7 @@ mod closed_form_paper;
 mod cluster;
 mod cluster_frozen_throw;
 mod cluster_scenes;
+mod cluster_trace;
 mod contact_law_checks;
 mod contact_law_scenes;
 mod convergence_profiles;

@@ -189,6 +189,30 @@ impl Cluster {
     pub fn mu(&self) -> f64 {
         self.mu
     }
+
+    /// The time (s from the start) at which the first pair touches while approaching, the
+    /// balls flying freely until then: 0 when a pair touches and closes at the start. No
+    /// contact presses before it (a force needs a compression, and a compression an
+    /// approach), so a trace's action starts there (docs/formats.md#the-cluster-trace).
+    pub fn first_touch_time(&self) -> f64 {
+        let b = &self.balls;
+        let mut first = f64::INFINITY;
+        for i in 0..b.len() {
+            for j in i + 1..b.len() {
+                let d = b[i].ball.radius() + b[j].ball.radius();
+                let p = b[j].position - b[i].position;
+                if let Some(t) = first_touch(p, b[j].velocity - b[i].velocity, d) {
+                    first = first.min(t);
+                }
+            }
+        }
+        // Cluster::new refuses a cluster without an approaching pair.
+        if first.is_finite() {
+            first
+        } else {
+            0.0
+        }
+    }
 }
 
 /// The time (s) from now at which two balls in free flight, centre of the second at `p` (m)

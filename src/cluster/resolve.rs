@@ -175,6 +175,69 @@ pub struct ClusterOutcome {
     pub stats: ClusterStats,
 }
 
+/// One contact of the set in a trace row: its state at the row's time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactTrace {
+    /// The balls (i < j).
+    pub pair: (usize, usize),
+    /// Time (s, from the start of the run) the contact closed: a pair that closes again is
+    /// a new contact, whose accumulators start from zero.
+    pub start: f64,
+    /// Compression delta = r_i + r_j - n . (x_j - x_i) (m), n the normal held from the
+    /// closing; negative once the balls have moved apart.
+    pub compression: f64,
+    /// Normal force (N) of the pair's law, pushing ball j along n (ball i, minus it).
+    pub normal_force: f64,
+    /// Normal impulse (N s) on ball j since the contact closed.
+    pub normal_impulse: f64,
+    /// Friction force (N) on ball i (on j, minus it).
+    pub friction_force: Vector3<f64>,
+    /// Friction impulse (N s) on ball i since the contact closed.
+    pub friction_impulse: Vector3<f64>,
+    /// Tangential slip s_t (m/s) of ball i's contact point over ball j's.
+    pub slip: Vector3<f64>,
+    /// Whether friction holds the slip at zero (the stick rule).
+    pub stuck: bool,
+    /// Energy dissipated (J) since the contact closed.
+    pub heat: f64,
+}
+
+/// One row of a cluster trace: the time, every ball, every contact in the set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClusterTraceRow<'a> {
+    /// Time (s, from the start of the run).
+    pub t: f64,
+    /// Every ball in the input's order: position (m, lab frame), velocity, spin.
+    pub balls: &'a [BallOut],
+    /// The contacts in the set at `t`, in no particular order; a pair not among them is
+    /// apart (or touching without a contact yet).
+    pub contacts: &'a [ContactTrace],
+    /// The contacts that left the set since the previous row, with their final impulses and
+    /// heat (also those too small for the outcome's records): between samples a contact's
+    /// last row need not be its end.
+    pub opened: &'a [ContactRecord],
+}
+
+/// When a cluster trace takes its rows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ClusterSampling<'a> {
+    /// When stepping starts (the first touch, and again after a free flight) and after
+    /// every accepted step, before the contacts that open at its end leave the set.
+    Steps,
+    /// At these times (s from the start of the run, ascending): inside a step from its
+    /// continuous extension (order 4), at a step's end its state, in a free flight the
+    /// flight's state.
+    Times(&'a [f64]),
+}
+
+/// A trace of a cluster run: where its rows go and when they are taken.
+pub struct ClusterTrace<'a> {
+    /// When the rows are taken.
+    pub sampling: ClusterSampling<'a>,
+    /// Receives each row as it is made.
+    pub sink: &'a mut dyn FnMut(&ClusterTraceRow<'_>),
+}
+
 /// How a contact's friction acts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Mode {
@@ -566,6 +629,52 @@ pub fn resolve_cluster(
     cluster: &Cluster,
     settings: &ClusterSettings,
 ) -> Result<ClusterOutcome, Error> {
+    run_cluster(cluster, settings, None)
+}
+
+/// [`resolve_cluster`] reporting its state to `trace` as it goes
+/// (docs/formats.md#the-cluster-trace): the outcome is the same as without a trace, the
+/// rows' forces being evaluated apart from the run's (they are not counted in its
+/// evaluations).
+///
+/// ```
+/// use billiard_contact::nalgebra::Vector3;
+/// use billiard_contact::*;
+/// let ball = Ball::new(0.17, 0.028575, 0.4)?;
+/// let at = |x: f64, v: f64| ClusterBall {
+///     ball,
+///     position: Vector3::new(x, 0.0, 0.0),
+///     velocity: Vector3::new(v, 0.0, 0.0),
+///     spin: Vector3::zeros(),
+/// };
+/// let balls = vec![at(-0.028575, 1.0), at(0.028575, 0.0)];
+/// let cluster = Cluster::new(balls, ClusterLaw::Same(ContactLaw::elastic(4.5e8)?), 0.0)?;
+/// let mut peak: f64 = 0.0;
+/// let mut sink = |row: &ClusterTraceRow<'_>| {
+///     for c in row.contacts {
+///         peak = peak.max(c.normal_force);
+///     }
+/// };
+/// let trace = ClusterTrace { sampling: ClusterSampling::Steps, sink: &mut sink };
+/// let out = resolve_cluster_traced(&cluster, &ClusterSettings::default(), trace)?;
+/// assert_eq!(out, resolve_cluster(&cluster, &ClusterSettings::default())?);
+/// assert!(peak > 100.0); // N: two pool balls at 1 m/s press with about 1.1 kN
+/// # Ok::<(), billiard_contact::Error>(())
+/// ```
+pub fn resolve_cluster_traced(
+    cluster: &Cluster,
+    settings: &ClusterSettings,
+    trace: ClusterTrace<'_>,
+) -> Result<ClusterOutcome, Error> {
+    run_cluster(cluster, settings, Some(trace))
+}
+
+/// The run of [`resolve_cluster`], with a trace or without.
+fn run_cluster(
+    cluster: &Cluster,
+    settings: &ClusterSettings,
+    trace: Option<ClusterTrace<'_>>,
+) -> Result<ClusterOutcome, Error> {
     let rtol = settings.rtol;
     if !(rtol.is_finite() && (1e-14..=1e-2).contains(&rtol)) {
         return Err(Error::invalid(
@@ -634,6 +743,14 @@ pub fn resolve_cluster(
         records: Vec::new(),
         stats: ClusterStats::default(),
         changes: 0,
+        centre,
+        trace: trace.map(|t| Tracer {
+            sampling: t.sampling,
+            sink: t.sink,
+            next: 0,
+            last: None,
+            opened: Vec::new(),
+        }),
     };
     let stop = run.go()?;
     let y = &run.y;
@@ -672,6 +789,22 @@ struct Run<'a> {
     /// Changes of the contact set or of a contact's mode so far: a derivative kept from a
     /// step is reused only at the same count.
     changes: u64,
+    /// The balls' centroid at the start (m): the state's positions are measured from it.
+    centre: Vector3<f64>,
+    /// Where the trace rows go, if anywhere.
+    trace: Option<Tracer<'a>>,
+}
+
+/// A trace in progress.
+struct Tracer<'a> {
+    sampling: ClusterSampling<'a>,
+    sink: &'a mut dyn FnMut(&ClusterTraceRow<'_>),
+    /// Index of the next sample time ([`ClusterSampling::Times`]).
+    next: usize,
+    /// Time (s) of the last row ([`ClusterSampling::Steps`]).
+    last: Option<f64>,
+    /// The contacts opened since the last row.
+    opened: Vec<ContactRecord>,
 }
 
 impl Run<'_> {
@@ -755,17 +888,21 @@ impl Run<'_> {
         let c = self.active.remove(k);
         let o = PER_BALL * self.nb() + PER_CONTACT * k;
         let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
+        let record = ContactRecord {
+            pair: (c.i, c.j),
+            normal: c.n,
+            normal_impulse: acc[0],
+            friction_impulse: Vector3::new(acc[1], acc[2], acc[3]),
+            start: c.start,
+            duration: self.t - c.start,
+            heat: acc[4],
+            stick_time: c.stick_time,
+        };
+        if let Some(tracer) = self.trace.as_mut() {
+            tracer.opened.push(record);
+        }
         if acc[0] > RECORD_FLOOR * self.m_min * self.v_ref {
-            self.records.push(ContactRecord {
-                pair: (c.i, c.j),
-                normal: c.n,
-                normal_impulse: acc[0],
-                friction_impulse: Vector3::new(acc[1], acc[2], acc[3]),
-                start: c.start,
-                duration: self.t - c.start,
-                heat: acc[4],
-                stick_time: c.stick_time,
-            });
+            self.records.push(record);
         }
     }
 
@@ -942,6 +1079,156 @@ impl Run<'_> {
         hi.q
     }
 
+    /// Sends the row of state `y` at time `t` (the contacts of the set with their forces,
+    /// friction along the seeds when `frozen`) to the trace's sink.
+    fn send_row(&mut self, t: f64, y: &[f64], frozen: bool) {
+        let Some(mut tracer) = self.trace.take() else {
+            return;
+        };
+        let nb = self.nb();
+        let balls: Vec<BallOut> = (0..nb)
+            .map(|b| BallOut {
+                position: pos(y, b) + self.centre,
+                velocity: pos(y, nb + b),
+                spin: pos(y, 2 * nb + b),
+            })
+            .collect();
+        let contacts: Vec<ContactTrace> = if self.active.is_empty() {
+            Vec::new()
+        } else {
+            // A system of its own: its evaluations are not the run's.
+            let fs = self.system(frozen).forces(y);
+            self.active
+                .iter()
+                .zip(&fs.contact)
+                .enumerate()
+                .map(|(k, (c, &(f, fr, sl, _, d)))| {
+                    let o = PER_BALL * nb + PER_CONTACT * k;
+                    ContactTrace {
+                        pair: (c.i, c.j),
+                        start: c.start,
+                        compression: d,
+                        normal_force: f,
+                        normal_impulse: y[o],
+                        friction_force: fr,
+                        friction_impulse: Vector3::new(y[o + 1], y[o + 2], y[o + 3]),
+                        slip: sl,
+                        stuck: c.mode == Mode::Stuck,
+                        heat: y[o + 4],
+                    }
+                })
+                .collect()
+        };
+        (tracer.sink)(&ClusterTraceRow {
+            t,
+            balls: &balls,
+            contacts: &contacts,
+            opened: &tracer.opened,
+        });
+        tracer.opened.clear();
+        self.trace = Some(tracer);
+    }
+
+    /// The next sample time not yet written, if the trace takes samples.
+    fn next_sample(&self) -> Option<f64> {
+        match self.trace.as_ref()? {
+            Tracer {
+                sampling: ClusterSampling::Times(times),
+                next,
+                ..
+            } => times.get(*next).copied(),
+            _ => None,
+        }
+    }
+
+    /// Marks the next sample time written.
+    fn sample_done(&mut self) {
+        if let Some(tracer) = self.trace.as_mut() {
+            tracer.next += 1;
+        }
+    }
+
+    /// Before a step from the current state: with [`ClusterSampling::Steps`], its row when
+    /// it starts a segment (no row at this time yet); with samples, those due by now.
+    fn trace_start(&mut self) {
+        let Some(tracer) = self.trace.as_ref() else {
+            return;
+        };
+        if tracer.sampling == ClusterSampling::Steps {
+            if tracer.last.is_none_or(|l| l < self.t) {
+                self.trace_step_row();
+            }
+            return;
+        }
+        while self.next_sample().is_some_and(|ts| ts <= self.t) {
+            let y = std::mem::take(&mut self.y);
+            self.send_row(self.t, &y, false);
+            self.y = y;
+            self.sample_done();
+        }
+    }
+
+    /// The row of the current state, with [`ClusterSampling::Steps`].
+    fn trace_step_row(&mut self) {
+        let y = std::mem::take(&mut self.y);
+        self.send_row(self.t, &y, false);
+        self.y = y;
+        if let Some(tracer) = self.trace.as_mut() {
+            tracer.last = Some(self.t);
+        }
+    }
+
+    /// After an accepted step from time `t0` to the current time (its continuous extension
+    /// `dense`, when samples fall inside it; friction along the seeds when `frozen`), before
+    /// the contacts that open at its end leave the set: its row, or the samples it covers.
+    fn trace_step(&mut self, t0: f64, dense: Option<&Dense>, frozen: bool) {
+        let Some(tracer) = self.trace.as_ref() else {
+            return;
+        };
+        if tracer.sampling == ClusterSampling::Steps {
+            self.trace_step_row();
+            return;
+        }
+        let mut yx = Vec::new();
+        while let Some(ts) = self.next_sample().filter(|&ts| ts <= self.t) {
+            match dense {
+                Some(dense) if ts < self.t => {
+                    yx.resize(self.y.len(), 0.0);
+                    dense.fill((ts - t0).max(0.0), 0..yx.len(), &mut yx);
+                    self.send_row(ts, &yx, frozen);
+                }
+                _ => {
+                    let y = std::mem::take(&mut self.y);
+                    self.send_row(ts, &y, frozen);
+                    self.y = y;
+                }
+            }
+            self.sample_done();
+        }
+    }
+
+    /// Whether a sample falls before the current time plus `h` (s): the step then needs its
+    /// continuous extension.
+    fn samples_within(&self, h: f64) -> bool {
+        self.next_sample().is_some_and(|ts| ts < self.t + h)
+    }
+
+    /// The samples of a free flight from the current state to time `until` (s): the balls
+    /// move at their velocities, no contact is in the set.
+    fn trace_flight(&mut self, until: f64) {
+        let nb = self.nb();
+        let mut yx = Vec::new();
+        while let Some(ts) = self.next_sample().filter(|&ts| ts <= until) {
+            yx.clone_from(&self.y);
+            let dt = ts - self.t;
+            for k in 0..3 * nb {
+                yx[k] += dt * yx[3 * nb + k];
+            }
+            self.send_row(ts, &yx, false);
+            self.sample_done();
+        }
+    }
+
     /// The run: free flight to the next touch while no contact is in the set, steps with
     /// events while one is.
     fn go(&mut self) -> Result<StopReason, Error> {
@@ -965,6 +1252,8 @@ impl Run<'_> {
             self.close_pressing();
             if self.active.is_empty() {
                 if !self.fly() {
+                    // Samples after the end: the balls fly apart.
+                    self.trace_flight(f64::INFINITY);
                     return Ok(StopReason::Separated);
                 }
                 h = FIRST_STEP * self.tau0;
@@ -974,6 +1263,7 @@ impl Run<'_> {
             if h < MIN_STEP * self.tau0 {
                 return Ok(StopReason::StepTooSmall);
             }
+            self.trace_start();
             // Each sliding contact's direction at the start of the step.
             {
                 let sys = self.system(false);
@@ -1060,11 +1350,15 @@ impl Run<'_> {
                 events = self.crossings(&sys, &self.y, &out.y);
             }
             if events.is_empty() {
+                let dense = self.samples_within(h).then(|| Dense::new(&self.y, &out, h));
+                let t0 = self.t;
                 self.stats.steps += 1;
                 self.t += h;
-                h = DOPRI5_CONTROL.next(h, err);
+                let hn = DOPRI5_CONTROL.next(h, err);
                 let last = out.k.swap_remove(6);
                 self.y = out.y;
+                self.trace_step(t0, dense.as_ref(), frozen);
+                h = hn;
                 // The last stage is the derivative at the new state (first same as last),
                 // the next step's first, unless the contacts' modes changed.
                 if !self.after_step(Vec::new()) && !frozen {
@@ -1090,8 +1384,10 @@ impl Run<'_> {
             let evals = sys.evaluations.get();
             self.stats.evaluations += evals;
             self.stats.steps += 1;
+            let t0 = self.t;
             self.y = ya;
             self.t += at;
+            self.trace_step(t0, Some(&dense), frozen);
             // Every event located at that time (or crossed by it), contacts removed last.
             let mut opened = Vec::new();
             let mut released = Vec::new();
@@ -1267,6 +1563,7 @@ impl Run<'_> {
         let Some(t) = next else {
             return false;
         };
+        self.trace_flight(self.t + t);
         for b in 0..nb {
             for k in 0..3 {
                 self.y[3 * b + k] += t * self.y[3 * nb + 3 * b + k];

@@ -4,6 +4,7 @@
 pub(crate) mod atomic_file;
 pub(crate) mod ball_paths;
 pub(crate) mod cluster;
+pub(crate) mod cluster_trace;
 pub(crate) mod cushion;
 pub(crate) mod report;
 pub(crate) mod summary;

@@ -29,7 +29,8 @@
 use crate::base::error::Error;
 use crate::cluster::params::{Cluster, ClusterBall, ClusterLaw, PairDamping};
 use crate::cluster::resolve::{
-    resolve_cluster, ClusterOutcome, ClusterSettings, StopReason, CLUSTER_DEFAULT_RTOL,
+    resolve_cluster, resolve_cluster_traced, ClusterOutcome, ClusterSettings, ClusterTrace,
+    StopReason, CLUSTER_DEFAULT_RTOL,
 };
 use crate::model::contact_law::{Damping, STIFFNESS_FIELD};
 use crate::model::material::Material;
@@ -302,16 +303,34 @@ impl ClusterScene {
         settings: &ClusterSettings,
         rtol_field: &str,
     ) -> Result<ClusterOutcome, Error> {
-        let out =
-            resolve_cluster(&self.cluster, settings).map_err(|e| scene_fields(e, rtol_field))?;
-        match out.stop {
-            StopReason::Separated => Ok(out),
-            stop => Err(Error::ClusterStopped {
-                stop: stop_name(stop),
-                time: out.time,
-                steps: out.stats.steps,
-            }),
-        }
+        ended(resolve_cluster(&self.cluster, settings), rtol_field)
+    }
+
+    /// [`ClusterScene::run`] reporting to `trace` (docs/formats.md#the-cluster-trace).
+    pub(crate) fn run_traced(
+        &self,
+        settings: &ClusterSettings,
+        rtol_field: &str,
+        trace: ClusterTrace<'_>,
+    ) -> Result<ClusterOutcome, Error> {
+        ended(
+            resolve_cluster_traced(&self.cluster, settings, trace),
+            rtol_field,
+        )
+    }
+}
+
+/// A run's result as a scene's: the kernel's errors named as the scene names its fields,
+/// a run that did not separate an error.
+fn ended(out: Result<ClusterOutcome, Error>, rtol_field: &str) -> Result<ClusterOutcome, Error> {
+    let out = out.map_err(|e| scene_fields(e, rtol_field))?;
+    match out.stop {
+        StopReason::Separated => Ok(out),
+        stop => Err(Error::ClusterStopped {
+            stop: stop_name(stop),
+            time: out.time,
+            steps: out.stats.steps,
+        }),
     }
 }
 

@@ -2,6 +2,7 @@
 //! embedded and registered once under the family name `sans-serif`.
 
 pub(crate) mod angle_panel;
+pub(crate) mod cluster;
 pub(crate) mod cushion;
 pub(crate) mod paths;
 pub(crate) mod rebound;
