@@ -653,4 +653,20 @@ fn a_compression_lost_in_rounding_is_refused() {
         0.0
     )
     .is_ok());
+    // And a compression past the pair's effective radius (r/2 = 14.3 mm for equal balls) is
+    // no Hertz contact: k = 10 N/m^1.5 at 1 m/s compresses (5 0.085 / 40)^0.4 = 0.163 m;
+    // k = 1e4 compresses 0.0103 m (resolved: a very soft ball).
+    let soft = |k: f64| {
+        Cluster::new(
+            row(),
+            ClusterLaw::Same(ContactLaw::elastic(k).unwrap()),
+            0.0,
+        )
+    };
+    let msg = soft(10.0).unwrap_err().to_string();
+    assert!(
+        msg.starts_with("cluster.balls[0], cluster.balls[1]") && msg.contains("effective radius"),
+        "{msg}"
+    );
+    assert!(soft(1e4).is_ok());
 }

@@ -141,8 +141,8 @@ impl Cluster {
             ));
         }
         let laws = pair_laws(&balls, law)?;
-        // Every pair's Hertz compression at the fastest speed in the cluster must keep its
-        // digits beside the positions' rounding: a stiffness of 1e30 (E ~ 1e30 Pa) gives
+        // Every pair's Hertz compression at the fastest speed in the cluster (the speed plus
+        // r |w| of its fastest ball) must keep its digits beside the positions' rounding: a stiffness of 1e30 (E ~ 1e30 Pa) gives
         // 1e-12 m at 1 m/s and answers off by 2.5e-6, 1e60 ran to the work bound.
         let speed = balls
             .iter()
@@ -166,6 +166,24 @@ impl Cluster {
                             "at least {MIN_COMPRESSION:e} of r_i + r_j = {d} m: a stiffer \
                              material or slower balls leave the compression in the rounding \
                              of the positions"
+                        ),
+                    ));
+                }
+                // And stay a Hertz contact: a compression past the pair's effective radius
+                // (a contact radius sqrt(R delta) past R) is none. A ball at 1.5e308 m/s
+                // gave an infinite compression and ran 5 s to the work bound (fuzzing).
+                let effective = a.radius() * b.radius() / d;
+                if delta > effective {
+                    return Err(Error::invalid(
+                        format!("cluster.balls[{i}], cluster.balls[{j}]"),
+                        format!(
+                            "a Hertz compression of {delta:e} m at {speed:e} m/s (stiffness \
+                             {k:e} N/m^1.5)"
+                        ),
+                        format!(
+                            "at most the pair's effective radius r_i r_j / (r_i + r_j) = \
+                             {effective} m: a stiffer material or slower balls (Hertz's \
+                             contact is small against the balls)"
                         ),
                     ));
                 }
