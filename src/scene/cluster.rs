@@ -307,6 +307,7 @@ impl ClusterScene {
     }
 
     /// [`ClusterScene::run`] reporting to `trace` (docs/formats.md#the-cluster-trace).
+    #[cfg_attr(not(feature = "cli"), allow(dead_code))]
     pub(crate) fn run_traced(
         &self,
         settings: &ClusterSettings,
