@@ -374,3 +374,68 @@ fn mindlin_without_materials_is_refused_naming_the_field() {
     );
     assert!(!e.contains('\n'), "{e}");
 }
+
+/// A two-ball cluster scene's text, `contact` the lines of its `[contact]` table and `law`
+/// those of `[contact.law]`, `material` each ball's extra lines.
+fn scene_text(contact: &str, law: &str, material: &str) -> String {
+    let ball = |x: f64, v: &str, w: &str| {
+        format!(
+            "[[balls]]\nmass = 0.17\nradius = 0.028575\n{material}position = [{x}, 0, 0]\n\
+             velocity = {v}\nspin = {w}\n"
+        )
+    };
+    ball(0.0, "[1.5, 0.3, 0.0]", "[0.0, 0.0, 40.0]")
+        + &ball(0.05715, "[0.0, 0.0, 0.0]", "[0.0, 0.0, 0.0]")
+        + &format!("[contact]\nmu = 0.2\n{contact}[contact.law]\nmodel = \"hertz\"\n{law}")
+}
+
+#[test]
+fn cluster_scenes_take_the_tangential_key() {
+    let resin_keys = "youngs_modulus = 5.4e9\npoisson_ratio = 0.34\n";
+    let mindlin = ClusterScene::parse(
+        &scene_text("tangential = \"mindlin\"\n", "", resin_keys),
+        None,
+    )
+    .unwrap();
+    assert_eq!(mindlin.cluster.tangential(), ClusterTangential::Mindlin);
+    // The scene runs the kernel on its cluster: the same as the cluster built by hand.
+    let by_hand = Cluster::new(
+        mindlin.cluster.balls().to_vec(),
+        ClusterLaw::Materials(vec![resin(); 2], PairDamping::None),
+        0.2,
+    )
+    .unwrap()
+    .with_tangential(ClusterTangential::Mindlin)
+    .unwrap();
+    let a = mindlin.run(&mindlin.settings, "solver.rtol").unwrap();
+    assert_eq!(a, resolve_cluster(&by_hand, &mindlin.settings).unwrap());
+    // "rigid" written out is the default.
+    let rigid = ClusterScene::parse(
+        &scene_text("tangential = \"rigid\"\n", "", resin_keys),
+        None,
+    )
+    .unwrap();
+    let default = ClusterScene::parse(&scene_text("", "", resin_keys), None).unwrap();
+    assert_eq!(rigid, default);
+    assert_eq!(default.cluster.tangential(), ClusterTangential::Rigid);
+    // The spring's friction is not the stick rule's.
+    let b = default.run(&default.settings, "solver.rtol").unwrap();
+    assert!((a.balls[0].spin - b.balls[0].spin).norm() > 1e-3);
+}
+
+#[test]
+fn cluster_scenes_refuse_mindlin_without_materials() {
+    let e = ClusterScene::parse(
+        &scene_text("tangential = \"mindlin\"\n", "stiffness = 4.5e8\n", ""),
+        None,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("contact.tangential"), "{e}");
+    assert!(e.contains("youngs_modulus"), "{e}");
+    assert!(!e.contains('\n'), "{e}");
+    let e = ClusterScene::parse(&scene_text("tangential = \"soft\"\n", "", ""), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("tangential"), "{e}");
+}
