@@ -78,6 +78,7 @@ fn kinetic(balls: &[ClusterBall], v: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
 /// kernel `resolve_sphere_sphere_compliant_damped` (its own Dormand-Prince, its own events),
 /// on the same balls, materials, damping and mu. Returns the largest difference of the
 /// outgoing velocities and r times spins over the speed scale, and the cluster's outcome.
+#[allow(clippy::too_many_arguments)]
 fn against_pair(
     materials: (Material, Material),
     damping: PairDamping,
