@@ -20,8 +20,9 @@ use billiard_contact::work_precision::{self, StudyForce, StudyOptions};
 use billiard_contact::{
     resolve_cluster, resolve_sphere_plane_compliant_damped, resolve_sphere_sphere_compliant,
     run_scene, Ball, Cluster, ClusterBall, ClusterLaw, ClusterOutcome, ClusterSettings,
-    CompliantOutcome, CompliantSphere, ContactLaw, CushionRestitution, CushionScene, Damping,
-    Error, Material, Method, PairDamping, Report, Scene, SceneOutcome, SolverSettings, StopReason,
+    ClusterTangential, CompliantOutcome, CompliantSphere, ContactLaw, CushionRestitution,
+    CushionScene, Damping, Error, Material, Method, PairDamping, Report, Scene, SceneOutcome,
+    SolverSettings, StopReason,
 };
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -742,7 +743,10 @@ const CLUSTER_GLOBAL_FIELDS: usize = 6;
 ///   times the spins' scale about x, y or z ((i + byte 7) mod 3), its size (unequal: radius
 ///   (0.8 + 0.4 b/255) r_pool, mass as the cube, material b mod 8);
 /// - 48: raw overrides (bit 7 of byte 0): up to 3 of a selector and an f64 (see
-///   `overrides`), fields 12 per ball then the 6 globals of `CLUSTER_GLOBAL_FIELDS`.
+///   `overrides`), fields 12 per ball then the 6 globals of `CLUSTER_GLOBAL_FIELDS`;
+/// - `CLUSTER_TANGENTIAL_BYTE` (past the overrides' 27 bytes): bit 0 Mindlin's spring at
+///   every contact (`ClusterTangential::Mindlin`; refused naming `cluster.tangential` when
+///   the laws are not from the materials).
 ///
 /// Promises: a refusal names its field; or the run's balls, contacts and time are finite
 /// and
@@ -757,7 +761,8 @@ const CLUSTER_GLOBAL_FIELDS: usize = 6;
 ///   impulse| <= mu P (to 1e-6 of it and 100 rtol of the momentum scale, the stepping's
 ///   error of that state: `FRICTION_STEPS`), the stick time
 ///   within the contact;
-/// - energy: K_out <= K_in (1 + tol) (with the stick rule), tol = 1e3 rtol (the local error is rtol on each
+/// - energy: K_out <= K_in (1 + tol) (with the stick rule, or Mindlin's spring, which
+///   never creates energy: docs/tangential.md#energy), tol = 1e3 rtol (the local error is rtol on each
 ///   state's scale per step; 1e3 covers some hundred steps per contact, where the tests
 ///   measure 48 rtol for a 7-ball rack), and for a run that separated K_in - K_out is the
 ///   heat summed, to tol K_in;
@@ -941,7 +946,12 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
         Ok(l) => l,
         Err(e) => return refused(&e, what, names_field),
     };
-    let cluster = match Cluster::new(balls, law, mu) {
+    let tangential = if b(CLUSTER_TANGENTIAL_BYTE) & 1 != 0 {
+        ClusterTangential::Mindlin
+    } else {
+        ClusterTangential::Rigid
+    };
+    let cluster = match Cluster::new(balls, law, mu).and_then(|c| c.with_tangential(tangential)) {
         Ok(c) => c,
         Err(e) => return refused(&e, what, names_field),
     };
@@ -954,6 +964,10 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
         }
     }
 }
+
+/// The byte of `check_cluster`'s input whose bit 0 draws Mindlin's spring: after the raw
+/// overrides (byte 48, 3 of 9 bytes each).
+const CLUSTER_TANGENTIAL_BYTE: usize = 80;
 
 /// Whether stopped cluster runs of fewer than 8 balls are accepted
 /// (`CLUSTER_ALLOW_STOPPED=1`).
@@ -1026,6 +1040,8 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         .map(|(a, b)| kinetic(a.ball.mass(), a.ball.inertia(), &b.velocity, &b.spin))
         .sum();
     let tol = 1e3 * settings.rtol;
+    // Mindlin's spring has no stick rule to switch off: it never creates energy.
+    let dissipative = settings.stick || cluster.tangential() == ClusterTangential::Mindlin;
     if stopped {
         // Where the step control gave up: the state is checked, the contacts (the stuck
         // ones of a tight rack carry friction at zero normal force: docs/cluster.md's
@@ -1065,7 +1081,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
                 "{what}: stick time of {c:?}"
             );
         }
-        if k0.is_finite() && settings.stick {
+        if k0.is_finite() && dissipative {
             assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
         }
         let cap = mu * c.normal_impulse.max(0.0);
@@ -1079,7 +1095,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
     }
     if k0.is_finite() {
         assert!(
-            k1 <= k0 * (1.0 + tol) || !settings.stick,
+            k1 <= k0 * (1.0 + tol) || !dissipative,
             "{what}: kinetic energy {k0:e} -> {k1:e}"
         );
         assert!(

@@ -117,7 +117,8 @@ pub use base::method::Method;
 pub use base::settings::{Sampling, SolverSettings, Stats};
 pub use closed_form::kernel::ClosedForm;
 pub use cluster::params::{
-    Cluster, ClusterBall, ClusterLaw, PairDamping, CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
+    Cluster, ClusterBall, ClusterLaw, ClusterTangential, PairDamping, CLUSTER_TANGENTIAL_FIELD,
+    CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
 };
 pub use cluster::resolve::{
     resolve_cluster, resolve_cluster_traced, BallOut, ClusterOutcome, ClusterSampling,

@@ -33,6 +33,7 @@ mod cli_work_precision_values;
 mod closed_form_paper;
 mod cluster;
 mod cluster_frozen_throw;
+mod cluster_mindlin;
 mod cluster_scenes;
 mod cluster_trace;
 mod contact_law_checks;

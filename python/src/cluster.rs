@@ -1,14 +1,15 @@
 //! `Cluster`: N balls that touch or come to touch, resolved together as one system
 //! (docs/cluster.md): every pair's normal law from the balls' materials (or one given
-//! stiffness), Coulomb friction with the stick rule at every contact.
+//! stiffness), Coulomb friction with the stick rule at every contact, or Mindlin's
+//! tangential spring (`tangential="mindlin"`).
 
 use crate::ball::Ball;
 use crate::errors::to_py;
 use crate::inputs::float_array;
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{
-    resolve_cluster, Cluster as Kernel, ClusterBall, ClusterLaw, ClusterSettings, ContactLaw,
-    Damping, Error, HertzContact, Material, PairDamping, StopReason,
+    resolve_cluster, Cluster as Kernel, ClusterBall, ClusterLaw, ClusterSettings,
+    ClusterTangential, ContactLaw, Damping, Error, HertzContact, Material, PairDamping, StopReason,
 };
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -28,7 +29,9 @@ const DEFAULT_RTOL: f64 = billiard_contact::CLUSTER_DEFAULT_RTOL;
 /// stiffness (N/m^1.5) for every pair instead; damping None (elastic), "hunt-crossley"
 /// or "kuwabara-kono", its coefficient (s/m or s) or, instead, the restitution a head-on
 /// impact at at_speed (m/s, relative approach speed) has; stick: whether a contact whose
-/// slip stops sticks (the stick rule, default True).
+/// slip stops sticks (the stick rule, default True); tangential: "rigid" (default, Coulomb
+/// with the stick rule) or "mindlin" (Mindlin's no-slip tangential spring under Coulomb's
+/// cap at every contact, docs/cluster.md; it needs youngs_modulus and poisson_ratio).
 ///
 /// The keyword names are the scene file's: [balls] youngs_modulus and poisson_ratio,
 /// [contact.law] stiffness, damping, coefficient, restitution and at_speed. A calibrated
@@ -48,6 +51,8 @@ pub struct Cluster {
     restitution: Option<f64>,
     at_speed: Option<f64>,
     stick: bool,
+    /// "rigid" or "mindlin".
+    tangential: String,
     /// The law of every pair (calibrations done once, here).
     law: ClusterLaw,
 }
@@ -113,6 +118,7 @@ fn law_of(
     coefficient: Option<f64>,
     restitution: Option<f64>,
     at_speed: Option<f64>,
+    mindlin: bool,
 ) -> PyResult<ClusterLaw> {
     let material = match (youngs_modulus, poisson_ratio) {
         (Some(e), Some(nu)) => Some(Material::new(e, nu).map_err(|e| to_py(keyword(e)))?),
@@ -216,8 +222,9 @@ fn law_of(
                     laws.push((a, b, law));
                 }
             }
+            // Mindlin's spring needs the materials themselves (its shear modulus).
             Ok(match laws.as_slice() {
-                [(_, _, law)] => ClusterLaw::Same(*law),
+                [(_, _, law)] if !mindlin => ClusterLaw::Same(*law),
                 _ => ClusterLaw::Materials(vec![m; balls.len()], pair_damping),
             })
         }
@@ -257,10 +264,11 @@ impl Cluster {
     #[new]
     #[pyo3(signature = (*, balls, mu, youngs_modulus = None, poisson_ratio = None,
                         stiffness = None, damping = None, coefficient = None,
-                        restitution = None, at_speed = None, stick = true),
+                        restitution = None, at_speed = None, stick = true,
+                        tangential = "rigid".to_string()),
            text_signature = "(*, balls, mu, youngs_modulus=None, poisson_ratio=None, \
                              stiffness=None, damping=None, coefficient=None, \
-                             restitution=None, at_speed=None, stick=True)")]
+                             restitution=None, at_speed=None, stick=True, tangential='rigid')")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         balls: &Bound<'_, PyAny>,
@@ -273,7 +281,26 @@ impl Cluster {
         #[pyo3(from_py_with = crate::args::restitution_or_none)] restitution: Option<f64>,
         #[pyo3(from_py_with = crate::args::at_speed)] at_speed: Option<f64>,
         #[pyo3(from_py_with = crate::args::stick)] stick: bool,
+        #[pyo3(from_py_with = crate::args::tangential)] tangential: String,
     ) -> PyResult<Self> {
+        let mindlin = match tangential.as_str() {
+            "rigid" => false,
+            "mindlin" => true,
+            other => {
+                return Err(bad(
+                    "tangential",
+                    format!("{other:?}"),
+                    "\"rigid\" (the stick rule) or \"mindlin\" (Mindlin's tangential spring)",
+                ))
+            }
+        };
+        if mindlin && (youngs_modulus.is_none() || poisson_ratio.is_none()) {
+            return Err(bad(
+                "youngs_modulus, poisson_ratio",
+                "not given with tangential=\"mindlin\"",
+                "the balls' material (Mindlin's spring and Hertz's force need it)",
+            ));
+        }
         let balls: Vec<Ball> = balls
             .try_iter()
             .map_err(|_| PyTypeError::new_err("balls: expected a list of Ball"))?
@@ -309,6 +336,7 @@ impl Cluster {
             coefficient,
             restitution,
             at_speed,
+            mindlin,
         )?;
         Ok(Cluster {
             balls,
@@ -321,6 +349,7 @@ impl Cluster {
             restitution,
             at_speed,
             stick,
+            tangential,
             law,
         })
     }
@@ -377,9 +406,14 @@ impl Cluster {
         };
         let law = self.law.clone();
         let mu = self.mu;
+        let tangential = if self.tangential == "mindlin" {
+            ClusterTangential::Mindlin
+        } else {
+            ClusterTangential::Rigid
+        };
         let out = py
             .detach(move || {
-                let cluster = Kernel::new(balls, law, mu)?;
+                let cluster = Kernel::new(balls, law, mu)?.with_tangential(tangential)?;
                 resolve_cluster(&cluster, &settings)
             })
             .map_err(|e| to_py(keyword(e)))?;
@@ -454,6 +488,7 @@ impl Cluster {
         kwargs.set_item("restitution", self.restitution)?;
         kwargs.set_item("at_speed", self.at_speed)?;
         kwargs.set_item("stick", self.stick)?;
+        kwargs.set_item("tangential", &self.tangential)?;
         Ok((PyTuple::empty(py), kwargs))
     }
 
@@ -463,6 +498,7 @@ impl Cluster {
             .map(|b| b.ball)
             .eq(other.balls.iter().map(|b| b.ball))
             && (self.mu, self.stick) == (other.mu, other.stick)
+            && self.tangential == other.tangential
             && self.law == other.law
     }
 
@@ -492,6 +528,9 @@ impl Cluster {
         }
         if !self.stick {
             s += ", stick=False";
+        }
+        if self.tangential != "rigid" {
+            s += &format!(", tangential={:?}", self.tangential);
         }
         s + ")"
     }

@@ -5,6 +5,7 @@ use crate::base::error::Error;
 use crate::model::contact_law::{ContactLaw, Damping};
 use crate::model::material::{hertz_stiffness, Material};
 use crate::model::params::Ball;
+use crate::tangential::impact::shear_compliance;
 use nalgebra::Vector3;
 
 /// Most balls in one cluster: a full rack and its cue ball with room to spare; the stick
@@ -71,6 +72,29 @@ pub struct Cluster {
     pub(crate) laws: Vec<ContactLaw>,
     /// Coulomb's mu (dimensionless), the same at every contact.
     pub(crate) mu: f64,
+    /// Each ball's material, when the laws came from them ([`ClusterLaw::Materials`]).
+    pub(crate) materials: Option<Vec<Material>>,
+    /// The tangential law of every contact.
+    pub(crate) tangential: ClusterTangential,
+    /// Mindlin's 8 G* sqrt(R*) of pair (i, j) at `pair_index(i, j)` (N/m^1.5: the spring's
+    /// stiffness is this times sqrt(delta)); empty under [`ClusterTangential::Rigid`].
+    pub(crate) shear: Vec<f64>,
+}
+
+/// The field naming a cluster's tangential law.
+pub const CLUSTER_TANGENTIAL_FIELD: &str = "cluster.tangential";
+
+/// How every contact of a cluster carries friction (docs/cluster.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ClusterTangential {
+    /// Coulomb's friction with the rigid stick rule: a stuck contact's slip is held at zero
+    /// by whatever friction the coupled stick solve gives (docs/cluster.md#the-stick-solve).
+    #[default]
+    Rigid,
+    /// Mindlin's no-slip tangential spring under Coulomb's cap at every contact, as the
+    /// two-sphere compliant kernel (docs/tangential.md#two-spheres): stiffness
+    /// k_t = 8 G* sqrt(R* delta) from the two balls' materials.
+    Mindlin,
 }
 
 /// Index of pair (i, j), i < j, among the n (n - 1) / 2 pairs.
@@ -140,6 +164,10 @@ impl Cluster {
                 "at least one pair that approaches",
             ));
         }
+        let materials = match &law {
+            ClusterLaw::Materials(m, _) => Some(m.clone()),
+            ClusterLaw::Same(_) => None,
+        };
         let laws = pair_laws(&balls, law)?;
         // Every pair's Hertz compression at the fastest speed in the cluster (the speed plus
         // r |w| of its fastest ball) must keep its digits beside the positions' rounding: a stiffness of 1e30 (E ~ 1e30 Pa) gives
@@ -189,7 +217,58 @@ impl Cluster {
                 }
             }
         }
-        Ok(Cluster { balls, laws, mu })
+        Ok(Cluster {
+            balls,
+            laws,
+            mu,
+            materials,
+            tangential: ClusterTangential::Rigid,
+            shear: Vec::new(),
+        })
+    }
+
+    /// The cluster with the tangential law `tangential` at every contact. Mindlin's spring
+    /// needs the balls' materials (its stiffness 8 G* sqrt(R* delta), 1/G* = (2 - nu_i)/G_i +
+    /// (2 - nu_j)/G_j): a cluster whose laws were not built from them
+    /// ([`ClusterLaw::Materials`]) is refused naming `cluster.tangential`.
+    pub fn with_tangential(mut self, tangential: ClusterTangential) -> Result<Self, Error> {
+        self.shear = match tangential {
+            ClusterTangential::Rigid => Vec::new(),
+            ClusterTangential::Mindlin => {
+                let Some(materials) = &self.materials else {
+                    return Err(Error::invalid(
+                        CLUSTER_TANGENTIAL_FIELD,
+                        "\"mindlin\" without the balls' materials",
+                        "\"mindlin\" with every ball's youngs_modulus and poisson_ratio (the \
+                         cluster's laws from its materials), or \"rigid\"",
+                    ));
+                };
+                let n = self.balls.len();
+                let mut shear = Vec::with_capacity(n * (n - 1) / 2);
+                for i in 0..n {
+                    for j in i + 1..n {
+                        let (a, b) = (&self.balls[i].ball, &self.balls[j].ball);
+                        let radius = hertz_stiffness((a, &materials[i]), (b, &materials[j])).1;
+                        let g_star = 1.0
+                            / (shear_compliance(&materials[i]) + shear_compliance(&materials[j]));
+                        shear.push(8.0 * g_star * radius.sqrt());
+                    }
+                }
+                shear
+            }
+        };
+        self.tangential = tangential;
+        Ok(self)
+    }
+
+    /// The tangential law of every contact.
+    pub fn tangential(&self) -> ClusterTangential {
+        self.tangential
+    }
+
+    /// Each ball's material, when the laws came from them.
+    pub fn materials(&self) -> Option<&[Material]> {
+        self.materials.as_deref()
     }
 
     /// The balls.

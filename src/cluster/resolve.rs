@@ -11,12 +11,16 @@
 //! s = v_i - v_j + r_i w_i x n + r_j w_j x n, its tangential part s_t = s - (s . n) n
 //! (eqs 5-6 of two balls).
 
-use super::params::{first_touch, pair_index, Cluster, CLUSTER_TOUCH_TOLERANCE};
+use super::params::{first_touch, pair_index, Cluster, ClusterTangential, CLUSTER_TOUCH_TOLERANCE};
 use crate::base::error::Error;
 use crate::base::root::{illinois_update, Bound, Side};
 use crate::cushion::tableau::{DOPRI5_A, DOPRI5_CONTROL, DOPRI5_E};
 use crate::model::contact_law::ContactLaw;
+use crate::model::contact_law::Damping;
 use crate::model::material::elastic_impact;
+use crate::tangential::impact::{
+    capped, mindlin_stiffness, spring_slide_rate, spring_slides, spring_stick_rate, NEGLIGIBLE_MU,
+};
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::cell::Cell;
 
@@ -82,6 +86,13 @@ const MIN_STEP: f64 = 1e-15;
 const PER_BALL: usize = 9;
 /// Components of the state per open contact: normal impulse, friction impulse (3), heat.
 const PER_CONTACT: usize = 5;
+/// Components per open contact under Mindlin's spring: the five above, then the spring's
+/// force S (N) along the contact's two tangent vectors.
+const PER_SPRING_CONTACT: usize = PER_CONTACT + 2;
+
+/// Relative shortfall of |S| under mu f at which a spring still counts as on its cap, for
+/// the decision to slide: the pair kernel's band (docs/tangential.md#stepping).
+const SPRING_CAP_BAND: f64 = 1e-9;
 
 /// Why a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -251,6 +262,17 @@ enum Mode {
     /// instead would flip the friction at every zero of the slip, and the steps would chase
     /// that chatter to the work bound.
     Continued,
+    /// Mindlin's spring (docs/cluster.md#tangential-compliance-in-clusters), sticking: its
+    /// force S follows S' = -k_t u + S min(delta', 0) / (2 delta).
+    SpringStick,
+    /// Mindlin's spring on Coulomb's cap, sliding: |S| = mu f, turning with the slip.
+    SpringSlide,
+}
+
+impl Mode {
+    fn spring(self) -> bool {
+        matches!(self, Mode::SpringStick | Mode::SpringSlide)
+    }
 }
 
 /// A contact in the current set.
@@ -265,6 +287,8 @@ struct Active {
     /// An orthonormal basis of the tangent plane.
     t: [Vector3<f64>; 2],
     law: ContactLaw,
+    /// Mindlin's 8 G* sqrt(R*) of the pair (N/m^1.5; 0 under the rigid rule).
+    k_t0: f64,
     mode: Mode,
     /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
     /// friction keeps while a step is located: the slip's at the start of the step.
@@ -315,6 +339,11 @@ struct System<'a> {
     bodies: &'a [Body],
     active: &'a [Active],
     mu: f64,
+    /// Coulomb's mu of the springs: `mu`, or 0 below [`NEGLIGIBLE_MU`] (as the pair kernel:
+    /// such a friction moves no velocity by more than its rounding).
+    spring_mu: f64,
+    /// Components of the state per contact.
+    pc: usize,
     /// Reference speed (m/s).
     v_ref: f64,
     /// Normal force (N) under which a contact does not press for the stick rule
@@ -361,12 +390,16 @@ impl System<'_> {
         let mut acc = vec![[Vector3::zeros(); 2]; self.nb()];
         let mut contact = Vec::with_capacity(self.active.len());
         let floor = SLIP_FLOOR * self.v_ref;
-        for c in self.active {
+        for (k, c) in self.active.iter().enumerate() {
             let (d, w) = self.compression(y, c);
             let f = c.law.force(d, w);
             let s = self.slip(y, c);
             let sr = s - c.offset;
             let friction = match c.mode {
+                Mode::SpringStick | Mode::SpringSlide => {
+                    let a = capped(self.spring(y, k), self.spring_mu * f.max(0.0));
+                    c.t[0] * a[0] + c.t[1] * a[1]
+                }
                 Mode::Sliding if f > 0.0 && self.mu > 0.0 => {
                     let sn = sr.norm();
                     let dir = if self.frozen || sn <= floor {
@@ -391,6 +424,43 @@ impl System<'_> {
             self.stuck(&mut acc, &mut contact);
         }
         Forces { acc, contact }
+    }
+
+    /// The spring S (N) of contact `k` in its tangent basis.
+    fn spring(&self, y: &[f64], k: usize) -> [f64; 2] {
+        let o = PER_BALL * self.nb() + self.pc * k + PER_CONTACT;
+        [y[o], y[o + 1]]
+    }
+
+    /// Of spring contact `k` at state `y` whose accelerations are `acc`: its spring S (N),
+    /// the cap mu f (N), the spring's stick rate (N/s) and the cap's rate (N/s).
+    fn spring_rates(
+        &self,
+        y: &[f64],
+        acc: &[[Vector3<f64>; 2]],
+        k: usize,
+    ) -> ([f64; 2], f64, [f64; 2], f64) {
+        let c = &self.active[k];
+        let (d, w) = self.compression(y, c);
+        let f = c.law.force(d, w);
+        let sv = self.spring(y, k);
+        let sl = self.slip(y, c);
+        let u = [c.t[0].dot(&sl), c.t[1].dot(&sl)];
+        let stick = spring_stick_rate(mindlin_stiffness(c.k_t0, d), u, sv, d, w);
+        // The cap's rate, as the pair kernel's: (mu f)' along the motion, delta'' the
+        // contact's own, n . (a_i - a_j) (for two balls -f / m*, the law's `force_rate`).
+        let cap_rate = if d <= 0.0 {
+            0.0
+        } else if c.law.damping() == Damping::None {
+            self.spring_mu * 1.5 * c.law.stiffness() * d.sqrt() * w
+        } else if f > 0.0 {
+            let accel = c.n.dot(&(acc[c.i][0] - acc[c.j][0]));
+            // `force_rate` takes delta'' as -f / m: the mass that gives this one.
+            self.spring_mu * c.law.force_rate(d, w, -f / accel)
+        } else {
+            0.0
+        };
+        (sv, self.spring_mu * f.max(0.0), stick, cap_rate)
     }
 
     /// Adds the force `f` (N) on ball i at the contact point r_i n of `c` (and -f on ball j
@@ -479,12 +549,27 @@ impl System<'_> {
             }
         }
         for (c, (f, fr, s, w, _)) in fs.contact.iter().enumerate() {
-            let o = PER_BALL * nb + PER_CONTACT * c;
+            let o = PER_BALL * nb + self.pc * c;
             dy[o] = *f;
             dy[o + 1] = fr.x;
             dy[o + 2] = fr.y;
             dy[o + 3] = fr.z;
             dy[o + 4] = f * w - fr.dot(s);
+            let mode = self.active[c].mode;
+            if mode.spring() {
+                let rate = if self.spring_mu > 0.0 {
+                    let (sv, _, stick, cap_rate) = self.spring_rates(y, &fs.acc, c);
+                    if mode == Mode::SpringSlide && (sv[0] != 0.0 || sv[1] != 0.0) {
+                        spring_slide_rate(stick, sv, cap_rate, false)
+                    } else {
+                        stick
+                    }
+                } else {
+                    [0.0, 0.0]
+                };
+                dy[o + PER_CONTACT] = rate[0];
+                dy[o + PER_CONTACT + 1] = rate[1];
+            }
         }
     }
 
@@ -602,6 +687,11 @@ enum Event {
     Release(usize),
     /// Pair (i, j) not in the set closes.
     Close(usize, usize),
+    /// Sticking spring (index) reaches Coulomb's cap: event function mu f - |S|.
+    SpringSlide(usize),
+    /// Sliding spring (index) would leave the cap by sticking: event function
+    /// S'_stick . e - (mu f)'.
+    SpringStick(usize),
 }
 
 /// Resolves `cluster` with `settings`.
@@ -812,11 +902,28 @@ impl Run<'_> {
         self.bodies.len()
     }
 
+    /// Whether the contacts carry Mindlin's spring.
+    fn mindlin(&self) -> bool {
+        self.cluster.tangential == ClusterTangential::Mindlin
+    }
+
+    /// Components of the state per contact.
+    fn pc(&self) -> usize {
+        if self.mindlin() {
+            PER_SPRING_CONTACT
+        } else {
+            PER_CONTACT
+        }
+    }
+
     fn system(&self, frozen: bool) -> System<'_> {
+        let mu = self.cluster.mu;
         System {
             bodies: self.bodies,
             active: &self.active,
-            mu: self.cluster.mu,
+            mu,
+            spring_mu: if mu < NEGLIGIBLE_MU { 0.0 } else { mu },
+            pc: self.pc(),
             v_ref: self.v_ref,
             f_floor: PRESS_FLOOR * self.m_min * self.v_ref / self.tau0,
             frozen,
@@ -831,9 +938,21 @@ impl Run<'_> {
         let mut s = vec![self.delta0; 3 * nb];
         s.extend(std::iter::repeat_n(self.v_ref, 3 * nb));
         s.extend(std::iter::repeat_n(self.v_ref / self.r_min, 3 * nb));
+        let mindlin = self.mindlin();
+        // The spring's force is at most mu f: its scale is mu times the impact's force scale
+        // (the force scale itself without friction, where the spring stays 0).
+        let force = self.m_min * self.v_ref / self.tau0;
+        let spring = if self.cluster.mu > 0.0 {
+            force * self.cluster.mu.min(1.0)
+        } else {
+            force
+        };
         for _ in &self.active {
             let p = self.m_min * self.v_ref;
             s.extend([p, p, p, p, p * self.v_ref]);
+            if mindlin {
+                s.extend([spring, spring]);
+            }
         }
         s
     }
@@ -858,7 +977,16 @@ impl Run<'_> {
             n,
             t: [t0, t1],
             law: self.cluster.law(i, j),
-            mode: Mode::Sliding,
+            k_t0: if self.mindlin() {
+                self.cluster.shear[pair_index(self.nb(), i, j)]
+            } else {
+                0.0
+            },
+            mode: if self.mindlin() {
+                Mode::SpringStick
+            } else {
+                Mode::Sliding
+            },
             seed: t0,
             offset: Vector3::zeros(),
             loaded: false,
@@ -866,7 +994,10 @@ impl Run<'_> {
             stick_time: None,
         };
         self.active.push(c);
-        self.y.extend([0.0; PER_CONTACT]);
+        self.y.extend(std::iter::repeat_n(0.0, self.pc()));
+        if self.mindlin() {
+            return;
+        }
         let k = self.active.len() - 1;
         let sys = self.system(false);
         let s = sys.slip(&self.y, &self.active[k]);
@@ -886,8 +1017,8 @@ impl Run<'_> {
     fn open(&mut self, k: usize) {
         self.changes += 1;
         let c = self.active.remove(k);
-        let o = PER_BALL * self.nb() + PER_CONTACT * k;
-        let acc: Vec<f64> = self.y.drain(o..o + PER_CONTACT).collect();
+        let o = PER_BALL * self.nb() + self.pc() * k;
+        let acc: Vec<f64> = self.y.drain(o..o + self.pc()).collect();
         let record = ContactRecord {
             pair: (c.i, c.j),
             normal: c.n,
@@ -958,6 +1089,22 @@ impl Run<'_> {
                 let (f, fr, ..) = sys.forces(y).contact[k];
                 self.cluster.mu * f - fr.norm()
             }
+            Event::SpringSlide(k) => {
+                let c = &self.active[k];
+                let (d, w) = sys.compression(y, c);
+                let s = sys.spring(y, k);
+                sys.spring_mu * c.law.force(d, w) - (s[0] * s[0] + s[1] * s[1]).sqrt()
+            }
+            Event::SpringStick(k) => {
+                let fs = sys.forces(y);
+                let (s, _, stick, cap_rate) = sys.spring_rates(y, &fs.acc, k);
+                let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+                if n > 0.0 {
+                    (stick[0] * s[0] + stick[1] * s[1]) / n - cap_rate
+                } else {
+                    0.0
+                }
+            }
         }
     }
 
@@ -981,6 +1128,19 @@ impl Run<'_> {
             }
         }
         for (k, c) in self.active.iter().enumerate() {
+            if c.mode.spring() && sys.spring_mu > 0.0 {
+                let e = match c.mode {
+                    Mode::SpringStick => Event::SpringSlide(k),
+                    _ => Event::SpringStick(k),
+                };
+                let (d1, w1) = sys.compression(y1, c);
+                if c.law.force(d1, w1) > 0.0
+                    && self.event_value(sys, y0, e) > 0.0
+                    && self.event_value(sys, y1, e) <= 0.0
+                {
+                    out.push(e);
+                }
+            }
             if c.mode == Mode::Sliding && self.cluster.mu > 0.0 {
                 let e = Event::Stop(k);
                 let loaded = c
@@ -1050,8 +1210,10 @@ impl Run<'_> {
         let balls = match e {
             Event::Stop(k) | Event::Open(k) => vec![self.active[k].i, self.active[k].j],
             Event::Close(i, j) => vec![i, j],
-            Event::Release(_) => (0..nb).collect(),
+            Event::Release(_) | Event::SpringSlide(_) | Event::SpringStick(_) => (0..nb).collect(),
         };
+        // A spring's event reads the springs too.
+        let contacts = matches!(e, Event::SpringSlide(_) | Event::SpringStick(_));
         let mut lo = Bound {
             q: 0.0,
             g: self.event_value(sys, &self.y, e),
@@ -1072,6 +1234,9 @@ impl Run<'_> {
                     let o = part * 3 * nb + 3 * b;
                     dense.fill(x, o..o + 3, &mut yx);
                 }
+            }
+            if contacts {
+                dense.fill(x, PER_BALL * nb..yx.len(), &mut yx);
             }
             let g = self.event_value(sys, &yx, e);
             side = illinois_update(&mut lo, &mut hi, side, x, g);
@@ -1103,7 +1268,7 @@ impl Run<'_> {
                 .zip(&fs.contact)
                 .enumerate()
                 .map(|(k, (c, &(f, fr, sl, _, d)))| {
-                    let o = PER_BALL * nb + PER_CONTACT * k;
+                    let o = PER_BALL * nb + self.pc() * k;
                     ContactTrace {
                         pair: (c.i, c.j),
                         start: c.start,
@@ -1113,7 +1278,7 @@ impl Run<'_> {
                         friction_force: fr,
                         friction_impulse: Vector3::new(y[o + 1], y[o + 2], y[o + 3]),
                         slip: sl,
-                        stuck: c.mode == Mode::Stuck,
+                        stuck: matches!(c.mode, Mode::Stuck | Mode::SpringStick),
                         heat: y[o + 4],
                     }
                 })
@@ -1417,6 +1582,9 @@ impl Run<'_> {
                     Event::Open(k) => opened.push(k),
                     Event::Release(k) => released.push(k),
                     Event::Close(i, j) => self.close(i, j),
+                    // The spring's mode is decided from the state after the step
+                    // (`after_step`).
+                    Event::SpringSlide(_) | Event::SpringStick(_) => {}
                 }
             }
             if !released.is_empty() {
@@ -1446,6 +1614,7 @@ impl Run<'_> {
     /// `released`: contacts already released by a located event.
     /// Returns whether any contact was released (the right-hand side changed).
     fn after_step(&mut self, mut released: Vec<usize>) -> bool {
+        let springs = self.mindlin() && self.spring_modes();
         loop {
             let sys = self.system(false);
             let fs = sys.forces(&self.y);
@@ -1474,7 +1643,61 @@ impl Run<'_> {
         if !released.is_empty() {
             self.release_directions(&released);
         }
-        !released.is_empty()
+        springs || !released.is_empty()
+    }
+
+    /// After a step under Mindlin's spring: each spring's mode from the state, as the pair
+    /// kernel decides it (docs/tangential.md#the-equations): it slides when it is on its cap
+    /// (within [`SPRING_CAP_BAND`]) and sticking would carry it past; a spring past its cap,
+    /// or sliding (drifted off the cap by the step's error), is put back on it. Returns
+    /// whether the state or a mode changed (the next step's first derivative is then new).
+    fn spring_modes(&mut self) -> bool {
+        let sys = self.system(false);
+        if sys.spring_mu == 0.0 {
+            return false;
+        }
+        let fs = sys.forces(&self.y);
+        let mut modes = Vec::with_capacity(self.active.len());
+        for (k, c) in self.active.iter().enumerate() {
+            if !c.mode.spring() {
+                modes.push(None);
+                continue;
+            }
+            let (s, cap, stick, cap_rate) = sys.spring_rates(&self.y, &fs.acc, k);
+            let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+            let slides = cap > 0.0
+                && n > 0.0
+                && n >= cap * (1.0 - SPRING_CAP_BAND)
+                && spring_slides(s, stick, cap_rate);
+            let scale = ((n > cap || slides) && n > 0.0).then(|| cap / n);
+            modes.push(Some((slides, scale)));
+        }
+        self.stats.evaluations += 1;
+        let nb = self.nb();
+        let pc = self.pc();
+        let mut changed = false;
+        for (k, m) in modes.into_iter().enumerate() {
+            let Some((slides, scale)) = m else { continue };
+            let mode = if slides {
+                Mode::SpringSlide
+            } else {
+                Mode::SpringStick
+            };
+            if self.active[k].mode != mode {
+                self.active[k].mode = mode;
+                self.changes += 1;
+                changed = true;
+            }
+            if let Some(q) = scale {
+                let o = PER_BALL * nb + pc * k + PER_CONTACT;
+                if q != 1.0 {
+                    self.y[o] *= q;
+                    self.y[o + 1] *= q;
+                    changed = true;
+                }
+            }
+        }
+        changed
     }
 
     /// Contact `k` slides from now, first against the friction `fr` (N) it needed to stick,

@@ -15,6 +15,8 @@
 //! # [[balls]] ... the next ball
 //! [contact]
 //! mu = 0.0                    # Coulomb's friction at every contact
+//! # tangential = "rigid"      # rigid (default: the stick rule) | mindlin (Mindlin's spring at
+//!                             # every contact, with every ball's material: docs/cluster.md)
 //! [contact.law]               # as a two-ball scene's law (docs/contact-law.md)
 //! model = "hertz"
 //! # stiffness = 4.5e8         # N/m^1.5, every pair; or the balls' materials (each pair's E*)
@@ -27,7 +29,7 @@
 //! ```
 
 use crate::base::error::Error;
-use crate::cluster::params::{Cluster, ClusterBall, ClusterLaw, PairDamping};
+use crate::cluster::params::{Cluster, ClusterBall, ClusterLaw, ClusterTangential, PairDamping};
 use crate::cluster::resolve::{
     resolve_cluster, resolve_cluster_traced, ClusterOutcome, ClusterSettings, ClusterTrace,
     StopReason, CLUSTER_DEFAULT_RTOL,
@@ -35,8 +37,10 @@ use crate::cluster::resolve::{
 use crate::model::contact_law::{Damping, STIFFNESS_FIELD};
 use crate::model::material::Material;
 use crate::model::params::{Ball, ALPHA_SOLID};
-use crate::scene::builder::LawSpec;
+use crate::scene::builder::{LawSpec, TANGENTIAL_FIELD};
 use crate::scene::file::{explain_toml_error, vec3, RawLaw, V3};
+use crate::scene::overrides::optional_name;
+use crate::scene::types::TangentialLaw;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -84,6 +88,8 @@ struct RawClusterBall {
 struct RawClusterContact {
     mu: f64,
     law: RawLaw,
+    #[serde(default, deserialize_with = "optional_name")]
+    tangential: Option<TangentialLaw>,
 }
 
 #[derive(Deserialize)]
@@ -271,7 +277,22 @@ impl ClusterScene {
                 ));
             }
         };
+        let tangential = raw.contact.tangential.unwrap_or_default();
+        if tangential == TangentialLaw::Mindlin && materials.is_none() {
+            return Err(Error::invalid(
+                TANGENTIAL_FIELD,
+                "\"mindlin\" without the balls' material",
+                "\"mindlin\" with every ball's youngs_modulus and poisson_ratio (Mindlin's \
+                 spring needs the shear moduli), and no contact.law.stiffness; or \"rigid\"",
+            ));
+        }
         let cluster = Cluster::new(balls, law, raw.contact.mu)
+            .and_then(|c| {
+                c.with_tangential(match tangential {
+                    TangentialLaw::Rigid => ClusterTangential::Rigid,
+                    TangentialLaw::Mindlin => ClusterTangential::Mindlin,
+                })
+            })
             .map_err(|e| scene_fields(e, CLUSTER_RTOL_FIELD))?;
         // The tolerance's range is the kernel's: `run` refuses a bad one, naming the field.
         let settings = ClusterSettings {

@@ -58,7 +58,7 @@ const GRAZING: f64 = 1e-40;
 /// one to the last bit. Stepping it costs work that grows as mu falls (the spring's cap
 /// mu F_n is the scale its error is judged on): 290 steps at 1e-20, 530 at 1e-50, and past
 /// 1e6 steps at 1e-100 and below (found by the tangential target at mu = 5e-312).
-const NEGLIGIBLE_MU: f64 = 1e-20;
+pub(crate) const NEGLIGIBLE_MU: f64 = 1e-20;
 /// Relaxation times of the sliding spring's direction (|S| / |rate|) in a step beyond which
 /// the step starts with the spring along its rate and keeps that direction
 /// ([`Contact::align`]): 2, inside DOPRI5's stability bound (3.3 step-rates on the negative
@@ -115,11 +115,7 @@ impl Contact {
     }
 
     fn tangential_stiffness(&self, delta: f64) -> f64 {
-        if delta > 0.0 {
-            self.k_t0 * delta.sqrt()
-        } else {
-            0.0
-        }
+        mindlin_stiffness(self.k_t0, delta)
     }
 
     pub(crate) fn spin(y: &Z) -> Vector3<f64> {
@@ -142,29 +138,13 @@ impl Contact {
 
     /// The force on the ball: the spring's, capped by mu F_n.
     fn applied(&self, y: &Z) -> [f64; 2] {
-        let cap = self.mu * self.normal_force(y);
-        let s = (y[7] * y[7] + y[8] * y[8]).sqrt();
-        if s > cap {
-            if s > 0.0 {
-                [y[7] * cap / s, y[8] * cap / s]
-            } else {
-                [0.0, 0.0]
-            }
-        } else {
-            [y[7], y[8]]
-        }
+        capped([y[7], y[8]], self.mu * self.normal_force(y))
     }
 
     /// The spring's rate while it sticks.
     fn stick_rate(&self, y: &Z) -> [f64; 2] {
         let k = self.tangential_stiffness(y[0]);
-        let u = self.slip(y);
-        let shrink = if y[0] > 0.0 && y[1] < 0.0 {
-            y[1] / (2.0 * y[0])
-        } else {
-            0.0
-        };
-        [-k * u[0] + y[7] * shrink, -k * u[1] + y[8] * shrink]
+        spring_stick_rate(k, self.slip(y), [y[7], y[8]], y[0], y[1])
     }
 
     /// The rate of the cap mu F_n.
@@ -210,8 +190,7 @@ impl Contact {
         if cap <= 0.0 || s <= 0.0 || s < cap * (1.0 - 1e-9) {
             return false;
         }
-        let r = self.stick_rate(y);
-        (r[0] * y[7] + r[1] * y[8]) / s > self.cap_rate(y)
+        spring_slides([y[7], y[8]], self.stick_rate(y), self.cap_rate(y))
     }
 
     /// `aligned`: a sliding spring started the step along its rate ([`Contact::align`]) and
@@ -234,18 +213,7 @@ impl Contact {
             [0.0, 0.0]
         };
         if mode == Mode::Slide {
-            let s = (y[7] * y[7] + y[8] * y[8]).sqrt();
-            let e = [y[7] / s, y[8] / s];
-            let radial = rate[0] * e[0] + rate[1] * e[1];
-            let cap_rate = self.cap_rate(y);
-            rate = if aligned {
-                [cap_rate * e[0], cap_rate * e[1]]
-            } else {
-                [
-                    rate[0] - radial * e[0] + cap_rate * e[0],
-                    rate[1] - radial * e[1] + cap_rate * e[1],
-                ]
-            };
+            rate = spring_slide_rate(rate, [y[7], y[8]], self.cap_rate(y), aligned);
         }
         // The power the tangential force takes from the balls: -F_t.u (the force on ball 1
         // at its contact point, -F_t on the partner's, so the pair's kinetic energy changes
@@ -303,6 +271,78 @@ impl Contact {
             partner_spin: Contact::partner_spin(y),
             tangential_work: y[12],
         }
+    }
+}
+
+/// Mindlin's no-slip stiffness k_t = `k_t0` sqrt(delta) (N/m) at the compression `delta`
+/// (m), `k_t0` = 8 G* sqrt(R*) (N/m^1.5); 0 once the balls no longer touch.
+pub(crate) fn mindlin_stiffness(k_t0: f64, delta: f64) -> f64 {
+    if delta > 0.0 {
+        k_t0 * delta.sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// The force (N) the spring `s` (N, two components in the tangent plane) applies under
+/// Coulomb's cap `cap` = mu F_n (N): `s`, scaled down onto the cap when it is past it.
+pub(crate) fn capped(s: [f64; 2], cap: f64) -> [f64; 2] {
+    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+    if n > cap {
+        if n > 0.0 {
+            [s[0] * cap / n, s[1] * cap / n]
+        } else {
+            [0.0, 0.0]
+        }
+    } else {
+        s
+    }
+}
+
+/// The spring's rate (N/s) while it sticks: S' = -k_t u + S min(delta', 0) / (2 delta)
+/// (docs/tangential.md#the-equations), `k` = k_t (N/m), `u` the slip of ball 1's contact
+/// point over the partner's (m/s), `s` the spring (N), `delta` (m) and `delta_dot` (m/s).
+pub(crate) fn spring_stick_rate(
+    k: f64,
+    u: [f64; 2],
+    s: [f64; 2],
+    delta: f64,
+    delta_dot: f64,
+) -> [f64; 2] {
+    let shrink = if delta > 0.0 && delta_dot < 0.0 {
+        delta_dot / (2.0 * delta)
+    } else {
+        0.0
+    };
+    [-k * u[0] + s[0] * shrink, -k * u[1] + s[1] * shrink]
+}
+
+/// Whether a spring `s` (N) on its cap slides: sticking (its rate `stick`, N/s) would carry
+/// it past the cap, whose rate is `cap_rate` (N/s): S'_stick . e > (mu F_n)', e = S / |S|.
+pub(crate) fn spring_slides(s: [f64; 2], stick: [f64; 2], cap_rate: f64) -> bool {
+    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+    (stick[0] * s[0] + stick[1] * s[1]) / n > cap_rate
+}
+
+/// The sliding spring's rate (N/s): the stick rate `rate` across the spring's direction e
+/// plus the cap's rate `cap_rate` along it, (S'_stick - (S'_stick . e) e) + (mu F_n)' e;
+/// `aligned` ([`Contact::align`]): along e only.
+pub(crate) fn spring_slide_rate(
+    rate: [f64; 2],
+    s: [f64; 2],
+    cap_rate: f64,
+    aligned: bool,
+) -> [f64; 2] {
+    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+    let e = [s[0] / n, s[1] / n];
+    let radial = rate[0] * e[0] + rate[1] * e[1];
+    if aligned {
+        [cap_rate * e[0], cap_rate * e[1]]
+    } else {
+        [
+            rate[0] - radial * e[0] + cap_rate * e[0],
+            rate[1] - radial * e[1] + cap_rate * e[1],
+        ]
     }
 }
 

@@ -1,0 +1,442 @@
+//! Mindlin's tangential spring in the cluster kernel (docs/cluster.md#tangential-compliance-in-clusters):
+//! two balls against the two-sphere compliant kernel (an independent integration of the same
+//! equations, docs/tangential.md#two-spheres), the frictionless cluster against the rigid
+//! one, momentum, energy and Coulomb's cap on three balls, and the refusal without materials.
+
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::*;
+
+/// Phenolic resin (Pa, dimensionless).
+fn resin() -> Material {
+    Material::new(5.4e9, 0.34).unwrap()
+}
+
+/// A second, stiffer material so that the two balls differ in G and E.
+fn ivory() -> Material {
+    Material::new(9.0e9, 0.30).unwrap()
+}
+
+fn ball_a() -> Ball {
+    Ball::new(0.17, 0.028575, 0.4).unwrap()
+}
+
+fn ball_b() -> Ball {
+    Ball::new(0.16, 0.0275, 0.4).unwrap()
+}
+
+/// Ball B's centre at r_A + r_B from A's along `n`; A at the origin.
+fn two(
+    n: Vector3<f64>,
+    va: Vector3<f64>,
+    wa: Vector3<f64>,
+    vb: Vector3<f64>,
+    wb: Vector3<f64>,
+) -> Vec<ClusterBall> {
+    let (a, b) = (ball_a(), ball_b());
+    vec![
+        ClusterBall {
+            ball: a,
+            position: Vector3::zeros(),
+            velocity: va,
+            spin: wa,
+        },
+        ClusterBall {
+            ball: b,
+            position: n.normalize() * (a.radius() + b.radius()),
+            velocity: vb,
+            spin: wb,
+        },
+    ]
+}
+
+fn settings(rtol: f64) -> ClusterSettings {
+    ClusterSettings { rtol, stick: true }
+}
+
+fn momentum(balls: &[ClusterBall], out: &ClusterOutcome) -> (Vector3<f64>, Vector3<f64>) {
+    let p_in = balls
+        .iter()
+        .fold(Vector3::zeros(), |s, b| s + b.velocity * b.ball.mass());
+    let p_out = balls
+        .iter()
+        .zip(&out.balls)
+        .fold(Vector3::zeros(), |s, (b, o)| s + o.velocity * b.ball.mass());
+    (p_in, p_out)
+}
+
+fn kinetic(balls: &[ClusterBall], v: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
+    balls
+        .iter()
+        .zip(v)
+        .map(|(b, (v, w))| {
+            0.5 * b.ball.mass() * v.norm_squared() + 0.5 * b.ball.inertia() * w.norm_squared()
+        })
+        .sum()
+}
+
+/// The two-ball collision through the cluster with Mindlin's spring and through the pair
+/// kernel `resolve_sphere_sphere_compliant_damped` (its own Dormand-Prince, its own events),
+/// on the same balls, materials, damping and mu. Returns the largest difference of the
+/// outgoing velocities and r times spins over the speed scale, and the cluster's outcome.
+#[allow(clippy::too_many_arguments)]
+fn against_pair(
+    materials: (Material, Material),
+    damping: PairDamping,
+    mu: f64,
+    n: Vector3<f64>,
+    va: Vector3<f64>,
+    wa: Vector3<f64>,
+    vb: Vector3<f64>,
+    wb: Vector3<f64>,
+) -> (f64, ClusterOutcome) {
+    let balls = two(n, va, wa, vb, wb);
+    let cluster = Cluster::new(
+        balls.clone(),
+        ClusterLaw::Materials(vec![materials.0, materials.1], damping),
+        mu,
+    )
+    .unwrap()
+    .with_tangential(ClusterTangential::Mindlin)
+    .unwrap();
+    let out = resolve_cluster(&cluster, &settings(1e-11)).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    assert_eq!(out.contacts.len(), 1);
+    let law = cluster.law(0, 1);
+    let sphere = |b: &ClusterBall, m: Material| CompliantSphere {
+        ball: b.ball,
+        material: m,
+        velocity: b.velocity,
+        spin: b.spin,
+    };
+    let pair = resolve_sphere_sphere_compliant_damped(
+        &sphere(&balls[0], materials.0),
+        &sphere(&balls[1], materials.1),
+        (law.damping(), law.coefficient()),
+        n,
+        mu,
+        1.0,
+        &SolverSettings::default()
+            .with_rtol(1e-12)
+            .unwrap()
+            .with_atol(1e-12)
+            .unwrap(),
+    )
+    .unwrap();
+    let scale = (va - vb)
+        .norm()
+        .max(ball_a().radius() * wa.norm())
+        .max(ball_b().radius() * wb.norm());
+    let (ra, rb) = (ball_a().radius(), ball_b().radius());
+    let diffs = [
+        (out.balls[0].velocity - pair.ball_a.velocity).norm(),
+        (out.balls[1].velocity - pair.velocity_b).norm(),
+        ra * (out.balls[0].spin - pair.ball_a.spin).norm(),
+        rb * (out.balls[1].spin - pair.spin_b).norm(),
+    ];
+    let worst = diffs.iter().copied().fold(0.0, f64::max) / scale;
+    println!(
+        "pair: vA {:?} wA {:?} vB {:?} wB {:?}; cluster - pair: {worst:e} of {scale} m/s",
+        pair.ball_a.velocity.as_slice(),
+        pair.ball_a.spin.as_slice(),
+        pair.velocity_b.as_slice(),
+        pair.spin_b.as_slice()
+    );
+    // Momentum of the cluster's answer.
+    let (p_in, p_out) = momentum(&balls, &out);
+    let p_scale = balls[0].ball.mass() * scale;
+    assert!(
+        (p_out - p_in).norm() <= 1e-12 * p_scale,
+        "momentum off by {:e} of its scale",
+        (p_out - p_in).norm() / p_scale
+    );
+    // Kinetic energy is not created.
+    let e_in = kinetic(
+        &balls,
+        &balls
+            .iter()
+            .map(|b| (b.velocity, b.spin))
+            .collect::<Vec<_>>(),
+    );
+    let e_out = kinetic(
+        &balls,
+        &out.balls
+            .iter()
+            .map(|b| (b.velocity, b.spin))
+            .collect::<Vec<_>>(),
+    );
+    assert!(
+        e_out <= e_in * (1.0 + 1e-10),
+        "energy in {e_in}, out {e_out}"
+    );
+    (worst, out)
+}
+
+/// Within the two kernels' tolerances (rtol 1e-11 and 1e-12): 1e-8 of the speed.
+const PAIR_AGREEMENT: f64 = 1e-8;
+
+#[test]
+fn two_balls_match_the_pair_kernel_undamped() {
+    // Oblique, with side spin on A and top spin on B: the spring sticks, slides and
+    // sticks again in turn.
+    let n = Vector3::new(1.0, 0.2, -0.1);
+    let cases = [
+        (
+            0.2,
+            Vector3::new(1.5, 0.3, 0.0),
+            Vector3::new(0.0, 0.0, 40.0),
+            Vector3::new(-0.2, 0.0, 0.1),
+            Vector3::new(10.0, -5.0, 0.0),
+        ),
+        // Small slip against mu: the spring sticks through most of the contact.
+        (
+            0.5,
+            Vector3::new(2.0, 0.05, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+            Vector3::new(0.0, 0.0, 3.0),
+        ),
+    ];
+    for (mu, va, wa, vb, wb) in cases {
+        let (worst, out) =
+            against_pair((resin(), ivory()), PairDamping::None, mu, n, va, wa, vb, wb);
+        assert!(worst < PAIR_AGREEMENT, "mu {mu}: {worst:e}");
+        assert!(out.contacts[0].friction_impulse.norm() > 1e-4 * out.contacts[0].normal_impulse);
+    }
+}
+
+/// The collision python/tests/test_cluster_mindlin.py resolves through `bc.Cluster(...,
+/// tangential="mindlin")` (one material for both balls, as Python's keywords give it): the
+/// pair kernel's answer printed here is the value that test expects.
+#[test]
+fn two_balls_of_one_material_match_the_pair_kernel() {
+    let (worst, _) = against_pair(
+        (resin(), resin()),
+        PairDamping::None,
+        0.2,
+        Vector3::new(1.0, 0.2, -0.1),
+        Vector3::new(1.5, 0.3, 0.0),
+        Vector3::new(0.0, 0.0, 40.0),
+        Vector3::new(-0.2, 0.0, 0.1),
+        Vector3::new(10.0, -5.0, 0.0),
+    );
+    assert!(worst < PAIR_AGREEMENT, "{worst:e}");
+}
+
+#[test]
+fn two_balls_match_the_pair_kernel_damped() {
+    let n = Vector3::new(1.0, -0.3, 0.05);
+    for damping in [
+        PairDamping::Restitution {
+            damping: Damping::HuntCrossley,
+            restitution: 0.9,
+            at_speed: 2.0,
+        },
+        PairDamping::Restitution {
+            damping: Damping::KuwabaraKono,
+            restitution: 0.8,
+            at_speed: 2.0,
+        },
+    ] {
+        let (worst, _) = against_pair(
+            (resin(), ivory()),
+            damping,
+            0.3,
+            n,
+            Vector3::new(2.0, 0.5, -0.2),
+            Vector3::new(5.0, 0.0, -30.0),
+            Vector3::new(0.1, 0.0, 0.0),
+            Vector3::new(0.0, 8.0, 0.0),
+        );
+        assert!(worst < PAIR_AGREEMENT, "{damping:?}: {worst:e}");
+    }
+}
+
+/// A line of three balls, the struck one off the line: both contacts oblique.
+fn three_in_a_line() -> (Vec<ClusterBall>, ClusterLaw) {
+    let b = ball_a();
+    let d = 2.0 * b.radius();
+    let at = |p: Vector3<f64>, v: Vector3<f64>, w: Vector3<f64>| ClusterBall {
+        ball: b,
+        position: p,
+        velocity: v,
+        spin: w,
+    };
+    let balls = vec![
+        at(
+            Vector3::new(-d * 0.96, d * 0.28, 0.0),
+            Vector3::new(2.0, -0.3, 0.0),
+            Vector3::new(0.0, 20.0, -30.0),
+        ),
+        at(Vector3::zeros(), Vector3::zeros(), Vector3::zeros()),
+        at(
+            Vector3::new(d * 0.8, -d * 0.6, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+    ];
+    (
+        balls,
+        ClusterLaw::Materials(vec![resin(); 3], PairDamping::None),
+    )
+}
+
+#[test]
+fn frictionless_mindlin_is_the_rigid_frictionless_cluster() {
+    // Without friction the spring's cap mu f is 0: it carries no force, and the balls move
+    // as under the rigid rule (which then has no friction either). Only the step sizes may
+    // differ (the state has two more components per contact).
+    let (balls, law) = three_in_a_line();
+    let rigid = Cluster::new(balls.clone(), law.clone(), 0.0).unwrap();
+    let mindlin = rigid
+        .clone()
+        .with_tangential(ClusterTangential::Mindlin)
+        .unwrap();
+    let (a, b) = (
+        resolve_cluster(&rigid, &settings(1e-10)).unwrap(),
+        resolve_cluster(&mindlin, &settings(1e-10)).unwrap(),
+    );
+    assert_eq!(a.contacts.len(), b.contacts.len());
+    assert!(a.contacts.len() >= 2);
+    let v = 2.0;
+    for (x, y) in a.balls.iter().zip(&b.balls) {
+        assert!((x.velocity - y.velocity).norm() < 1e-9 * v);
+        assert!(ball_a().radius() * (x.spin - y.spin).norm() < 1e-9 * v);
+    }
+    for c in &b.contacts {
+        assert_eq!(c.friction_impulse, Vector3::zeros());
+    }
+}
+
+#[test]
+fn three_oblique_balls_conserve_momentum_and_keep_coulomb() {
+    for mu in [0.05, 0.2, 1.0] {
+        let (balls, law) = three_in_a_line();
+        let cluster = Cluster::new(balls.clone(), law, mu)
+            .unwrap()
+            .with_tangential(ClusterTangential::Mindlin)
+            .unwrap();
+        let out = resolve_cluster(&cluster, &settings(1e-9)).unwrap();
+        assert_eq!(out.stop, StopReason::Separated);
+        assert!(out.contacts.len() >= 2, "{:?}", out.contacts);
+        let (p_in, p_out) = momentum(&balls, &out);
+        let scale = ball_a().mass() * 2.0;
+        assert!((p_out - p_in).norm() <= 1e-12 * scale, "mu {mu}");
+        let e_in = kinetic(
+            &balls,
+            &balls
+                .iter()
+                .map(|b| (b.velocity, b.spin))
+                .collect::<Vec<_>>(),
+        );
+        let e_out = kinetic(
+            &balls,
+            &out.balls
+                .iter()
+                .map(|b| (b.velocity, b.spin))
+                .collect::<Vec<_>>(),
+        );
+        assert!(e_out <= e_in * (1.0 + 1e-10), "mu {mu}: {e_in} -> {e_out}");
+        let mut rubbed = false;
+        for c in &out.contacts {
+            // The friction force never passes mu f, so its impulse never passes mu P.
+            let cap = mu * c.normal_impulse;
+            assert!(
+                c.friction_impulse.norm() <= cap * (1.0 + 1e-9),
+                "mu {mu}: {} > {cap}",
+                c.friction_impulse.norm()
+            );
+            // Tangential to the contact.
+            assert!(c.friction_impulse.dot(&c.normal).abs() <= 1e-12 * scale);
+            rubbed |= c.friction_impulse.norm() > 1e-3 * cap;
+        }
+        assert!(rubbed, "mu {mu}: no contact carried friction");
+    }
+}
+
+#[test]
+fn mindlin_without_materials_is_refused_naming_the_field() {
+    let (balls, _) = three_in_a_line();
+    let k = 4.5e8;
+    let cluster = Cluster::new(
+        balls,
+        ClusterLaw::Same(ContactLaw::elastic(k).unwrap()),
+        0.2,
+    )
+    .unwrap();
+    assert_eq!(cluster.tangential(), ClusterTangential::Rigid);
+    let e = cluster
+        .with_tangential(ClusterTangential::Mindlin)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cluster.tangential"), "{e}");
+    assert!(
+        e.contains("youngs_modulus") && e.contains("poisson_ratio"),
+        "{e}"
+    );
+    assert!(!e.contains('\n'), "{e}");
+}
+
+/// A two-ball cluster scene's text, `contact` the lines of its `[contact]` table and `law`
+/// those of `[contact.law]`, `material` each ball's extra lines.
+fn scene_text(contact: &str, law: &str, material: &str) -> String {
+    let ball = |x: f64, v: &str, w: &str| {
+        format!(
+            "[[balls]]\nmass = 0.17\nradius = 0.028575\n{material}position = [{x}, 0, 0]\n\
+             velocity = {v}\nspin = {w}\n"
+        )
+    };
+    ball(0.0, "[1.5, 0.3, 0.0]", "[0.0, 0.0, 40.0]")
+        + &ball(0.05715, "[0.0, 0.0, 0.0]", "[0.0, 0.0, 0.0]")
+        + &format!("[contact]\nmu = 0.2\n{contact}[contact.law]\nmodel = \"hertz\"\n{law}")
+}
+
+#[test]
+fn cluster_scenes_take_the_tangential_key() {
+    let resin_keys = "youngs_modulus = 5.4e9\npoisson_ratio = 0.34\n";
+    let mindlin = ClusterScene::parse(
+        &scene_text("tangential = \"mindlin\"\n", "", resin_keys),
+        None,
+    )
+    .unwrap();
+    assert_eq!(mindlin.cluster.tangential(), ClusterTangential::Mindlin);
+    // The scene runs the kernel on its cluster: the same as the cluster built by hand.
+    let by_hand = Cluster::new(
+        mindlin.cluster.balls().to_vec(),
+        ClusterLaw::Materials(vec![resin(); 2], PairDamping::None),
+        0.2,
+    )
+    .unwrap()
+    .with_tangential(ClusterTangential::Mindlin)
+    .unwrap();
+    let a = mindlin.run(&mindlin.settings, "solver.rtol").unwrap();
+    assert_eq!(a, resolve_cluster(&by_hand, &mindlin.settings).unwrap());
+    // "rigid" written out is the default.
+    let rigid = ClusterScene::parse(
+        &scene_text("tangential = \"rigid\"\n", "", resin_keys),
+        None,
+    )
+    .unwrap();
+    let default = ClusterScene::parse(&scene_text("", "", resin_keys), None).unwrap();
+    assert_eq!(rigid, default);
+    assert_eq!(default.cluster.tangential(), ClusterTangential::Rigid);
+    // The spring's friction is not the stick rule's.
+    let b = default.run(&default.settings, "solver.rtol").unwrap();
+    assert!((a.balls[0].spin - b.balls[0].spin).norm() > 1e-3);
+}
+
+#[test]
+fn cluster_scenes_refuse_mindlin_without_materials() {
+    let e = ClusterScene::parse(
+        &scene_text("tangential = \"mindlin\"\n", "stiffness = 4.5e8\n", ""),
+        None,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("contact.tangential"), "{e}");
+    assert!(e.contains("youngs_modulus"), "{e}");
+    assert!(!e.contains('\n'), "{e}");
+    let e = ClusterScene::parse(&scene_text("tangential = \"soft\"\n", "", ""), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("tangential"), "{e}");
+}
