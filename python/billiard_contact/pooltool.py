@@ -83,6 +83,16 @@ model.
 ball-ball event whose balls touch others (a rack, frozen balls) is resolved for all of
 them together by the library's ``Cluster`` (``CLUSTER_TOUCH_GAP``; docs/python.md).
 
+Collision time. Importing this module corrects pooltool 0.6.0's ball-ball collision
+time (``COLLISION_TIME_CORRECTED``; process-wide, for every engine): two balls with exactly
+the same acceleration on the cloth (both rolling, or both sliding with the slip along the
+velocity, moving in the same direction) have a squared distance quadratic in time, not
+quartic, and pooltool's quartic solver answers such an equation with roots 0, so the pair
+collides again at the same time until ``max_events`` stops every ball. A struck row of balls
+along a table axis does this once a collision's outgoing velocities are exact, as this
+model's are. The correction solves the quadratic for such a pair and leaves every other pair
+to pooltool's own function.
+
 These models are not registered with pooltool's serialisation (its registries of models
 are closed enumerations), so a resolver using them cannot be saved to ``resolver.yaml``;
 install them in code.
@@ -119,12 +129,85 @@ def _first_found(*names: str) -> Any:
     return None
 
 
+def _degenerate_collision_time(c: float, d: float, e: float) -> float:
+    """The first time t > 0 (s) at which two balls without relative acceleration touch:
+    the root of c t^2 + d t + e = 0 (c = |relative velocity|^2, d = 2 relative velocity .
+    offset, e = |offset|^2 - (2R)^2, pooltool's coefficients in the plane), np.inf when
+    there is none. A root at t = 0 (touching now) is a collision only when the balls close
+    (d < 0)."""
+    if not c > 0.0:
+        return np.inf  # no relative motion: the distance never changes
+    disc = d * d - 4.0 * c * e
+    if disc < 0.0:
+        return np.inf  # the paths pass each other farther apart than touching
+    # The two roots without cancellation: q = -(d + sign(d) sqrt(disc)) / 2.
+    q = -0.5 * (d + math.copysign(math.sqrt(disc), d))
+    roots = [q / c] + ([e / q] if q != 0.0 else [])
+    times = [t for t in roots if t > 0.0 or (t == 0.0 and d < 0.0)]
+    return min(times, default=np.inf)
+
+
+def _correct_collision_time() -> bool:
+    """pooltool 0.6.0 predicts a ball-ball collision from the quartic in time of the
+    squared distance between the centres (``solve.ball_ball_collision_coeffs``). Two balls
+    with exactly the same acceleration on the cloth (both rolling, or both sliding with the
+    slip along the velocity, in the same direction of motion: the quartic's t^4 and t^3
+    coefficients are then exactly zero) leave a quadratic, for which its quartic solver
+    returns four roots 0: the collision time is 0, and the event repeats at the same time
+    until ``max_events`` (a row of balls struck along a table axis does this once the
+    collision's outgoing velocities are exact, as this module's are; pooltool's own model
+    escapes by rounding noise, but not two balls rolling along one line, which collide at
+    once across any gap). This replaces ``solve.ball_ball_collision_time``, the function
+    pooltool's event loop calls, by one that solves that quadratic
+    (``_degenerate_collision_time``) and passes every other pair to pooltool's own function
+    unchanged. It does so only where pooltool's quartic solver has that defect (probed on
+    t^2 - 3t + 2, roots 1 and 2); it is process-wide, idempotent, and returns whether the
+    correction is in place."""
+    solve = _first_found("pooltool.evolution.event_based:solve")
+    quartic = _first_found("pooltool.ptmath.roots:quartic")
+    original = getattr(solve, "ball_ball_collision_time", None)
+    coeffs = getattr(solve, "ball_ball_collision_coeffs", None)
+    if original is None or coeffs is None or quartic is None:
+        return False  # not pooltool 0.6's event loop
+    if getattr(original, "_billiard_contact_corrected", False):
+        return True
+    try:
+        probe = np.asarray(quartic.solve(0.0, 0.0, 1.0, -3.0, 2.0))
+    except Exception:  # a solver that refuses a degenerate quartic: nothing to correct
+        return False
+    if not (probe.shape == (4,) and np.all(probe == 0)):
+        return False
+
+    def ball_ball_collision_time(*args: Any, **kwargs: Any) -> float:
+        a, b, c, d, e = coeffs(*args, **kwargs)
+        if a == 0.0 and b == 0.0:
+            return _degenerate_collision_time(float(c), float(d), float(e))
+        return original(*args, **kwargs)
+
+    ball_ball_collision_time._billiard_contact_corrected = True  # type: ignore[attr-defined]
+    ball_ball_collision_time.original = original  # type: ignore[attr-defined]
+    solve.ball_ball_collision_time = ball_ball_collision_time
+    return True
+
+
 #: pooltool after 0.6: strategies declare the dimensionality they are safe in (None: 0.6).
 Dim = _first_found("pooltool.physics.dimensionality:Dim")
 #: pooltool after 0.6: the motion state of a ball off the table (None: 0.6, all on it).
 _AIRBORNE = getattr(const, "airborne", None)
 
-__all__ = ["BilliardContact", "BilliardContactCushion", "install", "MODEL_NAME", "CUSHION_MODEL_NAME"]
+__all__ = [
+    "BilliardContact",
+    "BilliardContactCushion",
+    "install",
+    "MODEL_NAME",
+    "CUSHION_MODEL_NAME",
+    "COLLISION_TIME_CORRECTED",
+]
+
+#: Whether pooltool's ball-ball collision time is corrected for balls without relative
+#: acceleration (``_correct_collision_time``, applied when this module is imported; False
+#: where pooltool's own solver needs no correction).
+COLLISION_TIME_CORRECTED = _correct_collision_time()
 
 MODEL_NAME = "billiard_contact"
 """The value of ``BilliardContact.model`` (pooltool identifies models by this attribute)."""
