@@ -163,6 +163,14 @@ class BallBall:
     time-stepping methods (the closed form does not depend on them); friction and stick
     switch those effects.
 
+    tangential="mindlin" with the balls' material (youngs_modulus in Pa, poisson_ratio)
+    resolves each collision compliantly instead (docs/tangential.md#two-spheres): Hertz's
+    elastic normal force and Mindlin's tangential spring (its stiffness times
+    shear_stiffness_factor, default 1) under Coulomb's cap; mu a number, restitution 1.
+    resolve_lab then takes rtol= (no method, up or time_transform) and returns "va", "wa",
+    "vb", "wb", "impulse", "tangential_impulse" (|J_t|), "contact_time" (s) and
+    "rebound_angle" (rad; NaN for a pair that does not approach, which passes unchanged).
+
     Bad values raise ValueError with the command line's message, e.g.
     "balls.mass = -1: > 0 kg".
     """
@@ -181,7 +189,14 @@ class BallBall:
         duration: float = 2.5e-4,
         friction: bool = True,
         stick: bool = True,
+        tangential: Literal["rigid", "mindlin"] = "rigid",
+        youngs_modulus: Optional[float] = None,
+        poisson_ratio: Optional[float] = None,
+        shear_stiffness_factor: Optional[float] = None,
     ) -> None: ...
+    @property
+    def tangential(self) -> Literal["rigid", "mindlin"]:
+        """The tangential law: "rigid" (the stick rule) or "mindlin" (the compliant pair)."""
     @property
     def mass(self) -> Optional[float]:
         """Mass (kg) of both balls; None when A and B differ."""

@@ -61,6 +61,13 @@ lab frame, z up; any memory order):
   convention: mu(S(0)) is computed from the incoming state and used as a constant
   coefficient (the first release's names "contact" and "initial-slip" work too).
 - Motion state. Both balls leave the collision ``const.sliding`` (or airborne, above).
+- Compliant contact. ``tangential="mindlin"`` with ``youngs_modulus`` and
+  ``poisson_ratio`` (``install(engine, tangential="mindlin", youngs_modulus=5.4e9,
+  poisson_ratio=0.34)``) resolves each collision with the library's compliant pair,
+  ``BallBall(tangential="mindlin", ...)``: Hertz's elastic normal force and Mindlin's
+  tangential spring under Coulomb's cap (docs/tangential.md). It is elastic (the balls'
+  ``e_b`` are not used; ``restitution`` None or 1) and takes a constant mu (by default the
+  mean of the balls' ``u_b``).
 
 Differences from pooltool's ``frictional_inelastic``: that model's tangential impulse is
 mu e m dv_n (e the restitution), this one's mu (1 + e)/2 m dv_n (Coulomb friction over the
@@ -82,6 +89,16 @@ model.
 ``install(engine, cluster=True)`` makes the engine's resolver a ``ClusterResolver``: a
 ball-ball event whose balls touch others (a rack, frozen balls) is resolved for all of
 them together by the library's ``Cluster`` (``CLUSTER_TOUCH_GAP``; docs/python.md).
+
+Collision time. Importing this module corrects pooltool 0.6.0's ball-ball collision
+time (``COLLISION_TIME_CORRECTED``; process-wide, for every engine): two balls with exactly
+the same acceleration on the cloth (both rolling, or both sliding with the slip along the
+velocity, moving in the same direction) have a squared distance quadratic in time, not
+quartic, and pooltool's quartic solver answers such an equation with roots 0, so the pair
+collides again at the same time until ``max_events`` stops every ball. A struck row of balls
+along a table axis does this once a collision's outgoing velocities are exact, as this
+model's are. The correction solves the quadratic for such a pair and leaves every other pair
+to pooltool's own function.
 
 These models are not registered with pooltool's serialisation (its registries of models
 are closed enumerations), so a resolver using them cannot be saved to ``resolver.yaml``;
@@ -119,12 +136,85 @@ def _first_found(*names: str) -> Any:
     return None
 
 
+def _degenerate_collision_time(c: float, d: float, e: float) -> float:
+    """The first time t > 0 (s) at which two balls without relative acceleration touch:
+    the root of c t^2 + d t + e = 0 (c = |relative velocity|^2, d = 2 relative velocity .
+    offset, e = |offset|^2 - (2R)^2, pooltool's coefficients in the plane), np.inf when
+    there is none. A root at t = 0 (touching now) is a collision only when the balls close
+    (d < 0)."""
+    if not c > 0.0:
+        return np.inf  # no relative motion: the distance never changes
+    disc = d * d - 4.0 * c * e
+    if disc < 0.0:
+        return np.inf  # the paths pass each other farther apart than touching
+    # The two roots without cancellation: q = -(d + sign(d) sqrt(disc)) / 2.
+    q = -0.5 * (d + math.copysign(math.sqrt(disc), d))
+    roots = [q / c] + ([e / q] if q != 0.0 else [])
+    times = [t for t in roots if t > 0.0 or (t == 0.0 and d < 0.0)]
+    return min(times, default=np.inf)
+
+
+def _correct_collision_time() -> bool:
+    """pooltool 0.6.0 predicts a ball-ball collision from the quartic in time of the
+    squared distance between the centres (``solve.ball_ball_collision_coeffs``). Two balls
+    with exactly the same acceleration on the cloth (both rolling, or both sliding with the
+    slip along the velocity, in the same direction of motion: the quartic's t^4 and t^3
+    coefficients are then exactly zero) leave a quadratic, for which its quartic solver
+    returns four roots 0: the collision time is 0, and the event repeats at the same time
+    until ``max_events`` (a row of balls struck along a table axis does this once the
+    collision's outgoing velocities are exact, as this module's are; pooltool's own model
+    escapes by rounding noise, but not two balls rolling along one line, which collide at
+    once across any gap). This replaces ``solve.ball_ball_collision_time``, the function
+    pooltool's event loop calls, by one that solves that quadratic
+    (``_degenerate_collision_time``) and passes every other pair to pooltool's own function
+    unchanged. It does so only where pooltool's quartic solver has that defect (probed on
+    t^2 - 3t + 2, roots 1 and 2); it is process-wide, idempotent, and returns whether the
+    correction is in place."""
+    solve = _first_found("pooltool.evolution.event_based:solve")
+    quartic = _first_found("pooltool.ptmath.roots:quartic")
+    original = getattr(solve, "ball_ball_collision_time", None)
+    coeffs = getattr(solve, "ball_ball_collision_coeffs", None)
+    if original is None or coeffs is None or quartic is None:
+        return False  # not pooltool 0.6's event loop
+    if getattr(original, "_billiard_contact_corrected", False):
+        return True
+    try:
+        probe = np.asarray(quartic.solve(0.0, 0.0, 1.0, -3.0, 2.0))
+    except Exception:  # a solver that refuses a degenerate quartic: nothing to correct
+        return False
+    if not (probe.shape == (4,) and np.all(probe == 0)):
+        return False
+
+    def ball_ball_collision_time(*args: Any, **kwargs: Any) -> float:
+        a, b, c, d, e = coeffs(*args, **kwargs)
+        if a == 0.0 and b == 0.0:
+            return _degenerate_collision_time(float(c), float(d), float(e))
+        return original(*args, **kwargs)
+
+    ball_ball_collision_time._billiard_contact_corrected = True  # type: ignore[attr-defined]
+    ball_ball_collision_time.original = original  # type: ignore[attr-defined]
+    solve.ball_ball_collision_time = ball_ball_collision_time
+    return True
+
+
 #: pooltool after 0.6: strategies declare the dimensionality they are safe in (None: 0.6).
 Dim = _first_found("pooltool.physics.dimensionality:Dim")
 #: pooltool after 0.6: the motion state of a ball off the table (None: 0.6, all on it).
 _AIRBORNE = getattr(const, "airborne", None)
 
-__all__ = ["BilliardContact", "BilliardContactCushion", "install", "MODEL_NAME", "CUSHION_MODEL_NAME"]
+__all__ = [
+    "BilliardContact",
+    "BilliardContactCushion",
+    "install",
+    "MODEL_NAME",
+    "CUSHION_MODEL_NAME",
+    "COLLISION_TIME_CORRECTED",
+]
+
+#: Whether pooltool's ball-ball collision time is corrected for balls without relative
+#: acceleration (``_correct_collision_time``, applied when this module is imported; False
+#: where pooltool's own solver needs no correction).
+COLLISION_TIME_CORRECTED = _correct_collision_time()
 
 MODEL_NAME = "billiard_contact"
 """The value of ``BilliardContact.model`` (pooltool identifies models by this attribute)."""
@@ -163,6 +253,18 @@ class BilliardContact(CoreBallBallCollision):
             result is final.
         dim: (pooltool after 0.6 only) ``Dim.BOTH``: the library resolves collisions in
             3D, so the model is safe in 2D and 3D engines.
+        tangential: "rigid" (default: the paper's closed form with the stick rule) or
+            "mindlin": the compliant pair (``BallBall(tangential="mindlin", ...)``, Hertz's
+            elastic normal force and Mindlin's tangential spring under Coulomb's cap,
+            docs/tangential.md), which needs ``youngs_modulus`` (Pa) and ``poisson_ratio``
+            of the balls' material. The compliant pair is elastic: ``restitution`` None
+            (the balls' ``e_b`` are not used) or 1; mu a number, or by default the mean of
+            the balls' ``params.u_b``; ``method`` None (``rtol`` sets the step control's
+            tolerance).
+        youngs_modulus, poisson_ratio: the balls' material, with ``tangential="mindlin"``.
+        shear_stiffness_factor: the factor on Mindlin's tangential stiffness (None: 1,
+            Mindlin's; larger: stiffer, towards the rigid stick rule), with
+            ``tangential="mindlin"``.
     """
 
     mu: Union[float, SpeedDependentFriction] = DEFAULT_MU
@@ -174,26 +276,74 @@ class BilliardContact(CoreBallBallCollision):
     continually_touching: bool = True
     is_3d: bool = False
     min_bounce_height: float = 0.005
+    tangential: str = "rigid"
+    youngs_modulus: Optional[float] = None
+    poisson_ratio: Optional[float] = None
+    shear_stiffness_factor: Optional[float] = None
 
     if Dim is not None:
         dim: Dim = attrs.field(default=Dim.BOTH, init=False, repr=False)
     model: str = attrs.field(default=MODEL_NAME, init=False, repr=False)
     _models: dict = attrs.field(factory=dict, init=False, repr=False, eq=False)
 
-    def _ball_ball(self, m1: float, r1: float, m2: float, r2: float, e: float) -> BallBall:
-        key = (m1, r1, m2, r2, e)
+    def __attrs_post_init__(self) -> None:
+        if self.tangential not in ("rigid", "mindlin"):
+            raise ValueError(
+                f'tangential = "{self.tangential}": "rigid" (the stick rule) or "mindlin" '
+                f"(Mindlin's tangential spring)"
+            )
+        compliant = (self.youngs_modulus, self.poisson_ratio, self.shear_stiffness_factor)
+        if self.tangential != "mindlin":
+            if compliant != (None, None, None):
+                raise ValueError(
+                    'youngs_modulus, poisson_ratio, shear_stiffness_factor: given with '
+                    'tangential="rigid"; they belong to tangential="mindlin" (the rigid '
+                    "stick rule uses none)"
+                )
+            return
+        if self.restitution not in (None, 1.0):
+            raise ValueError(
+                f'restitution = {self.restitution} with tangential="mindlin": None or 1 '
+                f"(the compliant pair's normal force is elastic Hertz)"
+            )
+        if isinstance(self.mu, SpeedDependentFriction) and self.mu is not DEFAULT_MU:
+            raise ValueError(
+                'mu = SpeedDependentFriction with tangential="mindlin": a number (the '
+                "compliant pair takes a constant Coulomb coefficient; by default the mean "
+                "of the balls' u_b)"
+            )
+        if self.method is not None:
+            raise ValueError(
+                f'method = "{self.method}" with tangential="mindlin": None (the compliant '
+                f"contact steps with its own Dormand-Prince 5(4); rtol sets its tolerance)"
+            )
+        # The material and the factor are checked now (BallBall's messages), not at the
+        # first collision.
+        BallBall(mass=1.0, radius=1.0, mu=0.0, **self._compliant_keywords())
+
+    def _compliant_keywords(self) -> dict:
+        return dict(
+            tangential="mindlin",
+            youngs_modulus=self.youngs_modulus,
+            poisson_ratio=self.poisson_ratio,
+            shear_stiffness_factor=self.shear_stiffness_factor,
+        )
+
+    def _ball_ball(
+        self, m1: float, r1: float, m2: float, r2: float, e: float, mu: Any
+    ) -> BallBall:
+        # mu changes between collisions only when taken from the balls' u_b (a number).
+        key = (m1, r1, m2, r2, e, mu if self.tangential == "mindlin" else None)
         model = self._models.get(key)
         if model is None:
+            kw: dict = dict(mu=mu, restitution=e)
+            if self.tangential == "mindlin":
+                kw.update(self._compliant_keywords())
             if (m1, r1) == (m2, r2):
-                model = BallBall(
-                    mass=m1, radius=r1, alpha=self.alpha, mu=self.mu, restitution=e
-                )
+                model = BallBall(mass=m1, radius=r1, alpha=self.alpha, **kw)
             else:
                 model = BallBall(
-                    a=_LibBall(m1, r1, self.alpha),
-                    b=_LibBall(m2, r2, self.alpha),
-                    mu=self.mu,
-                    restitution=e,
+                    a=_LibBall(m1, r1, self.alpha), b=_LibBall(m2, r2, self.alpha), **kw
                 )
             self._models[key] = model
         return model
@@ -254,10 +404,14 @@ class BilliardContact(CoreBallBallCollision):
     def solve(self, ball1: Ball, ball2: Ball) -> tuple[Ball, Ball]:
         """Resolves the collision of two touching (or 1e-6 m apart) balls, in place."""
         p1, p2 = ball1.params, ball2.params
-        e = self.restitution
-        if e is None:
+        e, mu = self.restitution, self.mu
+        if self.tangential == "mindlin":
+            e = 1.0  # the compliant pair is elastic
+            if mu is DEFAULT_MU:
+                mu = _mean([p1.u_b, p2.u_b])
+        elif e is None:
             e = (p1.e_b + p2.e_b) / 2
-        model = self._ball_ball(p1.m, p1.R, p2.m, p2.R, e)
+        model = self._ball_ball(p1.m, p1.R, p2.m, p2.R, e, mu)
         rvw1 = ball1.state.rvw
         rvw2 = ball2.state.rvw
         r1 = rvw1[0]

@@ -146,6 +146,7 @@ named! {
     tangential: text -> String;
     plane_youngs_modulus: real_or_none -> Option<f64>;
     plane_poisson_ratio: real_or_none -> Option<f64>;
+    shear_stiffness_factor: real_or_none -> Option<f64>;
 }
 
 named_as! {

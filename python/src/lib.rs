@@ -4,6 +4,7 @@
 mod args;
 mod ball;
 mod cluster;
+mod compliant_pair;
 mod cushion;
 mod errors;
 mod friction;

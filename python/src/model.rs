@@ -6,6 +6,7 @@
 //! batch rows).
 
 use crate::ball::Ball;
+use crate::compliant_pair::PairMindlin;
 use crate::errors::to_py;
 use crate::friction::Mu;
 use crate::inputs::{float_array, shaped, with_argument_names};
@@ -32,6 +33,12 @@ use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
 /// time-stepping methods and for stick times; the closed form does not depend on them),
 /// and the effects `friction` and `stick`.
 ///
+/// `tangential="mindlin"` with the balls' material (`youngs_modulus` in Pa,
+/// `poisson_ratio`) resolves each collision compliantly instead: Hertz's elastic normal
+/// force and Mindlin's tangential spring (its stiffness times `shear_stiffness_factor`,
+/// default 1) under Coulomb's cap, stepped through the contact (docs/tangential.md#two-spheres);
+/// mu a number, restitution 1 (the compliant pair is elastic).
+///
 /// Bad values raise ValueError with the command line's message, e.g.
 /// "balls.mass = -1: > 0 kg".
 #[pyclass(frozen, module = "billiard_contact._core", name = "BallBall")]
@@ -47,6 +54,8 @@ pub struct BallBall {
     duration: f64,
     friction: bool,
     stick: bool,
+    /// The tangential law: `None` the rigid stick rule (eqs 24-35), else Mindlin's spring.
+    mindlin: Option<PairMindlin>,
 }
 
 impl BallBall {
@@ -62,10 +71,14 @@ impl BallBall {
     #[new]
     #[pyo3(signature = (*, mass = None, radius = None, alpha = None, a = None, b = None, mu,
                         restitution = 1.0, profile = "half-sine".to_string(), duration = 2.5e-4,
-                        friction = true, stick = true),
+                        friction = true, stick = true, tangential = "rigid".to_string(),
+                        youngs_modulus = None, poisson_ratio = None,
+                        shear_stiffness_factor = None),
            text_signature = "(*, mass=None, radius=None, alpha=None, a=None, b=None, mu, \
                              restitution=1.0, profile='half-sine', duration=0.00025, \
-                             friction=True, stick=True)")]
+                             friction=True, stick=True, tangential='rigid', \
+                             youngs_modulus=None, poisson_ratio=None, \
+                             shear_stiffness_factor=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         #[pyo3(from_py_with = crate::args::mass_or_none)] mass: Option<f64>,
@@ -79,6 +92,12 @@ impl BallBall {
         #[pyo3(from_py_with = crate::args::duration)] duration: f64,
         #[pyo3(from_py_with = crate::args::friction)] friction: bool,
         #[pyo3(from_py_with = crate::args::stick)] stick: bool,
+        #[pyo3(from_py_with = crate::args::tangential)] tangential: String,
+        #[pyo3(from_py_with = crate::args::youngs_modulus)] youngs_modulus: Option<f64>,
+        #[pyo3(from_py_with = crate::args::poisson_ratio)] poisson_ratio: Option<f64>,
+        #[pyo3(from_py_with = crate::args::shear_stiffness_factor)] shear_stiffness_factor: Option<
+            f64,
+        >,
     ) -> PyResult<Self> {
         let profile = profile.as_str();
         // The model is a scene (with a placeholder incoming state): the library's scene
@@ -110,6 +129,14 @@ impl BallBall {
             &scene,
             settings::for_batch(None, None, None).map_err(to_py)?,
         );
+        let mindlin = mindlin_of(
+            &tangential,
+            mu,
+            restitution,
+            [friction, stick],
+            [youngs_modulus, poisson_ratio, shear_stiffness_factor],
+        )
+        .map_err(to_py)?;
         Ok(BallBall {
             scene,
             closed_form,
@@ -120,6 +147,7 @@ impl BallBall {
             duration,
             friction,
             stick,
+            mindlin,
         })
     }
 
@@ -180,6 +208,47 @@ impl BallBall {
             up.map(|u| float_array("up", u)).transpose()?,
         ];
         let (inputs, n, single) = shaped(&arrays)?;
+        if let Some(mindlin) = self.mindlin {
+            let refused = match (method, up.is_some(), time_transform) {
+                (Some(m), _, _) => Some(("method", format!("{m:?}"))),
+                (_, true, _) => Some(("up", "given".to_string())),
+                (_, _, Some(t)) => Some(("time_transform", format!("{t}"))),
+                _ => None,
+            };
+            if let Some((name, value)) = refused {
+                return Err(to_py(Error::invalid(
+                    name,
+                    value,
+                    "None with tangential=\"mindlin\" (the compliant contact steps with its \
+                     own Dormand-Prince 5(4), rtol= its tolerance, and reports no throw angle)",
+                )));
+            }
+            let settings = settings::for_batch(Some("dopri5"), rtol, None).map_err(to_py)?;
+            let borrows = arrays
+                .iter()
+                .flatten()
+                .map(|a| a.try_readonly())
+                .collect::<Result<Vec<_>, _>>()?;
+            let balls = self.scene.balls;
+            let rows = py.detach(|| mindlin.rows(&balls, &inputs, n, &settings));
+            drop(borrows);
+            drop(arrays);
+            return match rows {
+                Ok(rows) => rows.into_dict(py, single),
+                Err((i, e)) => {
+                    let msg = if single {
+                        e.to_string()
+                    } else {
+                        format!("row {i}: {e}")
+                    };
+                    Err(if e.is_bad_input() {
+                        PyValueError::new_err(msg)
+                    } else {
+                        pyo3::exceptions::PyRuntimeError::new_err(msg)
+                    })
+                }
+            };
+        }
         let own_setup;
         let setup = if method.is_none() && rtol.is_none() && time_transform.is_none() {
             &self.closed_form
@@ -329,6 +398,12 @@ impl BallBall {
         kwargs.set_item("duration", self.duration)?;
         kwargs.set_item("friction", self.friction)?;
         kwargs.set_item("stick", self.stick)?;
+        if let Some(m) = self.mindlin {
+            kwargs.set_item("tangential", "mindlin")?;
+            kwargs.set_item("youngs_modulus", m.material.youngs_modulus())?;
+            kwargs.set_item("poisson_ratio", m.material.poisson_ratio())?;
+            kwargs.set_item("shear_stiffness_factor", m.shear_stiffness_factor)?;
+        }
         Ok((PyTuple::empty(py), kwargs))
     }
 
@@ -346,15 +421,88 @@ impl BallBall {
             ),
             _ => format!("a={}, b={}", self.a().__repr__(), self.b().__repr__()),
         };
+        let tangential = match self.mindlin {
+            None => String::new(),
+            Some(m) => format!(
+                ", tangential=\"mindlin\", youngs_modulus={:?}, poisson_ratio={:?}, \
+                 shear_stiffness_factor={:?}",
+                m.material.youngs_modulus(),
+                m.material.poisson_ratio(),
+                m.shear_stiffness_factor
+            ),
+        };
         format!(
             "BallBall({balls}, mu={mu}, restitution={:?}, \
-             profile=\"{}\", duration={:?}, friction={}, stick={})",
+             profile=\"{}\", duration={:?}, friction={}, stick={}{tangential})",
             self.restitution,
             self.profile,
             self.duration,
             if self.friction { "True" } else { "False" },
             if self.stick { "True" } else { "False" },
         )
+    }
+
+    /// The tangential law: "rigid" (the stick rule, eqs 24-35) or "mindlin" (Mindlin's
+    /// spring, the compliant pair).
+    #[getter]
+    fn tangential(&self) -> &'static str {
+        if self.mindlin.is_some() {
+            "mindlin"
+        } else {
+            "rigid"
+        }
+    }
+}
+
+/// The tangential law from the keywords: `None` for "rigid" (no material or factor may be
+/// given: the stick rule uses none); for "mindlin" the balls' material and the factor on
+/// Mindlin's stiffness, with a constant mu, restitution 1 (the compliant pair is elastic)
+/// and friction and stick on (the compliant contact has no stick rule to switch).
+fn mindlin_of(
+    tangential: &str,
+    mu: Mu,
+    restitution: f64,
+    [friction, stick]: [bool; 2],
+    [youngs_modulus, poisson_ratio, factor]: [Option<f64>; 3],
+) -> Result<Option<PairMindlin>, Error> {
+    match tangential {
+        "rigid" => match (youngs_modulus, poisson_ratio, factor) {
+            (None, None, None) => Ok(None),
+            _ => Err(Error::invalid(
+                "tangential",
+                "\"rigid\" with a material or shear_stiffness_factor",
+                "tangential=\"mindlin\" with them (the rigid stick rule uses none)",
+            )),
+        },
+        "mindlin" => {
+            let Mu::Constant(mu) = mu else {
+                return Err(Error::invalid(
+                    "mu",
+                    "SpeedDependentFriction with tangential=\"mindlin\"",
+                    "a number (the compliant pair takes a constant Coulomb coefficient)",
+                ));
+            };
+            if restitution != 1.0 {
+                return Err(Error::invalid(
+                    "restitution",
+                    format!("{restitution} with tangential=\"mindlin\""),
+                    "1 (the compliant pair's normal force is elastic Hertz)",
+                ));
+            }
+            if !(friction && stick) {
+                return Err(Error::invalid(
+                    "friction, stick",
+                    format!("{friction}, {stick} with tangential=\"mindlin\""),
+                    "True, True (mu=0 for no friction; the compliant contact has no stick rule)",
+                ));
+            }
+            PairMindlin::of(youngs_modulus, poisson_ratio, mu, factor).map(Some)
+        }
+        other => Err(Error::invalid(
+            "tangential",
+            format!("{other:?}"),
+            "\"rigid\" (the stick rule) or \"mindlin\" (Mindlin's tangential spring)",
+        )),
     }
 }
 

@@ -75,7 +75,7 @@ struct CompliantRows {
 }
 
 /// `e` with the field `from` named `to` (the library names a scene file's fields).
-fn renamed(e: Error, from: &str, to: &str) -> Error {
+pub(crate) fn renamed(e: Error, from: &str, to: &str) -> Error {
     match e {
         Error::InvalidParameter {
             field,
