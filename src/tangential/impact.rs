@@ -52,6 +52,10 @@ const MAX_STEP_FRACTION: f64 = 0.05;
 /// approaches down to 1e-70 of it resolve in a few hundred steps, 1e-80 stalled past 1e6
 /// steps (found by the `tangential` fuzz target at 1e-96 m/s with 6 mm/s of slip).
 const GRAZING: f64 = 1e-40;
+/// Smallest Hertz compression, relative to the effective radius, of a contact the kernel
+/// steps: the cluster's bound (a pool ball at 1e-3 m/s on steel compresses 1.7e-5 of its
+/// radius; alumina spheres of 2.5 mm at 1e-6 m/s 2e-8).
+const MIN_COMPRESSION: f64 = 1e-8;
 /// A friction coefficient below which the contact is stepped without friction. The
 /// tangential impulse is at most mu P, a change of the velocities below 1e-20 of the normal
 /// one's, four orders under a double's rounding (1.1e-16), so the answer is the frictionless
@@ -524,6 +528,23 @@ pub(crate) fn run(
     // fuzz target's overrides reached E = 1e-270 Pa, a compression of 1.3e104 m, where the
     // spring's cap (1e-115 N) sat at the doubles' rounding and the stepping switched
     // between stick and slide past 1e6 steps.
+    // Nor so stiff that the compression is no length at all against the spheres: below
+    // MIN_COMPRESSION of the effective radius (the cluster's bound) the spring's cap sat at
+    // 1e-161 N beside a compression of 2e-112 m and the stepping switched between stick and
+    // slide past 1e6 steps (an override of the fuzz target).
+    if delta_max < MIN_COMPRESSION * radius {
+        return Err(Error::invalid(
+            "contact.profile.duration",
+            format!(
+                "{t_hertz:e} s from the materials at {speed} m/s, with a compression of \
+                 {delta_max:e} m against an effective radius of {radius:e} m"
+            ),
+            format!(
+                "materials soft enough that Hertz's compression is at least \
+                 {MIN_COMPRESSION:e} of the effective radius"
+            ),
+        ));
+    }
     if delta_max > radius {
         return Err(Error::invalid(
             "contact.profile.duration",
