@@ -340,8 +340,10 @@ def test_plug_in_installed_resolves_a_shot_with_the_compliant_pair():
     direct = model(mu=0.06, damping="hunt-crossley", restitution=0.93, at_speed=1.0
                    ).resolve_lab(a_in[0], a_in[1], a_in[2], a_in[0] + [0, 2 * R, 0], b_in[1],
                                  b_in[2])
-    np.testing.assert_allclose(a_out[1], direct["va"], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(b_out[1], direct["vb"], rtol=0, atol=1e-12)
+    # (pooltool 0.6's engine is 2D: the plug-in zeroes the vertical velocity that friction
+    # on A's small backspin gives, about 2e-7 m/s here.)
+    for got, key in ((a_out[1], "va"), (b_out[1], "vb")):
+        np.testing.assert_allclose(got, [*direct[key][:2], 0.0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(a_out[1] + b_out[1], a_in[1] + b_in[1], rtol=0, atol=1e-12)
     assert 0.9 * a_in[1][1] < b_out[1][1] < 0.99 * a_in[1][1]
     assert pickle.loads(pickle.dumps(m)) == m
@@ -373,7 +375,7 @@ def test_plug_in_given_restitution_and_elastic_e_b():
 
 @pytest.mark.parametrize("kw, match", [
     (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU, restitution=1.5),
-     "restitution"),
+     "contact.restitution"),
     (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU, method="rk4"), "method"),
     (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU,
           mu=bc.SpeedDependentFriction(0.01, 0.1, 1.0)), "mu"),
