@@ -34,7 +34,7 @@ use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
 /// and the effects `friction` and `stick`.
 ///
 /// `tangential="mindlin"` with the balls' material (`youngs_modulus` in Pa,
-/// `poisson_ratio`) resolves each collision compliantly instead: Hertz's elastic normal
+/// `poisson_ratio`) resolves each collision compliantly instead: Hertz's normal
 /// force and Mindlin's tangential spring (its stiffness times `shear_stiffness_factor`,
 /// default 1) under Coulomb's cap, stepped through the contact (docs/tangential.md#two-spheres);
 /// mu a number. Hertz's force is elastic (restitution 1) unless `damping` is
