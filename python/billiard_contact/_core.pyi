@@ -165,8 +165,12 @@ class BallBall:
 
     tangential="mindlin" with the balls' material (youngs_modulus in Pa, poisson_ratio)
     resolves each collision compliantly instead (docs/tangential.md#two-spheres): Hertz's
-    elastic normal force and Mindlin's tangential spring (its stiffness times
-    shear_stiffness_factor, default 1) under Coulomb's cap; mu a number, restitution 1.
+    normal force and Mindlin's tangential spring (its stiffness times
+    shear_stiffness_factor, default 1) under Coulomb's cap; mu a number. Hertz's force is
+    elastic (restitution 1) unless damping is "hunt-crossley" or "kuwabara-kono"
+    (docs/contact-law.md), with its coefficient (s/m or s; restitution left at 1) or
+    calibrated so that a head-on impact at the relative approach speed at_speed (m/s)
+    rebounds with restitution, on the pair's Hertz stiffness and reduced mass, as BallPlane.
     resolve_lab then takes rtol= (no method, up or time_transform) and returns "va", "wa",
     "vb", "wb", "impulse", "tangential_impulse" (|J_t|), "contact_time" (s) and
     "rebound_angle" (rad; NaN for a pair that does not approach, which passes unchanged).
@@ -193,6 +197,9 @@ class BallBall:
         youngs_modulus: Optional[float] = None,
         poisson_ratio: Optional[float] = None,
         shear_stiffness_factor: Optional[float] = None,
+        damping: Optional[Literal["hunt-crossley", "kuwabara-kono"]] = None,
+        coefficient: Optional[float] = None,
+        at_speed: Optional[float] = None,
     ) -> None: ...
     @property
     def tangential(self) -> Literal["rigid", "mindlin"]:

@@ -64,10 +64,14 @@ lab frame, z up; any memory order):
 - Compliant contact. ``tangential="mindlin"`` with ``youngs_modulus`` and
   ``poisson_ratio`` (``install(engine, tangential="mindlin", youngs_modulus=5.4e9,
   poisson_ratio=0.34)``) resolves each collision with the library's compliant pair,
-  ``BallBall(tangential="mindlin", ...)``: Hertz's elastic normal force and Mindlin's
-  tangential spring under Coulomb's cap (docs/tangential.md). It is elastic (the balls'
-  ``e_b`` are not used; ``restitution`` None or 1) and takes a constant mu (by default the
-  mean of the balls' ``u_b``).
+  ``BallBall(tangential="mindlin", ...)``: Hertz's normal force and Mindlin's tangential
+  spring under Coulomb's cap (docs/tangential.md). The restitution (``restitution``, or by
+  default the mean of the balls' ``e_b``) is, as for ``ClusterResolver``'s contact law,
+  Hunt and Crossley's damping calibrated to it once at a relative approach speed of
+  ``MINDLIN_AT_SPEED`` (1 m/s): ``BallBall(..., damping="hunt-crossley", restitution=e,
+  at_speed=1.0)``; at other approach speeds the restitution is the damped contact's own
+  (not a calibration per collision). A restitution of 1 is elastic Hertz. It takes a
+  constant mu (by default the mean of the balls' ``u_b``).
 
 Differences from pooltool's ``frictional_inelastic``: that model's tangential impulse is
 mu e m dv_n (e the restitution), this one's mu (1 + e)/2 m dv_n (Coulomb friction over the
@@ -208,6 +212,7 @@ __all__ = [
     "install",
     "MODEL_NAME",
     "CUSHION_MODEL_NAME",
+    "MINDLIN_AT_SPEED",
     "COLLISION_TIME_CORRECTED",
 ]
 
@@ -218,6 +223,11 @@ COLLISION_TIME_CORRECTED = _correct_collision_time()
 
 MODEL_NAME = "billiard_contact"
 """The value of ``BilliardContact.model`` (pooltool identifies models by this attribute)."""
+
+#: The relative approach speed (m/s) at which ``tangential="mindlin"`` calibrates Hunt and
+#: Crossley's damping to the restitution, once a pair of balls (``ClusterResolver``'s
+#: ``at_speed`` too): a typical collision speed on a pool table.
+MINDLIN_AT_SPEED = 1.0
 
 #: pooltool's default ball-ball friction fit (TP A-14), evaluated along the contact.
 DEFAULT_MU = SpeedDependentFriction(a=9.951e-3, b=0.108, c=1.088)
@@ -255,12 +265,13 @@ class BilliardContact(CoreBallBallCollision):
             3D, so the model is safe in 2D and 3D engines.
         tangential: "rigid" (default: the paper's closed form with the stick rule) or
             "mindlin": the compliant pair (``BallBall(tangential="mindlin", ...)``, Hertz's
-            elastic normal force and Mindlin's tangential spring under Coulomb's cap,
+            normal force and Mindlin's tangential spring under Coulomb's cap,
             docs/tangential.md), which needs ``youngs_modulus`` (Pa) and ``poisson_ratio``
-            of the balls' material. The compliant pair is elastic: ``restitution`` None
-            (the balls' ``e_b`` are not used) or 1; mu a number, or by default the mean of
-            the balls' ``params.u_b``; ``method`` None (``rtol`` sets the step control's
-            tolerance).
+            of the balls' material. ``restitution`` (None: the mean of the balls' ``e_b``)
+            in (0, 1] is Hunt and Crossley's damping calibrated to it at the relative
+            approach speed ``MINDLIN_AT_SPEED`` (1 m/s; 1: elastic Hertz); mu a number, or
+            by default the mean of the balls' ``params.u_b``; ``method`` None (``rtol``
+            sets the step control's tolerance).
         youngs_modulus, poisson_ratio: the balls' material, with ``tangential="mindlin"``.
         shear_stiffness_factor: the factor on Mindlin's tangential stiffness (None: 1,
             Mindlin's; larger: stiffer, towards the rigid stick rule), with
@@ -301,11 +312,6 @@ class BilliardContact(CoreBallBallCollision):
                     "stick rule uses none)"
                 )
             return
-        if self.restitution not in (None, 1.0):
-            raise ValueError(
-                f'restitution = {self.restitution} with tangential="mindlin": None or 1 '
-                f"(the compliant pair's normal force is elastic Hertz)"
-            )
         if isinstance(self.mu, SpeedDependentFriction) and self.mu is not DEFAULT_MU:
             raise ValueError(
                 'mu = SpeedDependentFriction with tangential="mindlin": a number (the '
@@ -317,17 +323,24 @@ class BilliardContact(CoreBallBallCollision):
                 f'method = "{self.method}" with tangential="mindlin": None (the compliant '
                 f"contact steps with its own Dormand-Prince 5(4); rtol sets its tolerance)"
             )
-        # The material and the factor are checked now (BallBall's messages), not at the
-        # first collision.
-        BallBall(mass=1.0, radius=1.0, mu=0.0, **self._compliant_keywords())
+        # The material, the factor and a given restitution are checked now (BallBall's
+        # messages), not at the first collision.
+        e = 1.0 if self.restitution is None else self.restitution
+        BallBall(mass=1.0, radius=1.0, mu=0.0, **self._compliant_keywords(e))
 
-    def _compliant_keywords(self) -> dict:
-        return dict(
+    def _compliant_keywords(self, e: float) -> dict:
+        """BallBall's keywords for the compliant pair with restitution ``e``: elastic Hertz
+        at 1, else Hunt and Crossley's damping calibrated to e at ``MINDLIN_AT_SPEED``."""
+        kw = dict(
             tangential="mindlin",
             youngs_modulus=self.youngs_modulus,
             poisson_ratio=self.poisson_ratio,
             shear_stiffness_factor=self.shear_stiffness_factor,
+            restitution=e,
         )
+        if e != 1.0:
+            kw.update(damping="hunt-crossley", at_speed=MINDLIN_AT_SPEED)
+        return kw
 
     def _ball_ball(
         self, m1: float, r1: float, m2: float, r2: float, e: float, mu: Any
@@ -338,7 +351,7 @@ class BilliardContact(CoreBallBallCollision):
         if model is None:
             kw: dict = dict(mu=mu, restitution=e)
             if self.tangential == "mindlin":
-                kw.update(self._compliant_keywords())
+                kw.update(self._compliant_keywords(e))
             if (m1, r1) == (m2, r2):
                 model = BallBall(mass=m1, radius=r1, alpha=self.alpha, **kw)
             else:
@@ -405,12 +418,10 @@ class BilliardContact(CoreBallBallCollision):
         """Resolves the collision of two touching (or 1e-6 m apart) balls, in place."""
         p1, p2 = ball1.params, ball2.params
         e, mu = self.restitution, self.mu
-        if self.tangential == "mindlin":
-            e = 1.0  # the compliant pair is elastic
-            if mu is DEFAULT_MU:
-                mu = _mean([p1.u_b, p2.u_b])
-        elif e is None:
+        if e is None:
             e = (p1.e_b + p2.e_b) / 2
+        if self.tangential == "mindlin" and mu is DEFAULT_MU:
+            mu = _mean([p1.u_b, p2.u_b])
         model = self._ball_ball(p1.m, p1.R, p2.m, p2.R, e, mu)
         rvw1 = ball1.state.rvw
         rvw2 = ball2.state.rvw
@@ -628,7 +639,7 @@ class ClusterResolver(Resolver):
                 "poisson_ratio": 0.34,
                 "damping": "hunt-crossley",
                 "restitution": _mean([p.e_b for p in params]),
-                "at_speed": 1.0,
+                "at_speed": MINDLIN_AT_SPEED,
                 "mu": _mean([p.u_b for p in params]),
             }
             kw.update(self.cluster_options)

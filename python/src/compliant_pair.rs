@@ -1,14 +1,17 @@
 //! `BallBall(..., tangential="mindlin")`: the compliant impact of two balls (Hertz's normal
-//! force, Mindlin's tangential spring under Coulomb's cap; docs/tangential.md#two-spheres),
-//! the library's `resolve_sphere_sphere_compliant`, row by row from `resolve_lab`'s arrays.
+//! force, elastic or damped, Mindlin's tangential spring under Coulomb's cap;
+//! docs/tangential.md#two-spheres), the library's `resolve_sphere_sphere_compliant_damped`
+//! (with `(Damping::None, 0.0)`: the elastic `resolve_sphere_sphere_compliant`, bit for
+//! bit), row by row from `resolve_lab`'s arrays.
 
 use crate::inputs::{with_argument_names, Inputs};
 use crate::outputs::{float64, vector};
-use crate::plane::renamed;
+use crate::plane::{damping_law, renamed};
 use billiard_contact::batch::LabRows;
+use billiard_contact::details::hertz_stiffness;
 use billiard_contact::{
-    resolve_sphere_sphere_compliant, BallPair, CompliantSphere, Error, Frame, Material,
-    SolverSettings,
+    resolve_sphere_sphere_compliant_damped, BallPair, CompliantSphere, Damping, Error, Frame,
+    Material, SolverSettings,
 };
 use pyo3::intern;
 use pyo3::prelude::*;
@@ -19,8 +22,8 @@ use rayon::prelude::*;
 /// hundreds of steps, so a few rows already fill a thread).
 const PARALLEL_ROWS: usize = 64;
 
-/// The compliant contact of a pair: one material for both balls, Coulomb's mu and the
-/// factor on Mindlin's tangential stiffness.
+/// The compliant contact of a pair: one material for both balls, Coulomb's mu, the factor
+/// on Mindlin's tangential stiffness and the damping of Hertz's normal force.
 #[derive(Clone, Copy, PartialEq)]
 pub(crate) struct PairMindlin {
     pub(crate) material: Material,
@@ -28,6 +31,22 @@ pub(crate) struct PairMindlin {
     pub(crate) mu: f64,
     /// The factor on Mindlin's stiffness 8 G* a (1: Mindlin's spring).
     pub(crate) shear_stiffness_factor: f64,
+    /// The damping law and its coefficient (beta in s/m or gamma in s), as run;
+    /// `(Damping::None, 0.0)`: elastic Hertz.
+    pub(crate) law: (Damping, f64),
+    /// The keywords it came from: a coefficient given (s/m or s), or the relative approach
+    /// speed of the calibration (m/s).
+    pub(crate) coefficient: Option<f64>,
+    pub(crate) at_speed: Option<f64>,
+}
+
+/// The keywords of the normal force's damping: `damping=`, `coefficient=`, `restitution=`
+/// and `at_speed=`.
+pub(crate) struct DampingKeywords<'a> {
+    pub(crate) damping: Option<&'a str>,
+    pub(crate) coefficient: Option<f64>,
+    pub(crate) restitution: f64,
+    pub(crate) at_speed: Option<f64>,
 }
 
 /// The numbers of one row: va, wa, vb, wb, the normal impulse (N s), the magnitude of the
@@ -41,12 +60,17 @@ pub(crate) struct PairRows {
 }
 
 impl PairMindlin {
-    /// The material from the keywords (both or neither), checked; the factor checked.
+    /// The material from the keywords (both or neither), checked; the factor checked; the
+    /// damping law as `BallPlane`'s (elastic, a coefficient, or calibrated to the restitution
+    /// of a head-on impact at the relative approach speed `at_speed` on the pair's Hertz
+    /// stiffness and reduced mass m* = m_A m_B / (m_A + m_B)).
     pub(crate) fn of(
+        balls: &BallPair,
         youngs_modulus: Option<f64>,
         poisson_ratio: Option<f64>,
         mu: f64,
         shear_stiffness_factor: Option<f64>,
+        keywords: DampingKeywords<'_>,
     ) -> Result<Self, Error> {
         let (Some(e), Some(nu)) = (youngs_modulus, poisson_ratio) else {
             return Err(Error::invalid(
@@ -71,10 +95,29 @@ impl PairMindlin {
                  stick rule)",
             ));
         }
+        let DampingKeywords {
+            damping,
+            coefficient,
+            restitution,
+            at_speed,
+        } = keywords;
+        let law = damping_law(
+            crate::cluster::damping_of(damping)?,
+            restitution,
+            coefficient,
+            at_speed,
+            balls.reduced_mass(),
+            // k = (4/3) E* sqrt(R*), which does not depend on the speed (the calibration
+            // checks at_speed itself and names it).
+            |_| Ok(hertz_stiffness((&balls.a, &material), (&balls.b, &material)).2),
+        )?;
         Ok(PairMindlin {
             material,
             mu,
             shear_stiffness_factor: factor,
+            law,
+            coefficient,
+            at_speed,
         })
     }
 
@@ -118,9 +161,10 @@ impl PairMindlin {
             velocity,
             spin,
         };
-        let o = resolve_sphere_sphere_compliant(
+        let o = resolve_sphere_sphere_compliant_damped(
             &sphere(balls.a, a.velocity, a.spin),
             &sphere(balls.b, b.velocity, b.spin),
+            self.law,
             normal,
             self.mu,
             self.shear_stiffness_factor,

@@ -6,7 +6,7 @@
 //! batch rows).
 
 use crate::ball::Ball;
-use crate::compliant_pair::PairMindlin;
+use crate::compliant_pair::{DampingKeywords, PairMindlin};
 use crate::errors::to_py;
 use crate::friction::Mu;
 use crate::inputs::{float_array, shaped, with_argument_names};
@@ -14,7 +14,7 @@ use crate::outputs::{resolve_checked, single_collision, Outputs, RowFailure, PER
 use crate::settings;
 use billiard_contact::batch::{resolve_lab_into, BatchSetup, PARALLEL_LAB_ROWS};
 use billiard_contact::nalgebra::Vector3;
-use billiard_contact::{BallPair, Error, Friction, Method, Scene};
+use billiard_contact::{BallPair, Damping, Error, Friction, Method, Scene};
 use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -34,10 +34,14 @@ use billiard_contact::{CmState, Effects, ForceSpec, Incoming, SceneBuilder};
 /// and the effects `friction` and `stick`.
 ///
 /// `tangential="mindlin"` with the balls' material (`youngs_modulus` in Pa,
-/// `poisson_ratio`) resolves each collision compliantly instead: Hertz's elastic normal
+/// `poisson_ratio`) resolves each collision compliantly instead: Hertz's normal
 /// force and Mindlin's tangential spring (its stiffness times `shear_stiffness_factor`,
 /// default 1) under Coulomb's cap, stepped through the contact (docs/tangential.md#two-spheres);
-/// mu a number, restitution 1 (the compliant pair is elastic).
+/// mu a number. Hertz's force is elastic (restitution 1) unless `damping` is
+/// "hunt-crossley" or "kuwabara-kono" (docs/contact-law.md), with its `coefficient` (beta
+/// in s/m or gamma in s; restitution left at 1) or calibrated so that a head-on impact at
+/// the relative approach speed `at_speed` (m/s) rebounds with `restitution`, on the pair's
+/// Hertz stiffness and reduced mass m* = m_A m_B / (m_A + m_B), as `BallPlane` does.
 ///
 /// Bad values raise ValueError with the command line's message, e.g.
 /// "balls.mass = -1: > 0 kg".
@@ -73,12 +77,14 @@ impl BallBall {
                         restitution = 1.0, profile = "half-sine".to_string(), duration = 2.5e-4,
                         friction = true, stick = true, tangential = "rigid".to_string(),
                         youngs_modulus = None, poisson_ratio = None,
-                        shear_stiffness_factor = None),
+                        shear_stiffness_factor = None, damping = None, coefficient = None,
+                        at_speed = None),
            text_signature = "(*, mass=None, radius=None, alpha=None, a=None, b=None, mu, \
                              restitution=1.0, profile='half-sine', duration=0.00025, \
                              friction=True, stick=True, tangential='rigid', \
                              youngs_modulus=None, poisson_ratio=None, \
-                             shear_stiffness_factor=None)")]
+                             shear_stiffness_factor=None, damping=None, coefficient=None, \
+                             at_speed=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         #[pyo3(from_py_with = crate::args::mass_or_none)] mass: Option<f64>,
@@ -98,6 +104,9 @@ impl BallBall {
         #[pyo3(from_py_with = crate::args::shear_stiffness_factor)] shear_stiffness_factor: Option<
             f64,
         >,
+        #[pyo3(from_py_with = crate::args::damping)] damping: Option<String>,
+        #[pyo3(from_py_with = crate::args::coefficient)] coefficient: Option<f64>,
+        #[pyo3(from_py_with = crate::args::at_speed)] at_speed: Option<f64>,
     ) -> PyResult<Self> {
         let profile = profile.as_str();
         // The model is a scene (with a placeholder incoming state): the library's scene
@@ -130,11 +139,17 @@ impl BallBall {
             settings::for_batch(None, None, None).map_err(to_py)?,
         );
         let mindlin = mindlin_of(
+            &scene.balls,
             &tangential,
             mu,
-            restitution,
             [friction, stick],
             [youngs_modulus, poisson_ratio, shear_stiffness_factor],
+            DampingKeywords {
+                damping: damping.as_deref(),
+                coefficient,
+                restitution,
+                at_speed,
+            },
         )
         .map_err(to_py)?;
         Ok(BallBall {
@@ -403,6 +418,11 @@ impl BallBall {
             kwargs.set_item("youngs_modulus", m.material.youngs_modulus())?;
             kwargs.set_item("poisson_ratio", m.material.poisson_ratio())?;
             kwargs.set_item("shear_stiffness_factor", m.shear_stiffness_factor)?;
+            if m.law.0 != Damping::None {
+                kwargs.set_item("damping", m.law.0.name())?;
+                kwargs.set_item("coefficient", m.coefficient)?;
+                kwargs.set_item("at_speed", m.at_speed)?;
+            }
         }
         Ok((PyTuple::empty(py), kwargs))
     }
@@ -423,13 +443,25 @@ impl BallBall {
         };
         let tangential = match self.mindlin {
             None => String::new(),
-            Some(m) => format!(
-                ", tangential=\"mindlin\", youngs_modulus={:?}, poisson_ratio={:?}, \
-                 shear_stiffness_factor={:?}",
-                m.material.youngs_modulus(),
-                m.material.poisson_ratio(),
-                m.shear_stiffness_factor
-            ),
+            Some(m) => {
+                let mut s = format!(
+                    ", tangential=\"mindlin\", youngs_modulus={:?}, poisson_ratio={:?}, \
+                     shear_stiffness_factor={:?}",
+                    m.material.youngs_modulus(),
+                    m.material.poisson_ratio(),
+                    m.shear_stiffness_factor
+                );
+                if m.law.0 != Damping::None {
+                    s += &format!(", damping={:?}", m.law.0.name());
+                    if let Some(c) = m.coefficient {
+                        s += &format!(", coefficient={c:?}");
+                    }
+                    if let Some(v) = m.at_speed {
+                        s += &format!(", at_speed={v:?}");
+                    }
+                }
+                s
+            }
         };
         format!(
             "BallBall({balls}, mu={mu}, restitution={:?}, \
@@ -454,23 +486,32 @@ impl BallBall {
     }
 }
 
-/// The tangential law from the keywords: `None` for "rigid" (no material or factor may be
-/// given: the stick rule uses none); for "mindlin" the balls' material and the factor on
-/// Mindlin's stiffness, with a constant mu, restitution 1 (the compliant pair is elastic)
-/// and friction and stick on (the compliant contact has no stick rule to switch).
+/// The tangential law from the keywords: `None` for "rigid" (no material, factor or
+/// damping may be given: the stick rule uses none); for "mindlin" the balls' material, the
+/// factor on Mindlin's stiffness and the normal force's damping (elastic at restitution 1,
+/// a coefficient, or calibrated to the restitution at `at_speed`), with a constant mu and
+/// friction and stick on (the compliant contact has no stick rule to switch).
 fn mindlin_of(
+    balls: &BallPair,
     tangential: &str,
     mu: Mu,
-    restitution: f64,
     [friction, stick]: [bool; 2],
     [youngs_modulus, poisson_ratio, factor]: [Option<f64>; 3],
+    keywords: DampingKeywords<'_>,
 ) -> Result<Option<PairMindlin>, Error> {
     match tangential {
-        "rigid" => match (youngs_modulus, poisson_ratio, factor) {
-            (None, None, None) => Ok(None),
+        "rigid" => match (
+            youngs_modulus,
+            poisson_ratio,
+            factor,
+            keywords.damping,
+            keywords.coefficient,
+            keywords.at_speed,
+        ) {
+            (None, None, None, None, None, None) => Ok(None),
             _ => Err(Error::invalid(
                 "tangential",
-                "\"rigid\" with a material or shear_stiffness_factor",
+                "\"rigid\" with a material, shear_stiffness_factor or a damping",
                 "tangential=\"mindlin\" with them (the rigid stick rule uses none)",
             )),
         },
@@ -482,13 +523,6 @@ fn mindlin_of(
                     "a number (the compliant pair takes a constant Coulomb coefficient)",
                 ));
             };
-            if restitution != 1.0 {
-                return Err(Error::invalid(
-                    "restitution",
-                    format!("{restitution} with tangential=\"mindlin\""),
-                    "1 (the compliant pair's normal force is elastic Hertz)",
-                ));
-            }
             if !(friction && stick) {
                 return Err(Error::invalid(
                     "friction, stick",
@@ -496,7 +530,7 @@ fn mindlin_of(
                     "True, True (mu=0 for no friction; the compliant contact has no stick rule)",
                 ));
             }
-            PairMindlin::of(youngs_modulus, poisson_ratio, mu, factor).map(Some)
+            PairMindlin::of(balls, youngs_modulus, poisson_ratio, mu, factor, keywords).map(Some)
         }
         other => Err(Error::invalid(
             "tangential",

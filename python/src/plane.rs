@@ -365,55 +365,17 @@ fn mindlin_of(
                     "the ball's material (Mindlin's spring and Hertz's force need it)",
                 ));
             };
-            let named = |e: Error| {
-                renamed(
-                    renamed(
-                        renamed(e, "contact.law.coefficient", "coefficient"),
-                        "contact.law.restitution",
-                        "restitution",
-                    ),
-                    "contact.law.at_speed",
-                    "at_speed",
-                )
-            };
-            let run_law = match (law, coefficient, at_speed) {
-                (Damping::None, None, None) if restitution == 1.0 => (Damping::None, 0.0),
-                (Damping::None, c, v) if c.is_some() || v.is_some() => {
-                    return Err(Error::invalid(
-                        "damping",
-                        "None with coefficient= or at_speed=",
-                        "\"hunt-crossley\" or \"kuwabara-kono\" (elastic Hertz takes neither)",
-                    ))
-                }
-                (Damping::None, _, _) => {
-                    return Err(Error::invalid(
-                        "restitution",
-                        format!("{restitution} with damping None"),
-                        "1 (elastic Hertz), or a damping law (\"hunt-crossley\", \
-                         \"kuwabara-kono\") with coefficient= or at_speed=",
-                    ))
-                }
-                (d, Some(c), None) if restitution == 1.0 => {
-                    ContactLaw::new(1.0, d, c).map_err(named)?;
-                    (d, c)
-                }
-                (d, None, Some(v)) => {
-                    let k = HertzContact::sphere_plane(ball_model, &ball, plane.as_ref(), v)
-                        .map_err(named)?
-                        .stiffness;
-                    let l = ContactLaw::calibrated(k, d, restitution, v, ball_model.mass())
-                        .map_err(named)?;
-                    (l.damping(), l.coefficient())
-                }
-                _ => {
-                    return Err(Error::invalid(
-                        "coefficient, at_speed",
-                        "both or neither given (or a coefficient with restitution)",
-                        "coefficient= (restitution left at 1), or restitution= with \
-                         at_speed= to calibrate it",
-                    ))
-                }
-            };
+            let run_law = damping_law(
+                law,
+                restitution,
+                coefficient,
+                at_speed,
+                ball_model.mass(),
+                |v| {
+                    HertzContact::sphere_plane(ball_model, &ball, plane.as_ref(), v)
+                        .map(|h| h.stiffness)
+                },
+            )?;
             Ok(Some(Mindlin {
                 ball,
                 plane,
@@ -428,6 +390,70 @@ fn mindlin_of(
             "\"rigid\" (the stick rule) or \"mindlin\" (Mindlin's tangential spring)",
         )),
     }
+}
+
+/// The damping law and its coefficient (beta in s/m or gamma in s) that a compliant contact
+/// runs, from the keywords `damping=` (already parsed to `law`), `coefficient=`,
+/// `restitution=` and `at_speed=` (m/s): elastic Hertz (restitution 1, neither coefficient
+/// nor speed), a coefficient as given (restitution left at 1), or the coefficient
+/// calibrated (`ContactLaw::calibrated`) so that a head-on impact at `at_speed` on the
+/// contact's Hertz stiffness `stiffness(at_speed)` (N/m^1.5) with the reduced mass `mass`
+/// (kg) rebounds with `restitution`. Shared by `BallPlane` and `BallBall`; errors name the
+/// keywords.
+pub(crate) fn damping_law(
+    law: Damping,
+    restitution: f64,
+    coefficient: Option<f64>,
+    at_speed: Option<f64>,
+    mass: f64,
+    stiffness: impl FnOnce(f64) -> Result<f64, Error>,
+) -> Result<(Damping, f64), Error> {
+    let named = |e: Error| {
+        renamed(
+            renamed(
+                renamed(e, "contact.law.coefficient", "coefficient"),
+                "contact.law.restitution",
+                "restitution",
+            ),
+            "contact.law.at_speed",
+            "at_speed",
+        )
+    };
+    Ok(match (law, coefficient, at_speed) {
+        (Damping::None, None, None) if restitution == 1.0 => (Damping::None, 0.0),
+        (Damping::None, c, v) if c.is_some() || v.is_some() => {
+            return Err(Error::invalid(
+                "damping",
+                "None with coefficient= or at_speed=",
+                "\"hunt-crossley\" or \"kuwabara-kono\" (elastic Hertz takes neither)",
+            ))
+        }
+        (Damping::None, _, _) => {
+            return Err(Error::invalid(
+                "restitution",
+                format!("{restitution} with damping None"),
+                "1 (elastic Hertz), or a damping law (\"hunt-crossley\", \
+                 \"kuwabara-kono\") with coefficient= or at_speed=",
+            ))
+        }
+        (d, Some(c), None) if restitution == 1.0 => {
+            ContactLaw::new(1.0, d, c).map_err(named)?;
+            (d, c)
+        }
+        (d, None, Some(v)) => {
+            let k = stiffness(v).map_err(named)?;
+            let l = ContactLaw::calibrated(k, d, restitution, v, mass).map_err(named)?;
+            (l.damping(), l.coefficient())
+        }
+        _ => {
+            return Err(Error::invalid(
+                "coefficient, at_speed",
+                "both or neither given (or a coefficient with restitution)",
+                "coefficient= (restitution left at 1), or restitution= with \
+                 at_speed= to calibrate it",
+            ))
+        }
+    })
 }
 
 impl BallPlane {
