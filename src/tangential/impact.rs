@@ -721,6 +721,22 @@ pub(crate) fn run(
             trace.push(c.row(end, &y, mode));
             break end;
         }
+        // A damped contact separating with its elastic energy spent to rtol^2 of the normal
+        // approach's is over: whatever force is left can give back no more than rtol of the
+        // normal momentum (a damped force is below the elastic one while the balls
+        // separate, so the kinetic energy it returns is at most the stored energy), and
+        // under heavy damping the separation creeps towards its zero without reaching it
+        // (Kuwabara-Kono at gamma = 3e9 tau_0: 1e6 steps at a separation speed of 8e-18
+        // m/s with 1e-16 of the energy stored, found by fuzzing). An elastic contact ends
+        // at delta = 0 as before.
+        let stored = 0.4 * k_n * y[0].max(0.0).powf(2.5);
+        if c.law.damping() != Damping::None
+            && y[1] <= 0.0
+            && stored <= rtol * rtol * 0.5 * mass * speed * speed
+        {
+            trace.push(c.row(t, &y, mode));
+            break t;
+        }
         trace.push(c.row(t, &y, mode));
         h = next_step(h, err).min(h_max);
     };
