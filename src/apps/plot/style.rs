@@ -2,6 +2,7 @@
 //! and in its legend, legends drawn beside the charts (never over the data), and tick labels.
 
 use super::FONT;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 
@@ -297,6 +298,43 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
+}
+
+/// The axes of a chart of numbers: the descriptions, the tick labels (their count and
+/// decimals, without "-0") and a faint grid at the labelled ticks only.
+pub(crate) struct MeshAxes {
+    /// Descriptions of the x and the y axis.
+    pub desc: (String, String),
+    /// How many tick labels on x and on y (`None`: plotters' default).
+    pub labels: Option<(usize, usize)>,
+    /// Decimals of the x and the y tick labels.
+    pub decimals: (usize, usize),
+    /// Text sizes (px) of the tick labels and of the descriptions.
+    pub fonts: (u32, u32),
+}
+
+impl MeshAxes {
+    /// Draws the mesh of `chart`.
+    pub(crate) fn draw<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    ) -> Drawn<DB> {
+        let (dx, dy) = self.decimals;
+        let x_label = |v: &f64| tick_label(*v, dx);
+        let y_label = |v: &f64| tick_label(*v, dy);
+        let mut mesh = chart.configure_mesh();
+        mesh.x_desc(self.desc.0.clone()).y_desc(self.desc.1.clone());
+        if let Some((nx, ny)) = self.labels {
+            mesh.x_labels(nx).y_labels(ny);
+        }
+        mesh.x_label_formatter(&x_label)
+            .y_label_formatter(&y_label)
+            .label_style((FONT, self.fonts.0))
+            .axis_desc_style((FONT, self.fonts.1))
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.08))
+            .draw()
+    }
 }
 
 /// A tick label with `decimals` decimals, without the sign of a value that rounds to zero
