@@ -10,12 +10,13 @@
 //!   bar between the centres, its width growing with the pair's normal impulse.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, short, Drawn, LegendEntry, Line, MeshAxes, Swatch,
+    decimals_for, draw_legend, legend_row, short, write_drawn, Drawn, Figure, LegendEntry, Line,
+    MeshAxes, Swatch,
 };
 use super::trace::{
     TimeAxis, DESC_FONT, LEGEND_FONT, PANEL_FONT, SUBTITLE_FONT, TICK_FONT, TITLE_FONT,
 };
-use super::{Figure, FONT};
+use super::FONT;
 use crate::base::error::Error;
 use crate::base::number::shortest;
 use crate::cluster::resolve::{ClusterOutcome, ClusterSettings};
@@ -246,9 +247,9 @@ impl ClusterTraceFigure {
         }
     }
 
-    /// Writes the figure to `path` ([`super::write_drawn`]).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
-        super::write_drawn(option, path, self)
+        write_drawn(option, path, self)
     }
 }
 
@@ -600,9 +601,9 @@ impl ClusterTopView {
         }
     }
 
-    /// Writes the figure to `path` ([`super::write_drawn`]).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
-        super::write_drawn(option, path, self)
+        write_drawn(option, path, self)
     }
 }
 

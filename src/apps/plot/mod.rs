@@ -14,11 +14,10 @@ pub(crate) mod work_precision;
 use crate::base::error::Error;
 use crate::outputs::atomic_file::AtomicFile;
 use plotters::coord::Shift;
-use plotters::prelude::{BitMapBackend, DrawingArea, DrawingBackend, IntoDrawingArea, SVGBackend};
+use plotters::prelude::{BitMapBackend, DrawingArea, IntoDrawingArea, SVGBackend};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
-use style::Drawn;
 
 /// The font family every figure uses.
 pub const FONT: &str = "sans-serif";
@@ -77,40 +76,6 @@ pub(crate) fn write_figure(
         FigureFormat::Svg => write_svg(dims, path, draw_svg),
         FigureFormat::Png => write_png(dims, path, draw_png),
     }
-}
-
-/// A figure drawn the same on either backend: its size and its drawing.
-pub(crate) trait Figure {
-    /// The figure's size (px).
-    fn dims(&self) -> (u32, u32);
-
-    /// Draws the figure on `root` (the fonts registered).
-    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB>;
-}
-
-/// Writes `figure` to `path` (SVG or PNG by its extension; `option` names the command-line
-/// option in the error for another extension).
-pub(crate) fn write_drawn(option: &str, path: &Path, figure: &impl Figure) -> Result<(), Error> {
-    write_figure(
-        option,
-        path,
-        figure.dims(),
-        |r| draw_figure(figure, r),
-        |r| draw_figure(figure, r),
-    )
-}
-
-/// Draws `figure` on `root` with the fonts registered; an error carries the backend's
-/// message.
-fn draw_figure<DB: DrawingBackend>(
-    figure: &impl Figure,
-    root: &DrawingArea<DB, Shift>,
-) -> Result<(), String>
-where
-    DB::ErrorType: 'static,
-{
-    register_fonts();
-    figure.draw_all(root).map_err(|e| e.to_string())
 }
 
 /// A figure of `dims` (px) drawn by `draw_svg` as SVG to `svg` and by `draw_png` as PNG to

@@ -2,6 +2,7 @@
 //! and in its legend, legends drawn beside the charts (never over the data), and tick labels.
 
 use super::FONT;
+use crate::base::error::Error;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
@@ -298,6 +299,44 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
+}
+
+/// A figure drawn the same on either backend: its size and its drawing.
+pub(crate) trait Figure {
+    /// The figure's size (px).
+    fn dims(&self) -> (u32, u32);
+
+    /// Draws the figure on `root` (the fonts registered).
+    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB>;
+}
+
+/// Writes `figure` to `path` (SVG or PNG by its extension; `option` names the command-line
+/// option in the error for another extension).
+pub(crate) fn write_drawn(
+    option: &str,
+    path: &std::path::Path,
+    figure: &impl Figure,
+) -> Result<(), Error> {
+    super::write_figure(
+        option,
+        path,
+        figure.dims(),
+        |r| draw_figure(figure, r),
+        |r| draw_figure(figure, r),
+    )
+}
+
+/// Draws `figure` on `root` with the fonts registered; an error carries the backend's
+/// message.
+fn draw_figure<DB: DrawingBackend>(
+    figure: &impl Figure,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    super::register_fonts();
+    figure.draw_all(root).map_err(|e| e.to_string())
 }
 
 /// The axes of a chart of numbers: the descriptions, the tick labels (their count and

@@ -11,10 +11,10 @@
 //! contact's duration, theta in degrees, everything else in the CSV's SI units.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, light, short, tick_label, Drawn, LegendEntry, Line,
-    Mark, MeshAxes, Swatch,
+    decimals_for, draw_legend, legend_row, light, short, tick_label, write_drawn, Drawn, Figure,
+    LegendEntry, Line, Mark, MeshAxes, Swatch,
 };
-use super::{Figure, FONT};
+use super::FONT;
 use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::model::trace::TraceRow;
@@ -534,9 +534,9 @@ impl TraceFigure {
         Ok(())
     }
 
-    /// Writes the figure to `path` ([`super::write_drawn`]).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
-        super::write_drawn(option, path, self)
+        write_drawn(option, path, self)
     }
 }
 

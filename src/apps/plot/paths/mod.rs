@@ -12,10 +12,10 @@
 //! inset of the neighbourhood of the contact.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, light, short, tick_label, Drawn, LegendEntry, Line,
-    Mark, Swatch,
+    decimals_for, draw_legend, legend_row, light, short, tick_label, write_drawn, Drawn, Figure,
+    LegendEntry, Line, Mark, Swatch,
 };
-use super::{Figure, FONT};
+use super::FONT;
 use crate::base::error::Error;
 use crate::scene::run::SceneOutcome;
 use crate::scene::types::Scene;
@@ -118,9 +118,9 @@ impl<'a> TopView<'a> {
         }
     }
 
-    /// Writes the figure to `path` ([`super::write_drawn`]).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
-        super::write_drawn(option, path, self)
+        write_drawn(option, path, self)
     }
 }
 
