@@ -12,6 +12,7 @@ use crate::base::number::shortest;
 use crate::base::validate::finite_output;
 use crate::cluster::params::Cluster;
 use crate::cluster::resolve::{ClusterOutcome, ClusterTraceRow, ContactRecord, ContactTrace};
+use crate::outputs::trace_csv::StreamingCsv;
 use nalgebra::Vector3;
 use std::io::Write;
 
@@ -200,56 +201,41 @@ impl ClusterColumns {
 /// Writes a cluster trace's cells as CSV, streaming; the first error is kept and returned by
 /// [`ClusterTraceCsv::finish`] (the kernel's trace callback cannot fail).
 pub(crate) struct ClusterTraceCsv<W: Write> {
-    out: csv::Writer<W>,
+    out: StreamingCsv<W>,
     header: Vec<String>,
-    error: Option<Error>,
 }
 
 impl<W: Write> ClusterTraceCsv<W> {
     /// A writer that starts with the header line `header`.
     pub(crate) fn new(out: W, header: Vec<String>) -> Result<Self, Error> {
-        let mut out = csv::Writer::from_writer(out);
-        out.write_record(&header)?;
         Ok(ClusterTraceCsv {
-            out,
+            out: StreamingCsv::new(out, &header)?,
             header,
-            error: None,
         })
     }
 
     /// Writes one row of cells (after an earlier error: nothing).
     pub(crate) fn row(&mut self, cells: &[Option<f64>]) {
-        if self.error.is_none() {
-            if let Err(e) = self.write(cells) {
-                self.error = Some(e);
-            }
-        }
-    }
-
-    fn write(&mut self, cells: &[Option<f64>]) -> Result<(), Error> {
-        let t = cells.first().copied().flatten().unwrap_or(f64::NAN);
-        for (name, v) in self.header.iter().zip(cells) {
-            match v {
-                Some(v) => {
-                    let v = finite_output(*v, || format!("trace column {name} at t = {t}"))?;
-                    // + 0.0: a zero is written 0.0, never -0.0.
-                    self.out.write_field(shortest(v + 0.0))?;
+        let header = &self.header;
+        self.out.row(|out| {
+            let t = cells.first().copied().flatten().unwrap_or(f64::NAN);
+            for (name, v) in header.iter().zip(cells) {
+                match v {
+                    Some(v) => {
+                        let v = finite_output(*v, || format!("trace column {name} at t = {t}"))?;
+                        // + 0.0: a zero is written 0.0, never -0.0.
+                        out.write_field(shortest(v + 0.0))?;
+                    }
+                    None => out.write_field("")?,
                 }
-                None => self.out.write_field("")?,
             }
-        }
-        self.out.write_record(None::<&[u8]>)?;
-        Ok(())
+            Ok(())
+        });
     }
 
     /// Flushes and returns the underlying writer, or the first error met.
     pub(crate) fn finish(self) -> Result<W, Error> {
-        if let Some(e) = self.error {
-            return Err(e);
-        }
-        self.out
-            .into_inner()
-            .map_err(|e| Error::io("trace", e.into_error()))
+        self.out.finish()
     }
 }
 

@@ -7,6 +7,7 @@ use crate::base::settings::SolverSettings;
 use crate::base::validate::finite_output;
 use crate::cushion::outcome::{CushionOutcome, CushionPhase, CushionTraceRow};
 use crate::outputs::report::{v3, Num, SolverJson};
+use crate::outputs::trace_csv::StreamingCsv;
 use crate::scene::cushion::CushionScene;
 use nalgebra::Vector3;
 use serde::Serialize;
@@ -62,45 +63,31 @@ pub(crate) fn phase_name(p: CushionPhase) -> &'static str {
 /// Writes a cushion impact's trace rows as CSV, streaming; the first write error is kept
 /// and returned by [`CushionCsv::finish`] (the kernel's trace callback cannot fail).
 pub(crate) struct CushionCsv<W: Write> {
-    out: csv::Writer<W>,
-    error: Option<Error>,
+    out: StreamingCsv<W>,
 }
 
 impl<W: Write> CushionCsv<W> {
     /// A writer that starts with the header line.
     pub(crate) fn new(out: W) -> Result<Self, Error> {
-        let mut out = csv::Writer::from_writer(out);
-        out.write_record(CUSHION_HEADER)?;
-        Ok(CushionCsv { out, error: None })
+        Ok(CushionCsv {
+            out: StreamingCsv::new(out, CUSHION_HEADER)?,
+        })
     }
 
     /// Writes one row (after an earlier error: nothing).
     pub(crate) fn row(&mut self, r: &CushionTraceRow) {
-        if self.error.is_none() {
-            if let Err(e) = self.write(r) {
-                self.error = Some(e);
+        self.out.row(|out| {
+            for (name, v) in CUSHION_HEADER.iter().zip(row_values(r)) {
+                let v = finite_output(v, || format!("trace column {name} at P_I = {}", r.p_i))?;
+                out.write_field(shortest(v + 0.0))?;
             }
-        }
-    }
-
-    fn write(&mut self, r: &CushionTraceRow) -> Result<(), Error> {
-        for (name, v) in CUSHION_HEADER.iter().zip(row_values(r)) {
-            let v = finite_output(v, || format!("trace column {name} at P_I = {}", r.p_i))?;
-            self.out.write_field(shortest(v + 0.0))?;
-        }
-        self.out.write_field(phase_name(r.phase))?;
-        self.out.write_record(None::<&[u8]>)?;
-        Ok(())
+            Ok(out.write_field(phase_name(r.phase))?)
+        });
     }
 
     /// Flushes and returns the underlying writer, or the first error.
     pub(crate) fn finish(self) -> Result<W, Error> {
-        if let Some(e) = self.error {
-            return Err(e);
-        }
-        self.out
-            .into_inner()
-            .map_err(|e| Error::io("trace", e.into_error()))
+        self.out.finish()
     }
 }
 

@@ -183,6 +183,46 @@ impl<W: Write> CsvTrace<W> {
     }
 }
 
+/// A trace CSV fed by a kernel's trace callback, which cannot fail: the first error is kept,
+/// the rows after it are dropped, and [`StreamingCsv::finish`] returns it.
+pub(crate) struct StreamingCsv<W: Write> {
+    out: csv::Writer<W>,
+    error: Option<Error>,
+}
+
+impl<W: Write> StreamingCsv<W> {
+    /// A writer that starts with the header line `header`.
+    pub(crate) fn new<T: AsRef<[u8]>>(
+        out: W,
+        header: impl IntoIterator<Item = T>,
+    ) -> Result<Self, Error> {
+        let mut out = csv::Writer::from_writer(out);
+        out.write_record(header)?;
+        Ok(StreamingCsv { out, error: None })
+    }
+
+    /// Writes one row, its cells written by `cells` (after an earlier error: nothing).
+    pub(crate) fn row(&mut self, cells: impl FnOnce(&mut csv::Writer<W>) -> Result<(), Error>) {
+        if self.error.is_none() {
+            let written =
+                cells(&mut self.out).and_then(|()| Ok(self.out.write_record(None::<&[u8]>)?));
+            if let Err(e) = written {
+                self.error = Some(e);
+            }
+        }
+    }
+
+    /// Flushes and returns the underlying writer, or the first error met.
+    pub(crate) fn finish(self) -> Result<W, Error> {
+        if let Some(e) = self.error {
+            return Err(e);
+        }
+        self.out
+            .into_inner()
+            .map_err(|e| Error::io("trace", e.into_error()))
+    }
+}
+
 /// A row without tangential cells: a compliant run's writer leaves them empty (its rows go
 /// through [`CsvTrace::compliant_row`]).
 impl<W: Write> TraceSink for CsvTrace<W> {

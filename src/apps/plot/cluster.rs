@@ -10,9 +10,12 @@
 //!   bar between the centres, its width growing with the pair's normal impulse.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, short, tick_label, Drawn, LegendEntry, Line, Swatch,
+    decimals_for, draw_legend, legend_row, short, write_drawn, Drawn, Figure, LegendEntry, Line,
+    MeshAxes, Swatch,
 };
-use super::trace::TimeAxis;
+use super::trace::{
+    TimeAxis, DESC_FONT, LEGEND_FONT, PANEL_FONT, SUBTITLE_FONT, TICK_FONT, TITLE_FONT,
+};
 use super::FONT;
 use crate::base::error::Error;
 use crate::base::number::shortest;
@@ -30,13 +33,8 @@ const TRACE_SIZE: (u32, u32) = (1400, 1200);
 const LEGEND_W: u32 = 230;
 /// Height (px) of the title strip.
 const HEADER_PX: u32 = 92;
-/// Text sizes (px): title, subtitle, panel titles, axis descriptions, ticks, legend, labels.
-const TITLE_FONT: u32 = 26;
-const SUBTITLE_FONT: u32 = 17;
-const PANEL_FONT: u32 = 21;
-const DESC_FONT: u32 = 18;
-const TICK_FONT: u32 = 16;
-const LEGEND_FONT: u32 = 16;
+/// Text size (px) of the pairs' labels at their peaks and of the legend's note (the other
+/// sizes: the trace figure's).
 const LABEL_FONT: u32 = 15;
 /// Two pairs' force curves closer than this fraction of the largest force everywhere are
 /// one curve to the eye (mirror images in a symmetric rack).
@@ -249,22 +247,15 @@ impl ClusterTraceFigure {
         }
     }
 
-    /// Draws the figure on `root`; an error carries the backend's message.
-    pub(crate) fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        super::register_fonts();
-        self.draw_all(root).map_err(|e| e.to_string())
-    }
-
-    /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
-    /// command-line option in the error for another extension).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
-        super::write_figure(option, path, TRACE_SIZE, |r| self.draw(r), |r| self.draw(r))
+        write_drawn(option, path, self)
+    }
+}
+
+impl Figure for ClusterTraceFigure {
+    fn dims(&self) -> (u32, u32) {
+        TRACE_SIZE
     }
 
     fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
@@ -319,7 +310,9 @@ impl ClusterTraceFigure {
         }
         root.present()
     }
+}
 
+impl ClusterTraceFigure {
     fn draw_panel<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
@@ -345,20 +338,16 @@ impl ClusterTraceFigure {
             .x_label_area_size(50)
             .y_label_area_size(90)
             .build_cartesian_2d(0.0..span, 0.0..top)?;
-        let (dx, dy) = (decimals_for(span / 8.0), decimals_for(top / 6.0));
-        chart
-            .configure_mesh()
-            .x_desc(format!("t from the first touch ({})", self.time.unit))
-            .y_desc(panel.y_desc.clone())
-            .x_labels(10)
-            .y_labels(7)
-            .x_label_formatter(&|v| tick_label(*v, dx))
-            .y_label_formatter(&|v| tick_label(*v, dy))
-            .label_style((FONT, TICK_FONT))
-            .axis_desc_style((FONT, DESC_FONT))
-            .light_line_style(WHITE.mix(0.0))
-            .bold_line_style(BLACK.mix(0.08))
-            .draw()?;
+        MeshAxes {
+            desc: (
+                format!("t from the first touch ({})", self.time.unit),
+                panel.y_desc.clone(),
+            ),
+            labels: Some((10, 7)),
+            decimals: (decimals_for(span / 8.0), decimals_for(top / 6.0)),
+            fonts: (TICK_FONT, DESC_FONT),
+        }
+        .draw(&mut chart)?;
         for (curve, (_, swatch)) in panel.curves.iter().zip(&self.pairs) {
             swatch.draw_line(chart.plotting_area(), curve)?;
         }
@@ -612,35 +601,17 @@ impl ClusterTopView {
         }
     }
 
-    /// The figure's size (px).
-    pub(crate) fn dims(&self) -> (u32, u32) {
+    /// Writes the figure to `path` ([`write_drawn`]).
+    pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
+        write_drawn(option, path, self)
+    }
+}
+
+impl Figure for ClusterTopView {
+    fn dims(&self) -> (u32, u32) {
         (
             TOP_WIDTH,
             HEADER_PX + self.plot_height + 2 * TOP_MARGIN + TOP_LABEL_X + TOP_STRIP,
-        )
-    }
-
-    /// Draws the figure on `root`; an error carries the backend's message.
-    pub(crate) fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        super::register_fonts();
-        self.draw_all(root).map_err(|e| e.to_string())
-    }
-
-    /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
-    /// command-line option in the error for another extension).
-    pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
-        super::write_figure(
-            option,
-            path,
-            self.dims(),
-            |r| self.draw(r),
-            |r| self.draw(r),
         )
     }
 
@@ -655,17 +626,13 @@ impl ClusterTopView {
             .y_label_area_size(TOP_LABEL_Y)
             .build_cartesian_2d(self.x.clone(), self.y.clone())?;
         let d = decimals_for((self.x.end - self.x.start) / 10.0);
-        chart
-            .configure_mesh()
-            .x_desc("x (mm)")
-            .y_desc("y (mm)")
-            .x_label_formatter(&|v| tick_label(*v, d))
-            .y_label_formatter(&|v| tick_label(*v, d))
-            .label_style((FONT, TICK_FONT))
-            .axis_desc_style((FONT, DESC_FONT))
-            .light_line_style(WHITE.mix(0.0))
-            .bold_line_style(BLACK.mix(0.08))
-            .draw()?;
+        MeshAxes {
+            desc: ("x (mm)".into(), "y (mm)".into()),
+            labels: None,
+            decimals: (d, d),
+            fonts: (TICK_FONT, DESC_FONT),
+        }
+        .draw(&mut chart)?;
         let area = chart.plotting_area();
         let outline = |(cx, cy): Point, r: f64| -> Vec<Point> {
             (0..=OUTLINE_POINTS)
@@ -706,7 +673,9 @@ impl ClusterTopView {
         self.draw_strip(&strip)?;
         root.present()
     }
+}
 
+impl ClusterTopView {
     /// An arrow from `from` to `to` (mm) with a filled head; nothing when shorter than
     /// [`MIN_ARROW_PX`].
     fn draw_arrow<DB: DrawingBackend>(

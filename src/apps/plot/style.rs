@@ -2,6 +2,8 @@
 //! and in its legend, legends drawn beside the charts (never over the data), and tick labels.
 
 use super::FONT;
+use crate::base::error::Error;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 
@@ -297,6 +299,81 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
         ))?;
     }
     Ok(())
+}
+
+/// A figure drawn the same on either backend: its size and its drawing.
+pub(crate) trait Figure {
+    /// The figure's size (px).
+    fn dims(&self) -> (u32, u32);
+
+    /// Draws the figure on `root` (the fonts registered).
+    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB>;
+}
+
+/// Writes `figure` to `path` (SVG or PNG by its extension; `option` names the command-line
+/// option in the error for another extension).
+pub(crate) fn write_drawn(
+    option: &str,
+    path: &std::path::Path,
+    figure: &impl Figure,
+) -> Result<(), Error> {
+    super::write_figure(
+        option,
+        path,
+        figure.dims(),
+        |r| draw_figure(figure, r),
+        |r| draw_figure(figure, r),
+    )
+}
+
+/// Draws `figure` on `root` with the fonts registered; an error carries the backend's
+/// message.
+fn draw_figure<DB: DrawingBackend>(
+    figure: &impl Figure,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    super::register_fonts();
+    figure.draw_all(root).map_err(|e| e.to_string())
+}
+
+/// The axes of a chart of numbers: the descriptions, the tick labels (their count and
+/// decimals, without "-0") and a faint grid at the labelled ticks only.
+pub(crate) struct MeshAxes {
+    /// Descriptions of the x and the y axis.
+    pub desc: (String, String),
+    /// How many tick labels on x and on y (`None`: plotters' default).
+    pub labels: Option<(usize, usize)>,
+    /// Decimals of the x and the y tick labels.
+    pub decimals: (usize, usize),
+    /// Text sizes (px) of the tick labels and of the descriptions.
+    pub fonts: (u32, u32),
+}
+
+impl MeshAxes {
+    /// Draws the mesh of `chart`.
+    pub(crate) fn draw<DB: DrawingBackend>(
+        &self,
+        chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    ) -> Drawn<DB> {
+        let (dx, dy) = self.decimals;
+        let x_label = |v: &f64| tick_label(*v, dx);
+        let y_label = |v: &f64| tick_label(*v, dy);
+        let mut mesh = chart.configure_mesh();
+        mesh.x_desc(self.desc.0.clone()).y_desc(self.desc.1.clone());
+        if let Some((nx, ny)) = self.labels {
+            mesh.x_labels(nx).y_labels(ny);
+        }
+        mesh.x_label_formatter(&x_label)
+            .y_label_formatter(&y_label)
+            .label_style((FONT, self.fonts.0))
+            .axis_desc_style((FONT, self.fonts.1))
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.08))
+            .draw()
+    }
 }
 
 /// A tick label with `decimals` decimals, without the sign of a value that rounds to zero

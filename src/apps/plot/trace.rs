@@ -11,8 +11,8 @@
 //! contact's duration, theta in degrees, everything else in the CSV's SI units.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, light, short, tick_label, Drawn, LegendEntry, Line,
-    Mark, Swatch,
+    decimals_for, draw_legend, legend_row, light, short, tick_label, write_drawn, Drawn, Figure,
+    LegendEntry, Line, Mark, MeshAxes, Swatch,
 };
 use super::FONT;
 use crate::base::error::Error;
@@ -32,13 +32,14 @@ use std::path::Path;
 pub(crate) const SIZE: (u32, u32) = (1400, 1280);
 /// Height (px) of the title strip.
 const HEADER_PX: u32 = 96;
-/// Text sizes (px): title, subtitle, panel titles, axis descriptions, tick labels, legends.
-const TITLE_FONT: u32 = 26;
-const SUBTITLE_FONT: u32 = 17;
-const PANEL_FONT: u32 = 21;
-const DESC_FONT: u32 = 18;
-const TICK_FONT: u32 = 16;
-const LEGEND_FONT: u32 = 16;
+/// Text sizes (px): title, subtitle, panel titles, axis descriptions, tick labels, legends
+/// (also those of the cluster's figures).
+pub(crate) const TITLE_FONT: u32 = 26;
+pub(crate) const SUBTITLE_FONT: u32 = 17;
+pub(crate) const PANEL_FONT: u32 = 21;
+pub(crate) const DESC_FONT: u32 = 18;
+pub(crate) const TICK_FONT: u32 = 16;
+pub(crate) const LEGEND_FONT: u32 = 16;
 /// With at most this many rows the rows are marked with dots.
 pub(crate) const MARKED_ROWS: usize = 80;
 
@@ -429,38 +430,6 @@ impl TraceFigure {
         }
     }
 
-    /// Draws the figure on `root`; an error carries the backend's message.
-    pub(crate) fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        super::register_fonts();
-        self.draw_all(root).map_err(|e| e.to_string())
-    }
-
-    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
-        root.fill(&WHITE)?;
-        let (header, body) = root.split_vertically(HEADER_PX);
-        header.draw(&Text::new(
-            self.title.clone(),
-            (20, 14),
-            (FONT, TITLE_FONT).into_font().style(FontStyle::Bold),
-        ))?;
-        header.draw(&Text::new(
-            self.subtitle.clone(),
-            (20, 14 + TITLE_FONT as i32 + 16),
-            (FONT, SUBTITLE_FONT).into_font(),
-        ))?;
-        let areas = body.split_evenly((self.panels.len().div_ceil(2), 2));
-        for (panel, area) in self.panels.iter().zip(&areas) {
-            self.draw_panel(area, panel)?;
-        }
-        root.present()
-    }
-
     /// One panel: title, legend above the chart, the chart with its curves and the stop.
     fn draw_panel<DB: DrawingBackend>(
         &self,
@@ -515,21 +484,19 @@ impl TraceFigure {
             .build_cartesian_2d(x.clone(), left.clone())?;
         // The right axis takes the right label area: set it before the left axis' mesh.
         let mut chart = chart.set_secondary_coord(x, right.clone());
-        let dx = decimals_for(self.duration / 8.0);
-        let dy = decimals_for((left.end - left.start) / 6.0);
-        chart
-            .configure_mesh()
-            .x_desc(format!("{} ({})", self.x_name, self.time.unit))
-            .y_desc(panel.y_desc.clone())
-            .x_labels(9)
-            .y_labels(7)
-            .x_label_formatter(&|v| tick_label(*v, dx))
-            .y_label_formatter(&|v| tick_label(*v, dy))
-            .label_style((FONT, TICK_FONT))
-            .axis_desc_style((FONT, DESC_FONT))
-            .light_line_style(WHITE.mix(0.0))
-            .bold_line_style(BLACK.mix(0.08))
-            .draw()?;
+        MeshAxes {
+            desc: (
+                format!("{} ({})", self.x_name, self.time.unit),
+                panel.y_desc.clone(),
+            ),
+            labels: Some((9, 7)),
+            decimals: (
+                decimals_for(self.duration / 8.0),
+                decimals_for((left.end - left.start) / 6.0),
+            ),
+            fonts: (TICK_FONT, DESC_FONT),
+        }
+        .draw(&mut chart)?;
         if let Some(y2) = &panel.y2_desc {
             let d2 = decimals_for((right.end - right.start) / 6.0);
             chart
@@ -567,19 +534,37 @@ impl TraceFigure {
         Ok(())
     }
 
-    /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
-    /// command-line option in the error for another extension).
+    /// Writes the figure to `path` ([`write_drawn`]).
     pub(crate) fn write(&self, option: &str, path: &Path) -> Result<(), Error> {
+        write_drawn(option, path, self)
+    }
+}
+
+impl Figure for TraceFigure {
+    fn dims(&self) -> (u32, u32) {
         // Three rows of panels in SIZE; a compliant run's fourth row adds a third of it.
         let rows = self.panels.len().div_ceil(2).max(3) as u32;
-        let size = (SIZE.0, HEADER_PX + (SIZE.1 - HEADER_PX) * rows / 3);
-        super::write_figure(
-            option,
-            path,
-            size,
-            |root| self.draw(root),
-            |root| self.draw(root),
-        )
+        (SIZE.0, HEADER_PX + (SIZE.1 - HEADER_PX) * rows / 3)
+    }
+
+    fn draw_all<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Drawn<DB> {
+        root.fill(&WHITE)?;
+        let (header, body) = root.split_vertically(HEADER_PX);
+        header.draw(&Text::new(
+            self.title.clone(),
+            (20, 14),
+            (FONT, TITLE_FONT).into_font().style(FontStyle::Bold),
+        ))?;
+        header.draw(&Text::new(
+            self.subtitle.clone(),
+            (20, 14 + TITLE_FONT as i32 + 16),
+            (FONT, SUBTITLE_FONT).into_font(),
+        ))?;
+        let areas = body.split_evenly((self.panels.len().div_ceil(2), 2));
+        for (panel, area) in self.panels.iter().zip(&areas) {
+            self.draw_panel(area, panel)?;
+        }
+        root.present()
     }
 }
 

@@ -12,8 +12,8 @@
 //! inset of the neighbourhood of the contact.
 
 use super::style::{
-    decimals_for, draw_legend, legend_row, light, short, tick_label, Drawn, LegendEntry, Line,
-    Mark, Swatch,
+    decimals_for, draw_legend, legend_row, light, short, tick_label, write_drawn, Drawn, Figure,
+    LegendEntry, Line, Mark, Swatch,
 };
 use super::FONT;
 use crate::base::error::Error;
@@ -118,35 +118,17 @@ impl<'a> TopView<'a> {
         }
     }
 
-    /// The figure's size (px).
-    pub(crate) fn dims(&self) -> (u32, u32) {
+    /// Writes the figure to `path` ([`write_drawn`]).
+    pub(crate) fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
+        write_drawn(option, path, self)
+    }
+}
+
+impl Figure for TopView<'_> {
+    fn dims(&self) -> (u32, u32) {
         (
             WIDTH,
             HEADER + self.plot_height + 2 * MARGIN + LABEL_X + STRIP,
-        )
-    }
-
-    /// Draws the figure on `root`; an error carries the backend's message.
-    pub(crate) fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), String>
-    where
-        DB::ErrorType: 'static,
-    {
-        super::register_fonts();
-        self.draw_all(root).map_err(|e| e.to_string())
-    }
-
-    /// Writes the figure to `path` (SVG or PNG by its extension; `option` names the
-    /// command-line option in the error for another extension).
-    pub(crate) fn write(&self, option: &str, path: &std::path::Path) -> Result<(), Error> {
-        super::write_figure(
-            option,
-            path,
-            self.dims(),
-            |r| self.draw(r),
-            |r| self.draw(r),
         )
     }
 
@@ -188,7 +170,9 @@ impl<'a> TopView<'a> {
         }
         root.present()
     }
+}
 
+impl TopView<'_> {
     /// The mesh and the axis descriptions, tick labels without "-0".
     fn draw_axes<'b, DB: DrawingBackend + 'b>(&self, chart: &mut Chart<'b, DB>) -> Drawn<DB> {
         let (xl, yl) = self.proj.axis_names();
