@@ -183,37 +183,33 @@ impl Cluster {
                 let m = a.mass() * b.mass() / (a.mass() + b.mass());
                 let delta = (5.0 * m * speed * speed / (4.0 * k)).powf(0.4);
                 let d = a.radius() + b.radius();
-                if delta.is_nan() || delta < MIN_COMPRESSION * d {
-                    return Err(Error::invalid(
+                let refused = |expected: String| {
+                    Error::invalid(
                         format!("cluster.balls[{i}], cluster.balls[{j}]"),
                         format!(
                             "a Hertz compression of {delta:e} m at {speed:e} m/s (stiffness \
                              {k:e} N/m^1.5)"
                         ),
-                        format!(
-                            "at least {MIN_COMPRESSION:e} of r_i + r_j = {d} m: a stiffer \
+                        expected,
+                    )
+                };
+                if delta.is_nan() || delta < MIN_COMPRESSION * d {
+                    return Err(refused(format!(
+                        "at least {MIN_COMPRESSION:e} of r_i + r_j = {d} m: a stiffer \
                              material or slower balls leave the compression in the rounding \
                              of the positions"
-                        ),
-                    ));
+                    )));
                 }
                 // And stay a Hertz contact: a compression past the pair's effective radius
                 // (a contact radius sqrt(R delta) past R) is none. A ball at 1.5e308 m/s
                 // gave an infinite compression and ran 5 s to the work bound (fuzzing).
                 let effective = a.radius() * b.radius() / d;
                 if delta > effective {
-                    return Err(Error::invalid(
-                        format!("cluster.balls[{i}], cluster.balls[{j}]"),
-                        format!(
-                            "a Hertz compression of {delta:e} m at {speed:e} m/s (stiffness \
-                             {k:e} N/m^1.5)"
-                        ),
-                        format!(
-                            "at most the pair's effective radius r_i r_j / (r_i + r_j) = \
+                    return Err(refused(format!(
+                        "at most the pair's effective radius r_i r_j / (r_i + r_j) = \
                              {effective} m: a stiffer material or slower balls (Hertz's \
                              contact is small against the balls)"
-                        ),
-                    ));
+                    )));
                 }
             }
         }
