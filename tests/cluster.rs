@@ -669,4 +669,17 @@ fn a_compression_lost_in_rounding_is_refused() {
         "{msg}"
     );
     assert!(soft(1e4).is_ok());
+    // The two-ball law's damping bound, gamma <= 1e12 tau_0 (docs/contact-law.md): the pool
+    // balls' k = 4.86e8 at 1 m/s compress 1.5e-4 m, tau_0 = 2.94 delta / v = 4.4e-4 s, so
+    // gamma = 1e10 s (2e13 tau_0) is refused and 1e-4 s resolved.
+    let damped = |gamma: f64| {
+        let law = ContactLaw::new(4.86e8, Damping::KuwabaraKono, gamma).unwrap();
+        Cluster::new(row(), ClusterLaw::Same(law), 0.0)
+    };
+    let msg = damped(1e10).unwrap_err().to_string();
+    assert!(
+        msg.starts_with("contact.law.coefficient") && msg.contains("tau_0"),
+        "{msg}"
+    );
+    assert!(damped(1e-4).is_ok());
 }
