@@ -675,7 +675,7 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         known("cluster: the run stopped (work bound or step too small)", what)
         return
     except Exception as e:  # noqa: BLE001
-        refusal(e, ["positions", "velocities", "spins", "balls", "rtol"], what)
+        refusal(e, ["positions", "velocities", "spins", "balls", "rtol", "coefficient"], what)
         return
     nb = len(model.balls)
     for name in ("velocities", "spins", "positions"):
