@@ -9,6 +9,7 @@ use crate::outputs::{float64, vector};
 use crate::plane::{damping_law, renamed};
 use billiard_contact::batch::LabRows;
 use billiard_contact::details::hertz_stiffness;
+use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{
     resolve_sphere_sphere_compliant_damped, BallPair, CompliantSphere, Damping, Error, Frame,
     Material, SolverSettings,
@@ -136,24 +137,7 @@ impl PairMindlin {
         let normal = (b.position - a.position).normalize();
         if (a.velocity - b.velocity).dot(&normal) <= 0.0 {
             let (va, wa, vb, wb) = (a.velocity, a.spin, b.velocity, b.spin);
-            return Ok([
-                va.x,
-                va.y,
-                va.z,
-                wa.x,
-                wa.y,
-                wa.z,
-                vb.x,
-                vb.y,
-                vb.z,
-                wb.x,
-                wb.y,
-                wb.z,
-                0.0,
-                0.0,
-                0.0,
-                f64::NAN,
-            ]);
+            return Ok(out_row([va, wa, vb, wb], [0.0, 0.0, 0.0, f64::NAN]));
         }
         let sphere = |ball, velocity, spin| CompliantSphere {
             ball,
@@ -184,24 +168,15 @@ impl PairMindlin {
             .fold(e, |e, (from, to)| renamed(e, from, to))
         })?;
         let (va, wa, vb, wb) = (o.ball_a.velocity, o.ball_a.spin, o.velocity_b, o.spin_b);
-        Ok([
-            va.x,
-            va.y,
-            va.z,
-            wa.x,
-            wa.y,
-            wa.z,
-            vb.x,
-            vb.y,
-            vb.z,
-            wb.x,
-            wb.y,
-            wb.z,
-            o.ball_a.normal_impulse,
-            o.ball_a.tangential_impulse.norm(),
-            o.ball_a.contact_time,
-            o.ball_a.rebound_angle,
-        ])
+        Ok(out_row(
+            [va, wa, vb, wb],
+            [
+                o.ball_a.normal_impulse,
+                o.ball_a.tangential_impulse.norm(),
+                o.ball_a.contact_time,
+                o.ball_a.rebound_angle,
+            ],
+        ))
     }
 
     /// Every row (on rayon's pool from `PARALLEL_ROWS` rows); the first failure and its row.
@@ -265,4 +240,14 @@ impl PairRows {
         }
         Ok(d)
     }
+}
+
+/// One output row: va, wa, vb, wb (12 components) and the four scalars.
+fn out_row(vectors: [Vector3<f64>; 4], scalars: [f64; 4]) -> [f64; 16] {
+    let mut row = [0.0; 16];
+    for (k, v) in vectors.iter().enumerate() {
+        row[3 * k..3 * k + 3].copy_from_slice(v.as_slice());
+    }
+    row[12..].copy_from_slice(&scalars);
+    row
 }
