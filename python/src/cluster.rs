@@ -209,16 +209,9 @@ fn law_of(
                         .map_err(|e| to_py(keyword(e)))?
                         .stiffness;
                     let reduced = a.mass() * b.mass() / (a.mass() + b.mass());
-                    let law = match pair_damping {
-                        PairDamping::None => ContactLaw::elastic(k),
-                        PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
-                        PairDamping::Restitution {
-                            damping,
-                            restitution,
-                            at_speed,
-                        } => ContactLaw::calibrated(k, damping, restitution, at_speed, reduced),
-                    }
-                    .map_err(|e| to_py(keyword(e)))?;
+                    let law = pair_damping
+                        .law(k, reduced)
+                        .map_err(|e| to_py(keyword(e)))?;
                     laws.push((a, b, law));
                 }
             }

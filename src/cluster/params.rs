@@ -56,6 +56,22 @@ pub enum PairDamping {
     },
 }
 
+impl PairDamping {
+    /// The law of a pair of stiffness `k` (N/m^1.5) and reduced mass `reduced_mass` (kg):
+    /// a calibrated damping runs its head-on calibration on that mass.
+    pub fn law(&self, k: f64, reduced_mass: f64) -> Result<ContactLaw, Error> {
+        match *self {
+            PairDamping::None => ContactLaw::elastic(k),
+            PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
+            PairDamping::Restitution {
+                damping,
+                restitution,
+                at_speed,
+            } => ContactLaw::calibrated(k, damping, restitution, at_speed, reduced_mass),
+        }
+    }
+}
+
 /// The normal law of every pair.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ClusterLaw {
@@ -357,22 +373,13 @@ fn pair_laws(balls: &[ClusterBall], law: ClusterLaw) -> Result<Vec<ContactLaw>, 
                     let (a, b) = (&balls[i].ball, &balls[j].ball);
                     let k = hertz_stiffness((a, &materials[i]), (b, &materials[j])).2;
                     let m = a.mass() * b.mass() / (a.mass() + b.mass());
-                    let l = match damping {
-                        PairDamping::None => ContactLaw::elastic(k)?,
-                        PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c)?,
-                        PairDamping::Restitution {
-                            damping,
-                            restitution,
-                            at_speed,
-                        } => match done.iter().find(|x| x.0 == k && x.1 == m) {
-                            Some(x) => x.2,
-                            None => {
-                                let l =
-                                    ContactLaw::calibrated(k, damping, restitution, at_speed, m)?;
-                                done.push((k, m, l));
-                                l
-                            }
-                        },
+                    let l = match done.iter().find(|x| x.0 == k && x.1 == m) {
+                        Some(x) => x.2,
+                        None => {
+                            let l = damping.law(k, m)?;
+                            done.push((k, m, l));
+                            l
+                        }
                     };
                     laws.push(l);
                 }
@@ -388,26 +395,18 @@ impl ClusterLaw {
     /// mass m m / (m + m)), else an error naming `contact.law.stiffness` and the first ball
     /// unlike the others.
     pub fn same_stiffness(k: f64, damping: PairDamping, balls: &[Ball]) -> Result<Self, Error> {
-        let law = match damping {
-            PairDamping::None => ContactLaw::elastic(k),
-            PairDamping::Coefficient(d, c) => ContactLaw::new(k, d, c),
-            PairDamping::Restitution {
-                damping,
-                restitution,
-                at_speed,
-            } => {
-                if let Some(i) = balls.iter().position(|b| *b != balls[0]) {
-                    return Err(Error::invalid(
-                        crate::model::contact_law::STIFFNESS_FIELD,
-                        format!("{k} with balls[{i}] unlike balls[0] and a calibrated damping"),
-                        "identical balls (one law calibrated on their reduced mass), or every \
+        if let PairDamping::Restitution { .. } = damping {
+            if let Some(i) = balls.iter().position(|b| *b != balls[0]) {
+                return Err(Error::invalid(
+                    crate::model::contact_law::STIFFNESS_FIELD,
+                    format!("{k} with balls[{i}] unlike balls[0] and a calibrated damping"),
+                    "identical balls (one law calibrated on their reduced mass), or every \
                          ball's material (each pair calibrated on its own)",
-                    ));
-                }
-                let m = balls[0].mass();
-                ContactLaw::calibrated(k, damping, restitution, at_speed, m * m / (m + m))
+                ));
             }
-        }?;
+        }
+        let m = balls.first().map_or(0.0, |b| b.mass());
+        let law = damping.law(k, m * m / (m + m))?;
         Ok(ClusterLaw::Same(law))
     }
 }
