@@ -11,6 +11,7 @@ use crate::errors::to_py;
 use crate::friction::Mu;
 use crate::inputs::{float_array, shaped, with_argument_names};
 use crate::outputs::{resolve_checked, single_collision, Outputs, RowFailure, PER_CHUNK};
+use crate::plane::damping_repr;
 use crate::settings;
 use billiard_contact::batch::{resolve_lab_into, BatchSetup, PARALLEL_LAB_ROWS};
 use billiard_contact::nalgebra::Vector3;
@@ -451,15 +452,7 @@ impl BallBall {
                     m.material.poisson_ratio(),
                     m.shear_stiffness_factor
                 );
-                if m.law.0 != Damping::None {
-                    s += &format!(", damping={:?}", m.law.0.name());
-                    if let Some(c) = m.coefficient {
-                        s += &format!(", coefficient={c:?}");
-                    }
-                    if let Some(v) = m.at_speed {
-                        s += &format!(", at_speed={v:?}");
-                    }
-                }
+                s += &damping_repr(m.law.0, m.coefficient, m.at_speed);
                 s
             }
         };

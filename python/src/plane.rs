@@ -392,6 +392,26 @@ fn mindlin_of(
     }
 }
 
+/// The damping keywords of a compliant model's repr: `, damping=..., coefficient=...,
+/// at_speed=...`, each only when given; empty without damping.
+pub(crate) fn damping_repr(
+    damping: Damping,
+    coefficient: Option<f64>,
+    at_speed: Option<f64>,
+) -> String {
+    let mut s = String::new();
+    if damping != Damping::None {
+        s += &format!(", damping={:?}", damping.name());
+        if let Some(c) = coefficient {
+            s += &format!(", coefficient={c:?}");
+        }
+        if let Some(v) = at_speed {
+            s += &format!(", at_speed={v:?}");
+        }
+    }
+    s
+}
+
 /// The damping law and its coefficient (beta in s/m or gamma in s) that a compliant contact
 /// runs, from the keywords `damping=` (already parsed to `law`), `coefficient=`,
 /// `restitution=` and `at_speed=` (m/s): elastic Hertz (restitution 1, neither coefficient
@@ -879,15 +899,7 @@ impl BallPlane {
                     p.poisson_ratio()
                 );
             }
-            if m.law.0 != Damping::None {
-                s += &format!(", damping={:?}", m.law.0.name());
-                if let Some(c) = m.coefficient {
-                    s += &format!(", coefficient={c:?}");
-                }
-                if let Some(v) = m.at_speed {
-                    s += &format!(", at_speed={v:?}");
-                }
-            }
+            s += &damping_repr(m.law.0, m.coefficient, m.at_speed);
         }
         s + ")"
     }
