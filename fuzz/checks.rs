@@ -1101,8 +1101,12 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
             k1 <= k0 * (1.0 + tol) || !dissipative,
             "{what}: kinetic energy {k0:e} -> {k1:e}"
         );
+        // On the scale of the largest term: without the stick rule a friction that keeps
+        // its direction can pump in energy (its heat negative), and the balance of 2.5e7 J
+        // out of 0.08 J in (mu 6554) is exact only to the rounding of those 2.5e7 J.
+        let scale = k0.max(k1).max(heat.abs());
         assert!(
-            (k0 - k1 - heat).abs() <= tol * k0,
+            (k0 - k1 - heat).abs() <= tol * scale,
             "{what}: kinetic energy {k0:e} -> {k1:e} with heat {heat:e}"
         );
     }
