@@ -117,7 +117,8 @@ pub use base::method::Method;
 pub use base::settings::{Sampling, SolverSettings, Stats};
 pub use closed_form::kernel::ClosedForm;
 pub use cluster::params::{
-    Cluster, ClusterBall, ClusterLaw, ClusterTangential, PairDamping, CLUSTER_TANGENTIAL_FIELD,
+    Cluster, ClusterBall, ClusterCloth, ClusterLaw, ClusterTangential, PairDamping,
+    CLOTH_DEFAULT_GRAVITY, CLOTH_DEFAULT_MU, CLUSTER_CLOTH_FIELD, CLUSTER_TANGENTIAL_FIELD,
     CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
 };
 pub use cluster::resolve::{

@@ -32,6 +32,7 @@ mod cli_work_precision_laws;
 mod cli_work_precision_values;
 mod closed_form_paper;
 mod cluster;
+mod cluster_cloth;
 mod cluster_frozen_throw;
 mod cluster_mindlin;
 mod cluster_scenes;

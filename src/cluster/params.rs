@@ -5,7 +5,7 @@ use crate::base::beta::beta;
 use crate::base::error::Error;
 use crate::integrator::law::damping_within_bound;
 use crate::model::contact_law::{ContactLaw, Damping};
-use crate::model::material::{hertz_stiffness, Material};
+use crate::model::material::{hertz_stiffness, sphere_plane_stiffness, Material};
 use crate::model::params::Ball;
 use crate::tangential::impact::shear_compliance;
 use nalgebra::Vector3;
@@ -97,6 +97,41 @@ pub struct Cluster {
     /// Mindlin's 8 G* sqrt(R*) of pair (i, j) at `pair_index(i, j)` (N/m^1.5: the spring's
     /// stiffness is this times sqrt(delta)); empty under [`ClusterTangential::Rigid`].
     pub(crate) shear: Vec<f64>,
+    /// The cloth under the balls, if they rest on one ([`Cluster::with_cloth`]).
+    pub(crate) cloth: Option<ClusterCloth>,
+    /// Each ball's elastic Hertz law on the cloth (empty without one).
+    pub(crate) cloth_laws: Vec<ContactLaw>,
+    /// Each ball's static compression of the cloth under its weight (m; empty without one).
+    pub(crate) cloth_preloads: Vec<f64>,
+}
+
+/// Default Coulomb friction between ball and cloth in scenes and Python: a typical sliding
+/// friction of a phenolic ball on a worsted cloth (pooltool's default sliding friction is
+/// the same 0.2).
+pub const CLOTH_DEFAULT_MU: f64 = 0.2;
+
+/// Default gravity (m/s^2) in scenes and Python.
+pub const CLOTH_DEFAULT_GRAVITY: f64 = 9.81;
+
+/// The field naming a cluster's cloth.
+pub const CLUSTER_CLOTH_FIELD: &str = "cluster.cloth";
+
+/// The cloth the balls of a cluster rest on (docs/cluster.md#the-cloth): the plane
+/// z = `height` of the lab frame, up along +z, with gravity along -z. Each ball presses it
+/// with an elastic Hertz contact of stiffness (4/3) E* sqrt(r), 1/E* the sum of the ball's
+/// and the cloth's (1 - nu^2) / E (the cloth's alone when the balls' materials are not
+/// given: the ball then counts as rigid against it), preloaded by the ball's weight, and
+/// Coulomb's friction `mu` with the stick rule acts at the ball's lowest point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClusterCloth {
+    /// Height (m) of the cloth's surface: every ball's centre starts at height + r.
+    pub height: f64,
+    /// The cloth bed's material.
+    pub material: Material,
+    /// Coulomb's mu between ball and cloth.
+    pub mu: f64,
+    /// Gravity (m/s^2), along -z.
+    pub gravity: f64,
 }
 
 /// The field naming a cluster's tangential law.
@@ -243,7 +278,92 @@ impl Cluster {
             materials,
             tangential: ClusterTangential::Rigid,
             shear: Vec::new(),
+            cloth: None,
+            cloth_laws: Vec::new(),
+            cloth_preloads: Vec::new(),
         })
+    }
+
+    /// The cluster resting on `cloth`: every ball's centre at the cloth's height plus its
+    /// radius (within [`CLUSTER_TOUCH_TOLERANCE`] of its radius), `mu` finite in [0, 1e6],
+    /// gravity finite in [0, 1e3] m/s^2, the weight's static compression below the ball's
+    /// radius. Under Mindlin's spring the cloth is refused (its contacts are rigid-stick
+    /// only), naming `cluster.cloth`.
+    pub fn with_cloth(mut self, cloth: ClusterCloth) -> Result<Self, Error> {
+        if self.tangential != ClusterTangential::Rigid {
+            return Err(Error::invalid(
+                CLUSTER_CLOTH_FIELD,
+                "a cloth with tangential = \"mindlin\"",
+                "tangential = \"rigid\" with a cloth (the cloth's contacts carry Coulomb's \
+                 friction with the stick rule, not Mindlin's spring)",
+            ));
+        }
+        if !cloth.height.is_finite() {
+            return Err(Error::invalid(
+                "cluster.cloth.height",
+                cloth.height,
+                "finite (m, the z of the cloth's surface)",
+            ));
+        }
+        if !(cloth.mu.is_finite() && (0.0..=crate::model::params::MU_MAX).contains(&cloth.mu)) {
+            return Err(Error::invalid(
+                "cluster.cloth.mu",
+                cloth.mu,
+                "finite, in [0, 1e6] (Coulomb's friction between ball and cloth)",
+            ));
+        }
+        if !(cloth.gravity.is_finite() && (0.0..=1e3).contains(&cloth.gravity)) {
+            return Err(Error::invalid(
+                "cluster.cloth.gravity",
+                cloth.gravity,
+                "finite, in [0, 1e3] m/s^2 (9.81 on Earth)",
+            ));
+        }
+        let mut laws = Vec::with_capacity(self.balls.len());
+        let mut preloads = Vec::with_capacity(self.balls.len());
+        for (i, b) in self.balls.iter().enumerate() {
+            let r = b.ball.radius();
+            let gap = b.position.z - r - cloth.height;
+            if gap.abs() > CLUSTER_TOUCH_TOLERANCE * r {
+                return Err(Error::invalid(
+                    format!("cluster.balls[{i}]"),
+                    format!(
+                        "a centre at z = {} m, {gap:e} m from resting on the cloth at height {} m",
+                        b.position.z, cloth.height
+                    ),
+                    format!(
+                        "z = height + r = {} m within {CLUSTER_TOUCH_TOLERANCE:e} of r (every \
+                         ball resting on the cloth)",
+                        cloth.height + r
+                    ),
+                ));
+            }
+            let k = match &self.materials {
+                Some(m) => sphere_plane_stiffness(&b.ball, &m[i], Some(&cloth.material)).2,
+                None => sphere_plane_stiffness(&b.ball, &cloth.material, None).2,
+            };
+            let law = ContactLaw::elastic(k)?;
+            // The weight's static compression: k delta^1.5 = m g.
+            let preload = (b.ball.mass() * cloth.gravity / k).powf(2.0 / 3.0);
+            if preload.is_nan() || preload >= r {
+                return Err(Error::invalid(
+                    format!("cluster.balls[{i}]"),
+                    format!("a static compression of {preload:e} m on the cloth"),
+                    format!("below the radius {r} m (a stiffer cloth or less gravity)"),
+                ));
+            }
+            laws.push(law);
+            preloads.push(preload);
+        }
+        self.cloth = Some(cloth);
+        self.cloth_laws = laws;
+        self.cloth_preloads = preloads;
+        Ok(self)
+    }
+
+    /// The cloth the balls rest on, if any.
+    pub fn cloth(&self) -> Option<&ClusterCloth> {
+        self.cloth.as_ref()
     }
 
     /// The cluster with the tangential law `tangential` at every contact. Mindlin's spring
@@ -251,6 +371,14 @@ impl Cluster {
     /// (2 - nu_j)/G_j): a cluster whose laws were not built from them
     /// ([`ClusterLaw::Materials`]) is refused naming `cluster.tangential`.
     pub fn with_tangential(mut self, tangential: ClusterTangential) -> Result<Self, Error> {
+        if self.cloth.is_some() && tangential != ClusterTangential::Rigid {
+            return Err(Error::invalid(
+                CLUSTER_TANGENTIAL_FIELD,
+                "\"mindlin\" on a cloth",
+                "\"rigid\" when the balls rest on a cloth (its contacts carry Coulomb's \
+                 friction with the stick rule)",
+            ));
+        }
         self.shear = match tangential {
             ClusterTangential::Rigid => Vec::new(),
             ClusterTangential::Mindlin => {

@@ -78,6 +78,11 @@ const PRESS_FLOOR: f64 = 1e-16;
 /// First step, in elastic contact times: the force starts as t^(3/2) (or t^(1/2)).
 const FIRST_STEP: f64 = 1e-3;
 
+/// On a cloth, how far ahead (in elastic contact times) a run steps on to a pair that will
+/// touch once every contact between balls has opened: the balls roll and slide on the cloth
+/// rather than fly, so a later collision is the table simulation's (docs/cluster.md#the-cloth).
+const CLOTH_HORIZON: f64 = 100.0;
+
 /// Smallest step, in elastic contact times, before the run stops with
 /// [`StopReason::StepTooSmall`].
 const MIN_STEP: f64 = 1e-15;
@@ -176,8 +181,13 @@ pub struct ClusterStats {
 pub struct ClusterOutcome {
     /// Every ball, in the input's order.
     pub balls: Vec<BallOut>,
-    /// Every contact that carried force, in the order they opened.
+    /// Every contact between balls that carried force, in the order they opened.
     pub contacts: Vec<ContactRecord>,
+    /// On a cloth ([`Cluster::with_cloth`]), each ball's contact with it (pair (ball, N), N
+    /// the number of balls; normal -z, from the ball into the cloth; the normal impulse
+    /// pushes the ball up), recorded when the run ends or the ball leaves the cloth; a
+    /// ball's weight alone gives m g times the run's time. Empty without a cloth.
+    pub cloth: Vec<ContactRecord>,
     /// Why the run ended.
     pub stop: StopReason,
     /// Time (s) the run covered.
@@ -287,6 +297,11 @@ struct Active {
     /// An orthonormal basis of the tangent plane.
     t: [Vector3<f64>; 2],
     law: ContactLaw,
+    /// Coulomb's mu of the contact (the cluster's between balls, the cloth's on the cloth).
+    mu: f64,
+    /// Compression (m) the contact had at the start beyond its geometry: a ball's static
+    /// compression of the cloth under its weight (0 between balls).
+    preload: f64,
     /// Mindlin's 8 G* sqrt(R*) of the pair (N/m^1.5; 0 under the rigid rule).
     k_t0: f64,
     mode: Mode,
@@ -338,7 +353,10 @@ fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
 struct System<'a> {
     bodies: &'a [Body],
     active: &'a [Active],
-    mu: f64,
+    /// The balls (the first bodies; a cloth is the last, immovable one).
+    nballs: usize,
+    /// Gravity (m/s^2) along -z on every ball (0 without a cloth).
+    gravity: f64,
     /// Coulomb's mu of the springs: `mu`, or 0 below [`NEGLIGIBLE_MU`] (as the pair kernel:
     /// such a friction moves no velocity by more than its rounding).
     spring_mu: f64,
@@ -373,7 +391,7 @@ impl System<'_> {
 
     /// Compression delta (m) and closing rate delta' (m/s) of contact `c`.
     fn compression(&self, y: &[f64], c: &Active) -> (f64, f64) {
-        let d = c.ri + c.rj - c.n.dot(&(pos(y, c.j) - pos(y, c.i)));
+        let d = c.ri + c.rj - c.n.dot(&(pos(y, c.j) - pos(y, c.i))) + c.preload;
         (d, c.n.dot(&(self.vel(y, c.i) - self.vel(y, c.j))))
     }
 
@@ -388,6 +406,9 @@ impl System<'_> {
     fn forces(&self, y: &[f64]) -> Forces {
         self.evaluations.set(self.evaluations.get() + 1);
         let mut acc = vec![[Vector3::zeros(); 2]; self.nb()];
+        for a in &mut acc[..self.nballs] {
+            a[0].z -= self.gravity;
+        }
         let mut contact = Vec::with_capacity(self.active.len());
         let floor = SLIP_FLOOR * self.v_ref;
         for (k, c) in self.active.iter().enumerate() {
@@ -400,7 +421,7 @@ impl System<'_> {
                     let a = capped(self.spring(y, k), self.spring_mu * f.max(0.0));
                     c.t[0] * a[0] + c.t[1] * a[1]
                 }
-                Mode::Sliding if f > 0.0 && self.mu > 0.0 => {
+                Mode::Sliding if f > 0.0 && c.mu > 0.0 => {
                     let sn = sr.norm();
                     let dir = if self.frozen || sn <= floor {
                         c.seed
@@ -412,9 +433,9 @@ impl System<'_> {
                         }
                         sr / sn
                     };
-                    -dir * (self.mu * f)
+                    -dir * (c.mu * f)
                 }
-                Mode::Continued if f > 0.0 && self.mu > 0.0 => -c.seed * (self.mu * f),
+                Mode::Continued if f > 0.0 && c.mu > 0.0 => -c.seed * (c.mu * f),
                 _ => Vector3::zeros(),
             };
             self.push(&mut acc, c, -c.n * f + friction);
@@ -554,7 +575,15 @@ impl System<'_> {
             dy[o + 1] = fr.x;
             dy[o + 2] = fr.y;
             dy[o + 3] = fr.z;
-            dy[o + 4] = f * w - fr.dot(s);
+            // Heat: the work of the normal force on the compression (returned by an elastic
+            // law when the contact opens) and of friction on the slip. The cloth's law is
+            // elastic and a ball may end the run still pressing it: its normal work is its
+            // stored energy, not heat, so its heat is friction's alone.
+            dy[o + 4] = if self.active[c].j == self.nballs {
+                -fr.dot(s)
+            } else {
+                f * w - fr.dot(s)
+            };
             let mode = self.active[c].mode;
             if mode.spring() {
                 let rate = if self.spring_mu > 0.0 {
@@ -773,8 +802,10 @@ fn run_cluster(
             "in [1e-14, 1e-2] (relative tolerance of the step control)",
         ));
     }
-    let nb = cluster.balls.len();
-    let bodies: Vec<Body> = cluster
+    let nballs = cluster.balls.len();
+    // The cloth is the last body: immovable (infinite mass and inertia), of radius 0, its
+    // centre on its surface.
+    let mut bodies: Vec<Body> = cluster
         .balls
         .iter()
         .map(|b| Body {
@@ -783,13 +814,24 @@ fn run_cluster(
             inertia: b.ball.inertia(),
         })
         .collect();
+    if cluster.cloth.is_some() {
+        bodies.push(Body {
+            m: f64::INFINITY,
+            r: 0.0,
+            inertia: f64::INFINITY,
+        });
+    }
+    let nb = bodies.len();
     // Positions from the balls' centroid, so that compressions keep their digits.
     let centre = cluster
         .balls
         .iter()
         .fold(Vector3::zeros(), |s, b| s + b.position)
-        / nb as f64;
+        / nballs as f64;
     let mut y = vec![0.0; PER_BALL * nb];
+    if let Some(cloth) = cluster.cloth {
+        y[3 * nballs + 2] = cloth.height - centre.z;
+    }
     for (b, ball) in cluster.balls.iter().enumerate() {
         for k in 0..3 {
             y[3 * b + k] = ball.position[k] - centre[k];
@@ -800,24 +842,32 @@ fn run_cluster(
     // Natural scales: the largest relative speed, and the elastic compression and contact
     // time of the softest, heaviest pair at it.
     let mut v_ref: f64 = 0.0;
-    for i in 0..nb {
-        for j in i + 1..nb {
+    for i in 0..nballs {
+        for j in i + 1..nballs {
             let (a, b) = (&cluster.balls[i], &cluster.balls[j]);
             v_ref = v_ref.max((a.velocity - b.velocity).norm());
             v_ref = v_ref.max(a.spin.norm() * bodies[i].r + b.spin.norm() * bodies[j].r);
         }
     }
     let (mut delta0, mut tau0) = (0.0f64, 0.0f64);
-    for i in 0..nb {
-        for j in i + 1..nb {
+    for i in 0..nballs {
+        for j in i + 1..nballs {
             let m = bodies[i].m * bodies[j].m / (bodies[i].m + bodies[j].m);
-            let (d, t) = elastic_impact(cluster.laws[pair_index(nb, i, j)].stiffness(), m, v_ref);
+            let k = cluster.laws[pair_index(nballs, i, j)].stiffness();
+            let (d, t) = elastic_impact(k, m, v_ref);
             delta0 = delta0.max(d);
             tau0 = tau0.max(t);
         }
     }
-    let m_min = bodies.iter().map(|b| b.m).fold(f64::INFINITY, f64::min);
-    let r_min = bodies.iter().map(|b| b.r).fold(f64::INFINITY, f64::min);
+    // A ball's impact on the cloth at that speed.
+    for (law, body) in cluster.cloth_laws.iter().zip(&bodies) {
+        let (d, t) = elastic_impact(law.stiffness(), body.m, v_ref);
+        delta0 = delta0.max(d);
+        tau0 = tau0.max(t);
+    }
+    let balls_only = &bodies[..nballs];
+    let m_min = balls_only.iter().map(|b| b.m).fold(f64::INFINITY, f64::min);
+    let r_min = balls_only.iter().map(|b| b.r).fold(f64::INFINITY, f64::min);
     let mut run = Run {
         cluster,
         bodies: &bodies,
@@ -831,6 +881,7 @@ fn run_cluster(
         y,
         active: Vec::new(),
         records: Vec::new(),
+        cloth_records: Vec::new(),
         stats: ClusterStats::default(),
         changes: 0,
         centre,
@@ -844,7 +895,7 @@ fn run_cluster(
     };
     let stop = run.go()?;
     let y = &run.y;
-    let balls = (0..nb)
+    let balls = (0..nballs)
         .map(|b| BallOut {
             position: pos(y, b) + centre,
             velocity: pos(y, nb + b),
@@ -854,6 +905,7 @@ fn run_cluster(
     Ok(ClusterOutcome {
         balls,
         contacts: run.records,
+        cloth: run.cloth_records,
         stop,
         time: run.t,
         stats: run.stats,
@@ -875,6 +927,8 @@ struct Run<'a> {
     y: Vec<f64>,
     active: Vec<Active>,
     records: Vec<ContactRecord>,
+    /// The cloth's contacts that carried force (pair (ball, number of balls)).
+    cloth_records: Vec<ContactRecord>,
     stats: ClusterStats,
     /// Changes of the contact set or of a contact's mode so far: a derivative kept from a
     /// step is reused only at the same count.
@@ -898,8 +952,14 @@ struct Tracer<'a> {
 }
 
 impl Run<'_> {
+    /// The bodies: the balls, then the cloth if there is one.
     fn nb(&self) -> usize {
         self.bodies.len()
+    }
+
+    /// The balls; also the cloth's body index.
+    fn nballs(&self) -> usize {
+        self.cluster.balls.len()
     }
 
     /// Whether the contacts carry Mindlin's spring.
@@ -921,7 +981,8 @@ impl Run<'_> {
         System {
             bodies: self.bodies,
             active: &self.active,
-            mu,
+            nballs: self.nballs(),
+            gravity: self.cluster.cloth.map_or(0.0, |c| c.gravity),
             spring_mu: if mu < NEGLIGIBLE_MU { 0.0 } else { mu },
             pc: self.pc(),
             v_ref: self.v_ref,
@@ -957,11 +1018,22 @@ impl Run<'_> {
         s
     }
 
-    /// Opens a contact between balls i < j at the current state.
+    /// Opens a contact between balls i < j (j the cloth's index: ball i on the cloth) at the
+    /// current state.
     fn close(&mut self, i: usize, j: usize) {
+        self.close_preloaded(i, j, 0.0);
+    }
+
+    /// [`Run::close`] with a compression `preload` (m) beyond the geometry's.
+    fn close_preloaded(&mut self, i: usize, j: usize, preload: f64) {
         self.changes += 1;
         let (xi, xj) = (pos(&self.y, i), pos(&self.y, j));
-        let n = (xj - xi).normalize();
+        let on_cloth = j == self.nballs();
+        let n = if on_cloth {
+            -Vector3::z()
+        } else {
+            (xj - xi).normalize()
+        };
         let a = if n.x.abs() < 0.9 {
             Vector3::x()
         } else {
@@ -976,7 +1048,16 @@ impl Run<'_> {
             rj: self.bodies[j].r,
             n,
             t: [t0, t1],
-            law: self.cluster.law(i, j),
+            law: if on_cloth {
+                self.cluster.cloth_laws[i]
+            } else {
+                self.cluster.law(i, j)
+            },
+            mu: match self.cluster.cloth {
+                Some(c) if on_cloth => c.mu,
+                _ => self.cluster.mu,
+            },
+            preload,
             k_t0: if self.mindlin() {
                 self.cluster.shear[pair_index(self.nb(), i, j)]
             } else {
@@ -1002,7 +1083,7 @@ impl Run<'_> {
         let sys = self.system(false);
         let s = sys.slip(&self.y, &self.active[k]);
         let sn = s.norm();
-        let stuck = self.cluster.mu > 0.0 && self.settings.stick && sn <= SLIP_FLOOR * self.v_ref;
+        let stuck = self.active[k].mu > 0.0 && self.settings.stick && sn <= SLIP_FLOOR * self.v_ref;
         let c = &mut self.active[k];
         if sn > 0.0 {
             c.seed = s / sn;
@@ -1033,7 +1114,11 @@ impl Run<'_> {
             tracer.opened.push(record);
         }
         if acc[0] > RECORD_FLOOR * self.m_min * self.v_ref {
-            self.records.push(record);
+            if c.j == self.nballs() {
+                self.cloth_records.push(record);
+            } else {
+                self.records.push(record);
+            }
         }
     }
 
@@ -1054,8 +1139,13 @@ impl Run<'_> {
                 if self.in_set(i, j) || self.gap_function(&self.y, i, j) < 0.0 {
                     continue;
                 }
-                let p = pos(&self.y, j) - pos(&self.y, i);
-                if p.dot(&(pos(&self.y, nb + j) - pos(&self.y, nb + i))) < 0.0 {
+                let approaching = if j == self.nballs() {
+                    pos(&self.y, nb + i).z < 0.0
+                } else {
+                    let p = pos(&self.y, j) - pos(&self.y, i);
+                    p.dot(&(pos(&self.y, nb + j) - pos(&self.y, nb + i))) < 0.0
+                };
+                if approaching {
                     self.close(i, j);
                 }
             }
@@ -1070,6 +1160,14 @@ impl Run<'_> {
     /// stick rule did that a million times 5.6e-15 s apart.
     fn gap_function(&self, y: &[f64], i: usize, j: usize) -> f64 {
         let nb = self.nb();
+        if j == self.nballs() {
+            // Ball i over the cloth: its height above the cloth's level.
+            let delta = self.bodies[i].r - (pos(y, i).z - pos(y, j).z);
+            let rate = -pos(y, nb + i).z;
+            return self.cluster.cloth_laws[i]
+                .separation(delta, rate)
+                .min(delta);
+        }
         let p = pos(y, j) - pos(y, i);
         let d = p.norm();
         let delta = self.bodies[i].r + self.bodies[j].r - d;
@@ -1092,7 +1190,7 @@ impl Run<'_> {
             Event::Close(i, j) => -self.gap_function(y, i, j),
             Event::Release(k) => {
                 let (f, fr, ..) = sys.forces(y).contact[k];
-                self.cluster.mu * f - fr.norm()
+                self.active[k].mu * f - fr.norm()
             }
             Event::SpringSlide(k) => {
                 let c = &self.active[k];
@@ -1120,7 +1218,7 @@ impl Run<'_> {
             // The friction each stuck contact needs against its bound, at both ends.
             let (f0, f1) = (sys.forces(y0), sys.forces(y1));
             for (k, c) in self.active.iter().enumerate() {
-                let g = |x: &ContactForce| self.cluster.mu * x.0 - x.1.norm();
+                let g = |x: &ContactForce| c.mu * x.0 - x.1.norm();
                 let (a, b) = (&f0.contact[k], &f1.contact[k]);
                 if c.mode == Mode::Stuck
                     && a.0 > sys.f_floor
@@ -1146,7 +1244,7 @@ impl Run<'_> {
                     out.push(e);
                 }
             }
-            if c.mode == Mode::Sliding && self.cluster.mu > 0.0 {
+            if c.mode == Mode::Sliding && c.mu > 0.0 {
                 let e = Event::Stop(k);
                 let loaded = c
                     .law
@@ -1193,14 +1291,15 @@ impl Run<'_> {
                 c.mode == Mode::Stuck && c.law.force(d, w) <= sys.f_floor
             })
             .collect();
-        if idle.is_empty() || self.cluster.mu == 0.0 {
+        if idle.iter().all(|&k| self.active[k].mu == 0.0) {
             return Vec::new();
         }
         let fs = sys.forces(y1);
         idle.into_iter()
             .filter_map(|k| {
                 let (f, fr, ..) = fs.contact[k];
-                (f > sys.f_floor && fr.norm() > self.cluster.mu * f * (1.0 + RELEASE_SLACK))
+                let mu = self.active[k].mu;
+                (mu > 0.0 && f > sys.f_floor && fr.norm() > mu * f * (1.0 + RELEASE_SLACK))
                     .then_some((k, fr))
             })
             .collect()
@@ -1256,7 +1355,7 @@ impl Run<'_> {
             return;
         };
         let nb = self.nb();
-        let balls: Vec<BallOut> = (0..nb)
+        let balls: Vec<BallOut> = (0..self.nballs())
             .map(|b| BallOut {
                 position: pos(y, b) + self.centre,
                 velocity: pos(y, nb + b),
@@ -1402,7 +1501,7 @@ impl Run<'_> {
     /// The run: free flight to the next touch while no contact is in the set, steps with
     /// events while one is.
     fn go(&mut self) -> Result<StopReason, Error> {
-        let nb = self.nb();
+        let nb = self.nballs();
         for i in 0..nb {
             for j in i + 1..nb {
                 let p = pos(&self.y, j) - pos(&self.y, i);
@@ -1410,6 +1509,13 @@ impl Run<'_> {
                 if p.norm() - d <= CLUSTER_TOUCH_TOLERANCE * d {
                     self.close(i, j);
                 }
+            }
+        }
+        // Every ball rests on the cloth, pressing it with its weight.
+        if self.cluster.cloth.is_some() {
+            for i in 0..nb {
+                let preload = self.cluster.cloth_preloads[i];
+                self.close_preloaded(i, nb, preload);
             }
         }
         let mut h = FIRST_STEP * self.tau0;
@@ -1420,7 +1526,28 @@ impl Run<'_> {
             }
             self.drop_quiet();
             self.close_pressing();
-            if self.active.is_empty() {
+            if self.cluster.cloth.is_some() {
+                // On the cloth the balls do not fly freely: the run steps on while a pair
+                // presses or will touch (within the horizon once a pair has pressed), or a
+                // ball pressed into the cloth (or lifted) will still leave it, and ends
+                // otherwise, its cloth contacts recorded as they stand.
+                let cloth = self.nballs();
+                let horizon = if self.records.is_empty() {
+                    f64::INFINITY
+                } else {
+                    CLOTH_HORIZON * self.tau0
+                };
+                if !self.active.iter().any(|c| c.j != cloth)
+                    && !self.touches_within(horizon)
+                    && self.active.iter().all(|c| self.settled_on_cloth(c))
+                {
+                    self.trace_flight(f64::INFINITY);
+                    for k in (0..self.active.len()).rev() {
+                        self.open(k);
+                    }
+                    return Ok(StopReason::Separated);
+                }
+            } else if self.active.is_empty() {
                 if !self.fly() {
                     // Samples after the end: the balls fly apart.
                     self.trace_flight(f64::INFINITY);
@@ -1630,7 +1757,7 @@ impl Run<'_> {
                     c.loaded = true;
                 }
                 if c.mode == Mode::Stuck {
-                    let cap = self.cluster.mu * f;
+                    let cap = c.mu * f;
                     let need = fr.norm();
                     if need > cap * (1.0 + RELEASE_SLACK) && need > 0.0 {
                         let excess = (need - cap) / need;
@@ -1736,7 +1863,7 @@ impl Run<'_> {
                     let r = slip_rate(&fs.acc, c);
                     let rn = r.norm();
                     // The rate friction alone gives the slip: mu f over the lighter ball.
-                    let a = self.cluster.mu * fs.contact[k].0 / self.m_min;
+                    let a = c.mu * fs.contact[k].0 / self.m_min;
                     (rn > RELEASE_RATE_FLOOR * a).then(|| r / rn)
                 })
                 .collect();
@@ -1767,12 +1894,54 @@ impl Run<'_> {
                 (c.law.force(d, w) <= 0.0 && w <= 0.0, !c.loaded && d < -tol)
             })
             .collect();
-        let all_quiet = state.iter().all(|q| q.0);
+        // The cloth's contacts stay: balls rest on it before and after.
+        let cloth = self.nballs();
+        let all_quiet = self
+            .active
+            .iter()
+            .zip(&state)
+            .all(|(c, q)| q.0 || c.j == cloth);
         for k in (0..self.active.len()).rev() {
-            if all_quiet || state[k].1 {
+            if (all_quiet && self.active[k].j != cloth) || state[k].1 {
                 self.open(k);
             }
         }
+    }
+
+    /// Whether the ball of cloth contact `c` stays on the cloth: its vertical energy about
+    /// its rest, m w^2 / 2 + V(delta) with V = (2/5) k delta^(5/2) - m g delta (the cloth's
+    /// elastic energy and the weight's; V(0) = 0 where the ball leaves the cloth, its
+    /// minimum at the static compression), is below V(0). Once no pair presses nothing
+    /// else acts along z, the motion keeps that energy, and a ball below it oscillates about
+    /// its rest with a speed below sqrt(1.2 g delta_s) (about 2 mm/s for a pool ball on
+    /// slate), which the outcome reports as it stands; a ball above it leaves the cloth
+    /// within half an oscillation, which the run steps to. Contacts between balls are
+    /// "settled" here.
+    fn settled_on_cloth(&self, c: &Active) -> bool {
+        let Some(cloth) = self.cluster.cloth else {
+            return true;
+        };
+        if c.j != self.nballs() {
+            return true;
+        }
+        let sys = self.system(false);
+        let (d, w) = sys.compression(&self.y, c);
+        let m = self.bodies[c.i].m;
+        let v = 0.4 * c.law.stiffness() * d.max(0.0).powf(2.5) - m * cloth.gravity * d;
+        0.5 * m * w * w + v < 0.0
+    }
+
+    /// Whether two balls flying freely from now touch within `horizon` (s).
+    fn touches_within(&self, horizon: f64) -> bool {
+        let nb = self.nb();
+        let n = self.nballs();
+        (0..n).any(|i| {
+            (i + 1..n).any(|j| {
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
+                first_touch(p, u, self.bodies[i].r + self.bodies[j].r).is_some_and(|t| t <= horizon)
+            })
+        })
     }
 
     /// Free flight to the next touch; false when no pair will touch.

@@ -3,7 +3,7 @@
 
 use crate::base::error::Error;
 use crate::base::number::{count, decimal, sci, shortest, si};
-use crate::cluster::params::ClusterBall;
+use crate::cluster::params::{Cluster, ClusterBall};
 use crate::cluster::resolve::{ClusterOutcome, ClusterSettings};
 use crate::model::params::Ball;
 use crate::outputs::report::{v3, Num};
@@ -24,21 +24,30 @@ pub(crate) struct Balances {
     pub energy_in: f64,
     /// Kinetic energy after (J).
     pub energy_out: f64,
-    /// Heat of every contact (J).
+    /// Heat of every contact (J), the cloth's included.
     pub heat: f64,
+    /// On a cloth, the energy its contacts and gravity hold at the end beyond the start (J):
+    /// the sum over the balls of V(delta_out) - V(delta_s), V(delta) = (2/5) k
+    /// max(delta, 0)^(5/2) - m g delta, delta the ball's compression of the cloth (>= 0: the
+    /// balls start at V's minimum); 0 without a cloth.
+    pub held: f64,
+    /// On a cloth, the impulse (N s) of the cloth's contacts and the weights over the run,
+    /// which momentum_out - momentum_in equals; 0 without a cloth.
+    pub external: Vector3<f64>,
     /// Total momentum before (N s).
     pub momentum_in: Vector3<f64>,
     /// Total momentum after (N s).
     pub momentum_out: Vector3<f64>,
     /// Largest component of momentum_out - momentum_in over sum m_i |v_i| in.
     pub momentum_error: f64,
-    /// |energy_in - energy_out - heat| over energy_in.
+    /// |energy_in - energy_out - heat - held| over energy_in.
     pub energy_balance_error: f64,
 }
 
 impl Balances {
-    /// The balances of `out`, the run of the balls `balls`.
-    pub(crate) fn new(balls: &[ClusterBall], out: &ClusterOutcome) -> Self {
+    /// The balances of `out`, the run of `cluster`.
+    pub(crate) fn new(cluster: &Cluster, out: &ClusterOutcome) -> Self {
+        let balls: &[ClusterBall] = cluster.balls();
         let energy_in = balls
             .iter()
             .map(|b| kinetic(&b.ball, &b.velocity, &b.spin))
@@ -48,7 +57,21 @@ impl Balances {
             .zip(&out.balls)
             .map(|(b, o)| kinetic(&b.ball, &o.velocity, &o.spin))
             .sum();
-        let heat = out.contacts.iter().map(|c| c.heat).sum();
+        let heat = out.contacts.iter().chain(&out.cloth).map(|c| c.heat).sum();
+        let (mut held, mut external) = (0.0, Vector3::zeros());
+        if let Some(cloth) = cluster.cloth {
+            for (i, (b, o)) in balls.iter().zip(&out.balls).enumerate() {
+                let (k, preload) = (cluster.cloth_laws[i].stiffness(), cluster.cloth_preloads[i]);
+                let m = b.ball.mass();
+                let v = |d: f64| 0.4 * k * d.max(0.0).powf(2.5) - m * cloth.gravity * d;
+                let delta = b.ball.radius() - (o.position.z - cloth.height) + preload;
+                held += v(delta) - v(preload);
+                external -= Vector3::z() * (m * cloth.gravity * out.time);
+            }
+            for c in &out.cloth {
+                external += c.friction_impulse - c.normal * c.normal_impulse;
+            }
+        }
         let momentum_in = balls
             .iter()
             .fold(Vector3::zeros(), |s, b| s + b.ball.mass() * b.velocity);
@@ -65,10 +88,12 @@ impl Balances {
             energy_in,
             energy_out,
             heat,
+            held,
+            external,
             momentum_in,
             momentum_out,
-            momentum_error: ratio((momentum_out - momentum_in).amax(), scale),
-            energy_balance_error: ratio((energy_in - energy_out - heat).abs(), energy_in),
+            momentum_error: ratio((momentum_out - momentum_in - external).amax(), scale),
+            energy_balance_error: ratio((energy_in - energy_out - heat - held).abs(), energy_in),
         }
     }
 }
@@ -93,6 +118,29 @@ struct ContactJson {
 }
 
 #[derive(Serialize)]
+struct ClothContactJson {
+    ball: usize,
+    impulse: Num,
+    friction_impulse: [Num; 3],
+    start: Num,
+    duration: Num,
+    heat: Num,
+    stick_time: Option<Num>,
+}
+
+#[derive(Serialize)]
+struct ClothJson {
+    height: Num,
+    mu: Num,
+    youngs_modulus: Num,
+    poisson_ratio: Num,
+    gravity: Num,
+    contacts: Vec<ClothContactJson>,
+    held: Num,
+    external_impulse: [Num; 3],
+}
+
+#[derive(Serialize)]
 struct CheckJson {
     momentum_error: Num,
     energy_balance_error: Num,
@@ -105,6 +153,8 @@ pub struct ClusterReport {
     target: &'static str,
     balls: Vec<BallJson>,
     contacts: Vec<ContactJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cloth: Option<ClothJson>,
     time: Num,
     steps: u64,
     evaluations: u64,
@@ -122,7 +172,29 @@ pub struct ClusterReport {
 impl ClusterReport {
     /// The report of `out`, the run of `scene` with `settings`.
     pub fn new(scene: &ClusterScene, settings: &ClusterSettings, out: &ClusterOutcome) -> Self {
-        let b = Balances::new(scene.cluster.balls(), out);
+        let b = Balances::new(&scene.cluster, out);
+        let cloth = scene.cluster.cloth().map(|c| ClothJson {
+            height: Num(c.height),
+            mu: Num(c.mu),
+            youngs_modulus: Num(c.material.youngs_modulus()),
+            poisson_ratio: Num(c.material.poisson_ratio()),
+            gravity: Num(c.gravity),
+            contacts: out
+                .cloth
+                .iter()
+                .map(|c| ClothContactJson {
+                    ball: c.pair.0,
+                    impulse: Num(c.normal_impulse),
+                    friction_impulse: v3(&c.friction_impulse),
+                    start: Num(c.start),
+                    duration: Num(c.duration),
+                    heat: Num(c.heat),
+                    stick_time: c.stick_time.map(Num),
+                })
+                .collect(),
+            held: Num(b.held),
+            external_impulse: v3(&b.external),
+        });
         ClusterReport {
             name: scene.name.clone(),
             target: "cluster",
@@ -149,6 +221,7 @@ impl ClusterReport {
                     stick_time: c.stick_time.map(Num),
                 })
                 .collect(),
+            cloth,
             time: Num(out.time),
             steps: out.stats.steps,
             evaluations: out.stats.evaluations,
@@ -199,7 +272,7 @@ pub(crate) fn cluster_summary(
     out: &ClusterOutcome,
 ) -> String {
     let vec = |v: &Vector3<f64>| format!("[{:+.6}, {:+.6}, {:+.6}]", v.x, v.y, v.z);
-    let b = Balances::new(scene.cluster.balls(), out);
+    let b = Balances::new(&scene.cluster, out);
     let mut s = String::new();
     s += &format!("{}\n", scene.name);
     s += &format!(
@@ -229,6 +302,26 @@ pub(crate) fn cluster_summary(
             decimal(c.normal_impulse, 7),
             si(c.duration, "s", 5),
             si(c.heat, "J", 5),
+        );
+    }
+    if let Some(cloth) = scene.cluster.cloth() {
+        s += &format!(
+            "  on the cloth (mu {}, gravity {} m/s^2): cloth impulse per ball (N s, up; friction)\n",
+            decimal(cloth.mu, 6),
+            decimal(cloth.gravity, 6),
+        );
+        for c in &out.cloth {
+            s += &format!(
+                "  {:>4}  {}  {}  heat {}\n",
+                c.pair.0,
+                decimal(c.normal_impulse, 7),
+                vec(&c.friction_impulse),
+                si(c.heat, "J", 5),
+            );
+        }
+        s += &format!(
+            "  held by the cloth and gravity at the end {}\n",
+            si(b.held, "J", 5)
         );
     }
     s += &format!(

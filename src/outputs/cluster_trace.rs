@@ -1,7 +1,8 @@
 //! A cluster scene's trace CSV (docs/formats.md#the-cluster-trace): one row per
 //! [`ClusterTraceRow`], streaming; `t (s)`, then a group of columns per pair of balls that
 //! carried force in the run (the pairs of the report's contacts, in the order (i, j)), then
-//! each ball's velocity and spin.
+//! each ball's velocity and spin. On a cloth, each ball's contact with it has a group too,
+//! after the pairs', prefixed `c{i}_cloth_` (docs/cluster.md#the-cloth).
 //!
 //! A pair's impulses and heat are cumulative over the run: a pair that closes again adds its
 //! new contact's to those of its earlier ones, so that the last row holds, per pair, the sum
@@ -100,10 +101,14 @@ impl PairSum {
 
 /// The trace's columns for one run: the pairs, their cumulative sums, the balls.
 pub(crate) struct ClusterColumns {
-    /// The pairs (i < j) with columns, in order.
+    /// The pairs (i < j) with columns, in order, then the balls on the cloth (i, N).
     pairs: Vec<(usize, usize)>,
+    /// How many of `pairs` are pairs of balls (the rest are the cloth's).
+    ball_pairs: usize,
     /// Each ball's radius (m).
     radii: Vec<f64>,
+    /// The cloth's height (m), if the balls rest on one.
+    cloth_height: Option<f64>,
     sums: Vec<PairSum>,
 }
 
@@ -114,29 +119,41 @@ impl ClusterColumns {
         let mut pairs: Vec<(usize, usize)> = out.contacts.iter().map(|c| c.pair).collect();
         pairs.sort_unstable();
         pairs.dedup();
+        let ball_pairs = pairs.len();
+        let mut cloth: Vec<(usize, usize)> = out.cloth.iter().map(|c| c.pair).collect();
+        cloth.sort_unstable();
+        cloth.dedup();
+        pairs.extend(cloth);
         ClusterColumns {
             sums: vec![PairSum::default(); pairs.len()],
             pairs,
+            ball_pairs,
             radii: cluster.balls().iter().map(|b| b.ball.radius()).collect(),
+            cloth_height: cluster.cloth().map(|c| c.height),
         }
     }
 
-    /// The pairs with columns, in order.
+    /// The pairs of balls with columns, in order (the first groups).
     pub(crate) fn pairs(&self) -> &[(usize, usize)] {
-        &self.pairs
+        &self.pairs[..self.ball_pairs]
     }
 
-    /// The header cell of column `k` of [`PAIR_COLUMNS`] for pair `(i, j)`.
-    pub(crate) fn pair_cell((i, j): (usize, usize), k: usize) -> String {
+    /// The header cell of column `k` of [`PAIR_COLUMNS`] for pair `(i, j)` (j = the number of
+    /// balls: ball i on the cloth).
+    fn pair_cell(&self, (i, j): (usize, usize), k: usize) -> String {
         let (name, unit) = PAIR_COLUMNS[k];
-        format!("c{i}_{j}_{name} ({unit})")
+        if j == self.radii.len() {
+            format!("c{i}_cloth_{name} ({unit})")
+        } else {
+            format!("c{i}_{j}_{name} ({unit})")
+        }
     }
 
     /// The header cells, in order.
     pub(crate) fn header(&self) -> Vec<String> {
         let mut h = vec!["t (s)".to_string()];
         for &p in &self.pairs {
-            h.extend((0..PAIR_COLUMNS.len()).map(|k| Self::pair_cell(p, k)));
+            h.extend((0..PAIR_COLUMNS.len()).map(|k| self.pair_cell(p, k)));
         }
         for b in 0..self.radii.len() {
             h.extend(
@@ -164,9 +181,13 @@ impl ClusterColumns {
             let c = row.contacts.iter().find(|c| c.pair == (i, j));
             let opened = row.opened.iter().filter(|r| r.pair == (i, j));
             let (p, fi, heat) = sum.take(opened, c);
-            let gap = || {
-                let d = (row.balls[j].position - row.balls[i].position).norm();
-                self.radii[i] + self.radii[j] - d
+            let gap = || match self.cloth_height {
+                // A ball off the cloth: its height above it, negated.
+                Some(h) if j == self.radii.len() => self.radii[i] - (row.balls[i].position.z - h),
+                _ => {
+                    let d = (row.balls[j].position - row.balls[i].position).norm();
+                    self.radii[i] + self.radii[j] - d
+                }
             };
             let (delta, f, fr, slip, stuck) = match c {
                 Some(c) => (

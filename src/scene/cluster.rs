@@ -22,6 +22,12 @@
 //! # stiffness = 4.5e8         # N/m^1.5, every pair; or the balls' materials (each pair's E*)
 //! # damping = "hunt-crossley" # none (default) | hunt-crossley | kuwabara-kono
 //! # coefficient = 0.1         # or restitution = 0.93 and at_speed = 1.0
+//! # [cloth]                   # optional: every ball rests on the cloth (docs/cluster.md)
+//! # youngs_modulus = 5e10     # Pa, with poisson_ratio: the bed's material (slate)
+//! # poisson_ratio = 0.25
+//! # mu = 0.2                  # Coulomb's friction between ball and cloth; default 0.2
+//! # height = -0.028575        # m, the cloth's z; default balls[0]'s z minus its radius
+//! # gravity = 9.81            # m/s^2 along -z; default 9.81
 //! [solver]                    # optional
 //! rtol = 1e-8                 # the kernel's default
 //! [effects]                   # optional
@@ -29,7 +35,10 @@
 //! ```
 
 use crate::base::error::Error;
-use crate::cluster::params::{Cluster, ClusterBall, ClusterLaw, ClusterTangential, PairDamping};
+use crate::cluster::params::{
+    Cluster, ClusterBall, ClusterCloth, ClusterLaw, ClusterTangential, PairDamping,
+    CLOTH_DEFAULT_GRAVITY, CLOTH_DEFAULT_MU,
+};
 use crate::cluster::resolve::{
     resolve_cluster, resolve_cluster_traced, ClusterOutcome, ClusterSettings, ClusterTrace,
     StopReason, CLUSTER_DEFAULT_RTOL,
@@ -68,6 +77,17 @@ struct RawClusterScene {
     contact: RawClusterContact,
     solver: Option<RawClusterSolver>,
     effects: Option<RawClusterEffects>,
+    cloth: Option<RawCloth>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCloth {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    mu: Option<f64>,
+    height: Option<f64>,
+    gravity: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -292,6 +312,23 @@ impl ClusterScene {
                     TangentialLaw::Rigid => ClusterTangential::Rigid,
                     TangentialLaw::Mindlin => ClusterTangential::Mindlin,
                 })
+            })
+            .and_then(|c| match &raw.cloth {
+                None => Ok(c),
+                Some(cl) => {
+                    let first = &c.balls()[0];
+                    let cloth = ClusterCloth {
+                        height: cl.height.unwrap_or(first.position.z - first.ball.radius()),
+                        material: Material::in_section(
+                            "cloth",
+                            cl.youngs_modulus,
+                            cl.poisson_ratio,
+                        )?,
+                        mu: cl.mu.unwrap_or(CLOTH_DEFAULT_MU),
+                        gravity: cl.gravity.unwrap_or(CLOTH_DEFAULT_GRAVITY),
+                    };
+                    c.with_cloth(cloth)
+                }
             })
             .map_err(|e| scene_fields(e, CLUSTER_RTOL_FIELD))?;
         // The tolerance's range is the kernel's: `run` refuses a bad one, naming the field.

@@ -1,0 +1,245 @@
+//! Clusters resting on the cloth (docs/cluster.md#the-cloth): the cloth's contacts carry
+//! each ball's weight, its friction acts at each ball's lowest point, gravity along -z.
+//! Expected values from Newton's laws and Coulomb's bound written out below, not from the
+//! kernel.
+
+use billiard_contact::nalgebra::Vector3;
+use billiard_contact::*;
+
+const M: f64 = 0.17;
+const R: f64 = 0.028575;
+const G: f64 = 9.81;
+
+fn resin() -> Material {
+    Material::new(5.4e9, 0.34).unwrap()
+}
+
+/// A slate bed (E = 50 GPa, nu = 0.25).
+fn slate(mu: f64) -> ClusterCloth {
+    ClusterCloth {
+        height: 0.0,
+        material: Material::new(5.0e10, 0.25).unwrap(),
+        mu,
+        gravity: G,
+    }
+}
+
+fn ball_of(m: f64, r: f64, x: f64, v: f64) -> ClusterBall {
+    ClusterBall {
+        ball: Ball::new(m, r, 0.4).unwrap(),
+        position: Vector3::new(x, 0.0, r),
+        velocity: Vector3::new(v, 0.0, 0.0),
+        spin: Vector3::zeros(),
+    }
+}
+
+fn settings() -> ClusterSettings {
+    ClusterSettings {
+        rtol: 1e-10,
+        stick: true,
+    }
+}
+
+/// A line of `n` touching equal balls, the first at `v` m/s, on the cloth.
+fn line_on_cloth(n: usize, v: f64, mu: f64, mu_cloth: f64) -> Cluster {
+    let balls = (0..n)
+        .map(|i| ball_of(M, R, (2 * i) as f64 * R, if i == 0 { v } else { 0.0 }))
+        .collect();
+    let law = ClusterLaw::Materials(vec![resin(); n], PairDamping::None);
+    Cluster::new(balls, law, mu)
+        .unwrap()
+        .with_cloth(slate(mu_cloth))
+        .unwrap()
+}
+
+/// Two equal elastic balls head on without friction anywhere: the cloth only carries their
+/// weights (every force between them is horizontal), so they exchange velocities as free
+/// balls do (momentum and energy: v1' = 0, v2' = v), and each ball's cloth impulse is its
+/// weight's, m g T over the run's time T (its vertical velocity stays 0).
+#[test]
+fn frictionless_cloth_carries_the_weight_only() {
+    let out = resolve_cluster(&line_on_cloth(2, 1.0, 0.0, 0.0), &settings()).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    assert!(out.balls[0].velocity.norm() < 1e-8, "{:?}", out.balls[0]);
+    assert!((out.balls[1].velocity - Vector3::x()).norm() < 1e-8);
+    assert_eq!(out.cloth.len(), 2);
+    for c in &out.cloth {
+        assert_eq!(c.pair.1, 2, "the cloth is body N");
+        assert_eq!(c.normal, -Vector3::z());
+        let weight = M * G * out.time;
+        assert!(
+            (c.normal_impulse - weight).abs() < 1e-9 * weight,
+            "{} vs m g T = {weight}",
+            c.normal_impulse
+        );
+        assert_eq!(c.friction_impulse, Vector3::zeros());
+    }
+    for b in &out.balls {
+        // Still resting: at its static compression, not moving vertically.
+        assert!(b.velocity.z.abs() < 1e-12, "{:?}", b.velocity);
+        assert!((b.position.z - R).abs() < 1e-12, "{}", b.position.z);
+    }
+}
+
+/// The cloth's friction on two equal balls, frictionless between them, at 1 m/s: each
+/// ball's cloth friction is at most mu_c times its cloth normal impulse (Coulomb), acts
+/// against the motion (-x), and the balls' x momentum falls by exactly the sum of it
+/// (nothing else acts along x). The object ball slides from the first instants to the end:
+/// its friction is mu_c of its normal impulse to within the instants it was stuck. Spins
+/// come from the cloth alone: I dw = r e_z x F, |w| <= mu_c m g r T / I.
+#[test]
+fn cloth_friction_obeys_coulomb_and_balances_momentum() {
+    let mu_c = 0.2;
+    let out = resolve_cluster(&line_on_cloth(2, 1.0, 0.0, mu_c), &settings()).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    let p_out: f64 = out.balls.iter().map(|b| M * b.velocity.x).sum();
+    let friction: f64 = out.cloth.iter().map(|c| c.friction_impulse.x).sum();
+    assert!(
+        (p_out - (M * 1.0 + friction)).abs() < 1e-12,
+        "{p_out} vs {}",
+        M + friction
+    );
+    for c in &out.cloth {
+        let f = c.friction_impulse;
+        assert!(f.x <= 0.0, "friction against the motion: {f:?}");
+        assert!(f.norm() <= mu_c * c.normal_impulse * (1.0 + 1e-9), "{f:?}");
+    }
+    let object = out.cloth.iter().find(|c| c.pair.0 == 1).unwrap();
+    let full = mu_c * object.normal_impulse;
+    assert!(
+        -object.friction_impulse.x > 0.99 * full,
+        "{:?} vs {full}",
+        object.friction_impulse
+    );
+    let bound = mu_c * M * G * R * out.time / (0.4 * M * R * R);
+    for b in &out.balls {
+        assert!(
+            b.spin.norm() <= bound * (1.0 + 1e-6),
+            "{:?} {bound}",
+            b.spin
+        );
+    }
+    // The object ball's spin is forward roll's sense (bottom dragged back): -y x... the
+    // torque (-r e_z) x (-F e_x) = r F e_y, so w_y > 0.
+    assert!(out.balls[1].spin.y > 0.0, "{:?}", out.balls[1].spin);
+}
+
+/// A small ball into a large one on the cloth: their centres are at heights r1 and r2, so
+/// the line of centres rises from the small ball to the large one and their force lifts the
+/// large ball and presses the small one into the cloth. Without friction anywhere nothing
+/// acts along x but their force: the x momentum is kept to rounding; along z the cloth's
+/// impulses less the weights m g T are the balls' z momentum; and the kinetic energy out is
+/// at most the energy in (the balls start at the bottom of their potential, weight plus
+/// the cloth's elastic energy, so what the cloth and gravity hold at the end is >= 0).
+#[test]
+fn unequal_balls_press_and_lift_with_balances() {
+    let (m1, r1, m2, r2) = (0.12, 0.025, 0.17, R);
+    let d = r1 + r2;
+    let dz = r2 - r1;
+    let dx = (d * d - dz * dz).sqrt();
+    let balls = vec![ball_of(m1, r1, 0.0, 2.0), ball_of(m2, r2, dx, 0.0)];
+    let law = ClusterLaw::Materials(vec![resin(); 2], PairDamping::None);
+    let cluster = Cluster::new(balls, law, 0.0)
+        .unwrap()
+        .with_cloth(slate(0.0))
+        .unwrap();
+    let out = resolve_cluster(&cluster, &settings()).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    let (b1, b2) = (&out.balls[0], &out.balls[1]);
+    let px = m1 * b1.velocity.x + m2 * b2.velocity.x;
+    assert!((px - m1 * 2.0).abs() < 1e-12, "{px}");
+    let pz = m1 * b1.velocity.z + m2 * b2.velocity.z;
+    let cloth: f64 = out.cloth.iter().map(|c| c.normal_impulse).sum();
+    let weights = (m1 + m2) * G * out.time;
+    assert!(
+        (pz - (cloth - weights)).abs() < 1e-12,
+        "{pz} vs {}",
+        cloth - weights
+    );
+    assert!(
+        b2.velocity.z > 0.0,
+        "the large ball is lifted: {:?}",
+        b2.velocity
+    );
+    // The small ball, pressed into the elastic cloth, has bounced off it by the end (the
+    // run steps on until it leaves: its vertical energy is above the cloth's hold).
+    assert!(b1.velocity.z > 0.0, "{:?}", b1.velocity);
+    // Both have left the cloth: above their resting heights.
+    assert!(b1.position.z > r1 && b2.position.z > r2, "{b1:?} {b2:?}");
+    let k_in = 0.5 * m1 * 4.0;
+    let k_out = 0.5 * m1 * b1.velocity.norm_squared() + 0.5 * m2 * b2.velocity.norm_squared();
+    assert!(k_out <= k_in * (1.0 + 1e-9), "{k_out} > {k_in}");
+}
+
+/// A nine-ball rack on the cloth struck at 8 m/s, friction everywhere: the run separates,
+/// every ball's cloth friction is within Coulomb's bound, and the kinetic energy does not
+/// grow.
+#[test]
+fn nine_ball_break_on_the_cloth() {
+    let sqrt3 = 3f64.sqrt();
+    let mut balls = vec![ball_of(M, R, -2.0 * R - 1e-4, 8.0)];
+    for (row, count) in [1usize, 2, 3, 2, 1].iter().enumerate() {
+        for k in 0..*count {
+            let y = (2.0 * k as f64 - (*count as f64 - 1.0)) * R;
+            let mut b = ball_of(M, R, row as f64 * sqrt3 * R, 0.0);
+            b.position.y = y;
+            balls.push(b);
+        }
+    }
+    let n = balls.len();
+    let law = ClusterLaw::Materials(vec![resin(); n], PairDamping::None);
+    let k_in = 0.5 * M * 64.0;
+    let mu_c = 0.2;
+    let cluster = Cluster::new(balls, law, 0.06)
+        .unwrap()
+        .with_cloth(slate(mu_c))
+        .unwrap();
+    let out = resolve_cluster(&cluster, &ClusterSettings::default()).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    let k_out: f64 = out
+        .balls
+        .iter()
+        .map(|b| {
+            0.5 * M * b.velocity.norm_squared() + 0.5 * 0.4 * M * R * R * b.spin.norm_squared()
+        })
+        .sum();
+    assert!(k_out <= k_in * (1.0 + 1e-6), "{k_out} > {k_in}");
+    assert_eq!(out.cloth.len(), n);
+    for c in &out.cloth {
+        assert!(c.friction_impulse.norm() <= mu_c * c.normal_impulse * (1.0 + 1e-6));
+        assert!(c.heat >= -1e-12 * k_in);
+    }
+}
+
+/// Bad cloths: a ball off the cloth, a bad mu or gravity, Mindlin's spring with a cloth.
+#[test]
+fn cloth_refuses_bad_input() {
+    let base = || {
+        let balls = vec![ball_of(M, R, 0.0, 1.0), ball_of(M, R, 2.0 * R, 0.0)];
+        Cluster::new(
+            balls,
+            ClusterLaw::Materials(vec![resin(); 2], PairDamping::None),
+            0.1,
+        )
+        .unwrap()
+    };
+    let field = |r: Result<Cluster, Error>| match r {
+        Err(Error::InvalidParameter { field, .. }) => field,
+        other => panic!("{other:?}"),
+    };
+    let mut high = slate(0.2);
+    high.height = -1e-3;
+    assert_eq!(field(base().with_cloth(high)), "cluster.balls[0]");
+    let mut bad = slate(f64::NAN);
+    assert_eq!(field(base().with_cloth(bad)), "cluster.cloth.mu");
+    bad = slate(0.2);
+    bad.gravity = -1.0;
+    assert_eq!(field(base().with_cloth(bad)), "cluster.cloth.gravity");
+    let mindlin = base().with_tangential(ClusterTangential::Mindlin).unwrap();
+    assert_eq!(field(mindlin.with_cloth(slate(0.2))), CLUSTER_CLOTH_FIELD);
+    let on = base().with_cloth(slate(0.2)).unwrap();
+    assert_eq!(
+        field(on.with_tangential(ClusterTangential::Mindlin)),
+        CLUSTER_TANGENTIAL_FIELD
+    );
+}
