@@ -506,3 +506,73 @@ fn the_summary_lists_balls_contacts_and_the_stop() {
         .count();
     assert_eq!(rows, 3, "{text}");
 }
+
+/// The nine-ball break on the cloth: every ball and its cloth contact reported, the JSON's
+/// balances closed with the cloth's impulses and what it holds (momentum to rounding, energy
+/// to 1e3 rtol), each cloth friction within mu_c of its normal impulse, the trace's groups
+/// `c{i}_cloth_`; refusals name the cloth's keys.
+#[test]
+fn the_break_on_the_cloth_balances_and_names_its_keys() {
+    let out = bin(&["run", &scene("break_nine_ball_cloth.toml"), "--json"]);
+    succeeded(&out);
+    let j: Value = serde_json::from_slice(&out.stdout).unwrap();
+    check_shape(&j, 10);
+    assert!(number(&j["check"], "momentum_error") < 1e-13);
+    assert!(number(&j["check"], "energy_balance_error") < 1e-5);
+    let cloth = &j["cloth"];
+    assert_eq!(number(cloth, "mu"), 0.2);
+    assert_eq!(number(cloth, "gravity"), 9.81);
+    let contacts = cloth["contacts"].as_array().unwrap();
+    assert_eq!(contacts.len(), 10);
+    for c in contacts {
+        let p = number(c, "impulse");
+        // At least the weight over the contact's duration is carried (less only while a
+        // ball hops): positive, and friction within Coulomb's bound.
+        assert!(p > 0.0, "{c}");
+        assert!(
+            vector3(&c["friction_impulse"]).norm() <= 0.2 * p * (1.0 + 1e-9),
+            "{c}"
+        );
+    }
+    // The momentum out is the momentum in plus the cloth's and the weights' impulse.
+    let ext = vector3(&cloth["external_impulse"]);
+    let (pin, pout) = (vector3(&j["momentum_in"]), vector3(&j["momentum_out"]));
+    assert!((pout - pin - ext).amax() < 1e-12, "{pin} {pout} {ext}");
+
+    let dir = fresh_dir("cluster_cloth_scene");
+    let trace = dir.join("trace.csv");
+    let out = bin(&[
+        "run",
+        &scene("break_nine_ball_cloth.toml"),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    succeeded(&out);
+    let header = std::fs::read_to_string(&trace).unwrap();
+    let header = header.lines().next().unwrap();
+    assert!(header.contains("c0_cloth_normal_force (N)"), "{header}");
+    assert!(header.contains("c9_cloth_heat (J)"), "{header}");
+
+    let text = std::fs::read_to_string(scene("break_nine_ball_cloth.toml")).unwrap();
+    let v = |name: &str, from: &str, to: &str| variant(&dir, name, &text, from, to);
+    for (path, want) in [
+        (
+            v("mu.toml", "mu = 0.2 ", "mu = -0.2 "),
+            vec!["cloth.mu = -0.2", "[0, 1e6]"],
+        ),
+        (
+            v("e.toml", "youngs_modulus = 5.0e10", "youngs_modulus = 0.0"),
+            vec!["cloth.youngs_modulus"],
+        ),
+        (
+            v("g.toml", "# gravity = 9.81", "gravity = -1.0"),
+            vec!["cloth.gravity = -1", "[0, 1e3]"],
+        ),
+        (
+            v("h.toml", "# height = 0.0", "height = 0.01"),
+            vec!["balls[0]", "resting on the cloth"],
+        ),
+    ] {
+        refused(&bin(&["run", &path]), &want);
+    }
+}
