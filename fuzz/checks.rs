@@ -19,10 +19,10 @@ use billiard_contact::sweep::{self, parse_list, Grid, Spin};
 use billiard_contact::work_precision::{self, StudyForce, StudyOptions};
 use billiard_contact::{
     resolve_cluster, resolve_sphere_plane_compliant_damped, resolve_sphere_sphere_compliant,
-    run_scene, Ball, Cluster, ClusterBall, ClusterLaw, ClusterOutcome, ClusterSettings,
-    ClusterTangential, CompliantOutcome, CompliantSphere, ContactLaw, CushionRestitution,
-    CushionScene, Damping, Error, Material, Method, PairDamping, Report, Scene, SceneOutcome,
-    SolverSettings, StopReason,
+    run_scene, Ball, Cluster, ClusterBall, ClusterCloth, ClusterLaw, ClusterOutcome,
+    ClusterSettings, ClusterTangential, CompliantOutcome, CompliantSphere, ContactLaw,
+    CushionRestitution, CushionScene, Damping, Error, Material, Method, PairDamping, Report, Scene,
+    SceneOutcome, SolverSettings, StopReason,
 };
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -954,7 +954,34 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
     } else {
         ClusterTangential::Rigid
     };
-    let cluster = match Cluster::new(balls, law, mu).and_then(|c| c.with_tangential(tangential)) {
+    // Bit 1 of that byte: the balls rest on a cloth at height 0 (their centres raised to
+    // z = r, unless an override moved them: then the refusal is checked), of one of the
+    // materials, ball-cloth mu in [0, 0.5] and gravity 9.81 (byte 81: mu, material).
+    let cloth = (b(CLUSTER_TANGENTIAL_BYTE) & 2 != 0).then(|| {
+        let c = b(CLUSTER_TANGENTIAL_BYTE + 1);
+        let (e, nu, _) = MATERIALS[usize::from(c >> 5)];
+        (e, nu, 0.5 * unit(c & 31) * unit(c & 31))
+    });
+    if cloth.is_some() && b0 & 0x80 == 0 {
+        for ball in &mut balls {
+            ball.position.z = ball.ball.radius();
+        }
+    }
+    let with_cloth = |c: Cluster| match cloth {
+        None => Ok(c),
+        Some((e, nu, mu_c)) => Material::new(e, nu).and_then(|material| {
+            c.with_cloth(ClusterCloth {
+                height: 0.0,
+                material,
+                mu: mu_c,
+                gravity: 9.81,
+            })
+        }),
+    };
+    let cluster = match Cluster::new(balls, law, mu)
+        .and_then(|c| c.with_tangential(tangential))
+        .and_then(with_cloth)
+    {
         Ok(c) => c,
         Err(e) => return refused(&e, what, names_field),
     };
@@ -1013,6 +1040,27 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         );
     }
     let mass: Vec<f64> = balls.iter().map(|b| b.ball.mass()).collect();
+    // On a cloth: the impulse from outside, the cloth's contacts and the weights over the run.
+    let mut external = Vector3::zeros();
+    let mut external_scale = 0.0;
+    if let Some(cloth) = cluster.cloth() {
+        for c in &out.cloth {
+            external += c.friction_impulse - c.normal * c.normal_impulse;
+            external_scale += c.friction_impulse.norm() + c.normal_impulse.abs();
+        }
+        for m in &mass {
+            external -= Vector3::z() * (m * cloth.gravity * out.time);
+            external_scale += m * cloth.gravity * out.time;
+        }
+        for c in &out.cloth {
+            assert!(c.pair.0 < n && c.pair.1 == n, "{what}: cloth contact {c:?}");
+            let cap = cloth.mu * c.normal_impulse.max(0.0);
+            assert!(
+                c.friction_impulse.norm() <= cap * (1.0 + 1e-6) + 1e-12 * external_scale,
+                "{what}: cloth friction above mu P = {cap:e} in {c:?}"
+            );
+        }
+    }
     let p0: Vector3<f64> = balls.iter().zip(&mass).map(|(b, m)| *m * b.velocity).sum();
     let p1: Vector3<f64> = out
         .balls
@@ -1025,11 +1073,12 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         .zip(&out.balls)
         .zip(&mass)
         .map(|((a, b), m)| m * (a.velocity.norm() + b.velocity.norm()))
-        .sum();
+        .sum::<f64>()
+        + external_scale;
     let rounds = (out.stats.steps + out.stats.events + 16) as f64;
-    let bound = 4.0 * f64::EPSILON * n as f64 * rounds * scale;
+    let bound = 4.0 * f64::EPSILON * (n + 1) as f64 * rounds * scale;
     assert!(
-        (p1 - p0).norm() <= bound,
+        (p1 - p0 - external).norm() <= bound,
         "{what}: momentum {p0:?} -> {p1:?}, {:e} over the bound {bound:e}",
         (p1 - p0).norm()
     );
@@ -1095,6 +1144,32 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
             c.friction_impulse.norm()
         );
         heat += c.heat;
+    }
+    for c in &out.cloth {
+        assert!(
+            [c.normal_impulse, c.heat, c.start, c.duration]
+                .iter()
+                .all(|x| x.is_finite()),
+            "{what}: cloth contact {c:?}"
+        );
+        if k0.is_finite() && dissipative {
+            assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
+        }
+        heat += c.heat;
+    }
+    if k0.is_finite() && cluster.cloth().is_some() {
+        // On a cloth the balls start at the bottom of their potential (weight and the
+        // cloth's elastic energy): what it holds at the end, K_in - K_out - heat, is >= 0.
+        let scale = k0.max(k1).max(heat.abs());
+        assert!(
+            k1 <= k0 * (1.0 + tol) || !dissipative,
+            "{what}: kinetic energy {k0:e} -> {k1:e} on the cloth"
+        );
+        assert!(
+            k0 - k1 - heat >= -tol * scale,
+            "{what}: kinetic energy {k0:e} -> {k1:e} with heat {heat:e} on the cloth"
+        );
+        return;
     }
     if k0.is_finite() {
         assert!(

@@ -391,7 +391,7 @@ MINDLIN_ARGS = ["tangential", "youngs_modulus", "poisson_ratio", "plane_youngs_m
 MINDLIN_OUT = {"v": 3, "w": 3, "impulse": 0, "tangential_impulse": 0, "contact_time": 0,
                "rebound_angle": None}
 CLUSTER_ARGS = ["balls", "mu", "youngs_modulus", "poisson_ratio", "stiffness", "damping",
-                "coefficient", "restitution", "at_speed", "stick"]
+                "coefficient", "restitution", "at_speed", "stick", "cloth"]
 
 
 def draw_keywords(fdp: atheris.FuzzedDataProvider, plausible: dict, optional: set) -> dict:
@@ -599,12 +599,15 @@ def surface_plane_mindlin(fdp: atheris.FuzzedDataProvider, model, kw: dict) -> N
         raise Finding(f"{what}: kinetic energy created: {k0} -> {k1}")
 
 
-def cluster_states(fdp: atheris.FuzzedDataProvider, balls: list) -> dict:
+def cluster_states(fdp: atheris.FuzzedDataProvider, balls: list, cloth: bool = False) -> dict:
     """Balls in a touching line along x (or a zig-zag), the first struck along +x, some
-    entries spoiled; sometimes gaps, spins and sideways velocities."""
+    entries spoiled; sometimes gaps, spins and sideways velocities. On a cloth every centre
+    starts at z = r (the cloth at height 0)."""
     n = len(balls)
     radii = [b.radius if isinstance(b, bc.Ball) else R for b in balls]
     p = np.zeros((n, 3))
+    if cloth:
+        p[:, 2] = radii
     for i in range(1, n):
         d = radii[i - 1] + radii[i]
         angle = fdp.ConsumeFloatInRange(-1.0, 1.0) if fdp.ConsumeIntInRange(0, 2) == 0 else 0.0
@@ -654,12 +657,23 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
             kw.update(draw_keywords(fdp, {"restitution": 0.93, "at_speed": 1.0}, set()))
     if fdp.ConsumeIntInRange(0, 7) == 0:
         kw["stick"] = pick(fdp, [False, True, 1.0])
+    if fdp.ConsumeIntInRange(0, 3) == 0:
+        # The cloth: the bed's material, mu and gravity, sometimes a key spoiled or unknown.
+        cloth = {"youngs_modulus": 5e10, "poisson_ratio": 0.25, "height": 0.0}
+        cloth.update(draw_keywords(fdp, {"mu": 0.2}, set()))
+        if fdp.ConsumeIntInRange(0, 7) == 0:
+            key = pick(fdp, ["youngs_modulus", "poisson_ratio", "gravity", "height", "muu"])
+            cloth[key] = draw_float(fdp, cloth.get(key, 1.0))
+        if fdp.ConsumeIntInRange(0, 15) == 0:
+            cloth.pop(pick(fdp, ["youngs_modulus", "poisson_ratio"]))
+        kw["cloth"] = cloth if fdp.ConsumeIntInRange(0, 31) else pick(fdp, [1.0, "cloth", [1]])
     what = f"Cluster({kw})"
     model = constructed(bc.Cluster, kw, CLUSTER_ARGS)
     if model is None:
         return
     sticks = kw.get("stick", True) is not False
-    states = cluster_states(fdp, model.balls)
+    cloth = kw.get("cloth")
+    states = cluster_states(fdp, model.balls, cloth is not None)
     call = {}
     draw_rtol(fdp, call, True)
     if isinstance(call.get("rtol"), float) and 0 < call["rtol"] < 1e-10:
@@ -675,7 +689,8 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         known("cluster: the run stopped (work bound or step too small)", what)
         return
     except Exception as e:  # noqa: BLE001
-        refusal(e, ["positions", "velocities", "spins", "balls", "rtol", "coefficient"], what)
+        refusal(e, ["positions", "velocities", "spins", "balls", "rtol", "coefficient", "cloth"],
+                what)
         return
     nb = len(model.balls)
     for name in ("velocities", "spins", "positions"):
@@ -688,8 +703,20 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     v0, w0 = states["velocities"], states["spins"]
     v1, w1 = out["velocities"], out["spins"]
     scale = float(np.sum(m * np.linalg.norm(v0, axis=1)))
-    if np.any(np.abs(m @ v1 - m @ v0) > 1e-9 * scale + 1e-300):
-        raise Finding(f"{what}: momentum {m @ v0} -> {m @ v1}")
+    # On a cloth the momentum changes by the cloth's impulses (up, and its friction) and the
+    # weights' over the run; each cloth friction within mu_c of its normal impulse.
+    external = np.zeros(3)
+    if cloth is not None:
+        g = cloth.get("gravity", 9.81)
+        for c in out["cloth_contacts"]:
+            external += np.asarray(c["friction_impulse"]) + np.array([0.0, 0.0, c["impulse"]])
+            scale += abs(c["impulse"]) + float(np.linalg.norm(c["friction_impulse"]))
+            cap = cloth.get("mu", 0.2) * max(c["impulse"], 0.0)
+            if np.linalg.norm(c["friction_impulse"]) > cap * (1 + 1e-6) + 1e-12 * scale:
+                raise Finding(f"{what}: cloth friction above mu P: {c}")
+        external[2] -= float(np.sum(m)) * g * out["time"]
+    if np.any(np.abs(m @ v1 - m @ v0 - external) > 1e-9 * scale + 1e-300):
+        raise Finding(f"{what}: momentum {m @ v0} -> {m @ v1} (outside {external})")
     k0 = 0.5 * float(np.sum(m * np.sum(v0 * v0, 1)) + np.sum(inertia * np.sum(w0 * w0, 1)))
     k1 = 0.5 * float(np.sum(m * np.sum(v1 * v1, 1)) + np.sum(inertia * np.sum(w1 * w1, 1)))
     heat = 0.0
@@ -716,7 +743,16 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         if excess > 1e-6 * cap + 100 * rtol * scale:
             raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
         heat += c["heat"]
-    if (sticks and k1 > k0 * (1 + tol)) or abs(k0 - k1 - heat) > tol * k0 + 1e-300:
+    if cloth is not None:
+        # The balls start at the bottom of their potential (weight and the cloth's elastic
+        # energy): K_in - K_out - heat is what the cloth and gravity hold at the end, >= 0.
+        heat += sum(c["heat"] for c in out["cloth_contacts"])
+        big = max(k0, k1, abs(heat))
+        if (sticks and k1 > k0 * (1 + tol)) or k0 - k1 - heat < -tol * big - 1e-300:
+            raise Finding(f"{what}: energy {k0} -> {k1} with heat {heat} on the cloth")
+        return
+    big = max(k0, k1, abs(heat))
+    if (sticks and k1 > k0 * (1 + tol)) or abs(k0 - k1 - heat) > tol * big + 1e-300:
         raise Finding(f"{what}: energy {k0} -> {k1} with heat {heat}")
 
 

@@ -1,7 +1,7 @@
 """Type stubs of the Rust extension billiard_contact._core (SI units throughout)."""
 
 from os import PathLike
-from typing import Any, Literal, Optional, Sequence, TypedDict, Union
+from typing import Any, Literal, NotRequired, Optional, Sequence, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -490,6 +490,39 @@ class ClusterContact(TypedDict):
     stick_time: Optional[float]
     """Time from its closing at which its slip last stopped (s), or None."""
 
+class ClothContact(TypedDict):
+    """A ball's contact with the cloth during Cluster.resolve (docs/cluster.md, "The cloth")."""
+
+    ball: int
+    """The ball's index."""
+    impulse: float
+    """Normal impulse of the cloth on the ball, upward (N s): its weight's m g t while it
+    rests, more while it is pressed into the cloth."""
+    friction_impulse: npt.NDArray[np.float64]
+    """The cloth's friction impulse on the ball, (3,) (N s)."""
+    start: float
+    """Time it closed (s; 0 for a ball resting from the start)."""
+    duration: float
+    """How long it lasted (s): to the run's end, or until the ball left the cloth."""
+    heat: float
+    """Energy its friction dissipated (J)."""
+    stick_time: Optional[float]
+    """Time from its closing at which its slip last stopped (s), or None."""
+
+class ClothSpec(TypedDict, total=False):
+    """The cloth= keyword of Cluster: the scene's [cloth] keys."""
+
+    youngs_modulus: float
+    """The bed's Young's modulus (Pa; required; slate about 5e10)."""
+    poisson_ratio: float
+    """The bed's Poisson's ratio (required; slate about 0.25)."""
+    mu: float
+    """Ball-cloth friction (default 0.2)."""
+    height: float
+    """The cloth's z (m; default the first ball's z minus its radius)."""
+    gravity: float
+    """Gravity along -z (m/s^2; default 9.81)."""
+
 class ClusterResult(TypedDict):
     """Outgoing state of Cluster.resolve: a row per ball, in the order of Cluster.balls."""
 
@@ -507,6 +540,8 @@ class ClusterResult(TypedDict):
     """Accepted steps."""
     evaluations: int
     """Evaluations of the right-hand side."""
+    cloth_contacts: NotRequired[list[ClothContact]]
+    """With a cloth: each ball's contact with it."""
 
 class Cluster:
     """N balls resolved together (docs/cluster.md): every pair that touches or comes to
@@ -516,8 +551,10 @@ class Cluster:
     balls: 2 to 22 Ball; mu >= 0 at every contact; the normal law from the balls' material
     (youngs_modulus in Pa, poisson_ratio) or one stiffness (N/m^1.5) for every pair;
     damping None, "hunt-crossley" or "kuwabara-kono" with its coefficient (s/m or s) or
-    the restitution of a head-on impact at at_speed (m/s); stick (the stick rule).
-    The keywords are the scene file's names ([balls] and [contact.law]).
+    the restitution of a head-on impact at at_speed (m/s); stick (the stick rule);
+    tangential "rigid" or "mindlin" (Mindlin's spring at every contact); cloth None or a
+    ClothSpec dict (every ball resting on the cloth).
+    The keywords are the scene file's names ([balls], [contact.law] and [cloth]).
 
     Bad values raise ValueError naming the keyword.
     """
@@ -535,6 +572,8 @@ class Cluster:
         restitution: Optional[float] = None,
         at_speed: Optional[float] = None,
         stick: bool = True,
+        tangential: Literal["rigid", "mindlin"] = "rigid",
+        cloth: Optional[ClothSpec] = None,
     ) -> None: ...
     @property
     def balls(self) -> list[Ball]: ...

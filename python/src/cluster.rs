@@ -8,8 +8,9 @@ use crate::errors::to_py;
 use crate::inputs::float_array;
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::{
-    resolve_cluster, Cluster as Kernel, ClusterBall, ClusterLaw, ClusterSettings,
+    resolve_cluster, Cluster as Kernel, ClusterBall, ClusterCloth, ClusterLaw, ClusterSettings,
     ClusterTangential, ContactLaw, Damping, Error, HertzContact, Material, PairDamping, StopReason,
+    CLOTH_DEFAULT_GRAVITY, CLOTH_DEFAULT_MU,
 };
 use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -31,7 +32,12 @@ const DEFAULT_RTOL: f64 = billiard_contact::CLUSTER_DEFAULT_RTOL;
 /// impact at at_speed (m/s, relative approach speed) has; stick: whether a contact whose
 /// slip stops sticks (the stick rule, default True); tangential: "rigid" (default, Coulomb
 /// with the stick rule) or "mindlin" (Mindlin's no-slip tangential spring under Coulomb's
-/// cap at every contact, docs/cluster.md; it needs youngs_modulus and poisson_ratio).
+/// cap at every contact, docs/cluster.md; it needs youngs_modulus and poisson_ratio);
+/// cloth: None (free balls, default) or a dict with the scene's [cloth] keys,
+/// "youngs_modulus" and "poisson_ratio" (the bed's material; required), "mu" (ball-cloth
+/// friction, default 0.2), "height" (m, the cloth's z; default the first ball's z minus its
+/// radius at each resolve) and "gravity" (m/s^2 along -z, default 9.81): every ball then
+/// rests on the cloth (docs/cluster.md, "The cloth").
 ///
 /// The keyword names are the scene file's: [balls] youngs_modulus and poisson_ratio,
 /// [contact.law] stiffness, damping, coefficient, restitution and at_speed. A calibrated
@@ -53,8 +59,98 @@ pub struct Cluster {
     stick: bool,
     /// "rigid" or "mindlin".
     tangential: String,
+    /// The cloth the balls rest on, if any.
+    cloth: Option<ClothSpec>,
     /// The law of every pair (calibrations done once, here).
     law: ClusterLaw,
+}
+
+/// The `cloth=` keyword's dict, checked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ClothSpec {
+    material: Material,
+    mu: f64,
+    height: Option<f64>,
+    gravity: f64,
+}
+
+/// The keys of the `cloth=` dict (the scene's [cloth] keys).
+const CLOTH_KEYS: [&str; 5] = ["youngs_modulus", "poisson_ratio", "mu", "height", "gravity"];
+
+impl ClothSpec {
+    /// From the `cloth=` dict: unknown keys, missing material, bad numbers raise ValueError
+    /// naming "cloth.<key>"; the rest is checked where the kernel builds the cloth.
+    fn from_dict(d: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let d = d
+            .cast::<PyDict>()
+            .map_err(|_| PyTypeError::new_err("cloth: expected a dict (or None)"))?;
+        for k in d.keys() {
+            let k: String = k
+                .extract()
+                .map_err(|_| PyTypeError::new_err("cloth: keys are strings"))?;
+            if !CLOTH_KEYS.contains(&k.as_str()) {
+                return Err(bad(
+                    &format!("cloth.{k}"),
+                    "an unknown key",
+                    &format!("one of {}", CLOTH_KEYS.join(", ")),
+                ));
+            }
+        }
+        let get = |k: &str| -> PyResult<Option<f64>> {
+            match d.get_item(k)? {
+                None => Ok(None),
+                Some(v) if v.is_none() => Ok(None),
+                Some(v) => v
+                    .extract::<f64>()
+                    .map(Some)
+                    .map_err(|_| PyTypeError::new_err(format!("cloth.{k}: expected a number"))),
+            }
+        };
+        let need = |k: &str| -> PyResult<f64> {
+            get(k)?.ok_or_else(|| {
+                bad(
+                    &format!("cloth.{k}"),
+                    "missing",
+                    "youngs_modulus (Pa) and poisson_ratio of the bed (slate: about 5e10 and \
+                     0.25)",
+                )
+            })
+        };
+        let material =
+            Material::in_section("cloth", need("youngs_modulus")?, need("poisson_ratio")?)
+                .map_err(to_py)?;
+        Ok(ClothSpec {
+            material,
+            mu: get("mu")?.unwrap_or(CLOTH_DEFAULT_MU),
+            height: get("height")?,
+            gravity: get("gravity")?.unwrap_or(CLOTH_DEFAULT_GRAVITY),
+        })
+    }
+
+    /// The dict again (every key, the defaults written out; height only when given).
+    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("youngs_modulus", self.material.youngs_modulus())?;
+        d.set_item("poisson_ratio", self.material.poisson_ratio())?;
+        d.set_item("mu", self.mu)?;
+        if let Some(h) = self.height {
+            d.set_item("height", h)?;
+        }
+        d.set_item("gravity", self.gravity)?;
+        Ok(d)
+    }
+
+    /// The kernel's cloth for balls whose first is `first`.
+    fn cloth(&self, first: &ClusterBall) -> ClusterCloth {
+        ClusterCloth {
+            height: self
+                .height
+                .unwrap_or(first.position.z - first.ball.radius()),
+            material: self.material,
+            mu: self.mu,
+            gravity: self.gravity,
+        }
+    }
 }
 
 /// `e` with the library's `cluster.` and `contact.law.` prefixes taken off its field:
@@ -215,7 +311,8 @@ fn law_of(
                     laws.push((a, b, law));
                 }
             }
-            // Mindlin's spring needs the materials themselves (its shear modulus).
+            // Mindlin's spring and the cloth need the materials themselves (the shear
+            // modulus; the ball's share of the cloth contact's E*).
             Ok(match laws.as_slice() {
                 [(_, _, law)] if !mindlin => ClusterLaw::Same(*law),
                 _ => ClusterLaw::Materials(vec![m; balls.len()], pair_damping),
@@ -258,10 +355,11 @@ impl Cluster {
     #[pyo3(signature = (*, balls, mu, youngs_modulus = None, poisson_ratio = None,
                         stiffness = None, damping = None, coefficient = None,
                         restitution = None, at_speed = None, stick = true,
-                        tangential = "rigid".to_string()),
+                        tangential = "rigid".to_string(), cloth = None),
            text_signature = "(*, balls, mu, youngs_modulus=None, poisson_ratio=None, \
                              stiffness=None, damping=None, coefficient=None, \
-                             restitution=None, at_speed=None, stick=True, tangential='rigid')")]
+                             restitution=None, at_speed=None, stick=True, tangential='rigid', \
+                             cloth=None)")]
     #[allow(clippy::too_many_arguments)]
     fn new(
         balls: &Bound<'_, PyAny>,
@@ -275,7 +373,12 @@ impl Cluster {
         #[pyo3(from_py_with = crate::args::at_speed)] at_speed: Option<f64>,
         #[pyo3(from_py_with = crate::args::stick)] stick: bool,
         #[pyo3(from_py_with = crate::args::tangential)] tangential: String,
+        cloth: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
+        let cloth = match cloth {
+            Some(c) if !c.is_none() => Some(ClothSpec::from_dict(c)?),
+            _ => None,
+        };
         let mindlin = match tangential.as_str() {
             "rigid" => false,
             "mindlin" => true,
@@ -329,8 +432,16 @@ impl Cluster {
             coefficient,
             restitution,
             at_speed,
-            mindlin,
+            mindlin || cloth.is_some(),
         )?;
+        if cloth.is_some() && mindlin {
+            return Err(bad(
+                "cloth",
+                "given with tangential=\"mindlin\"",
+                "tangential=\"rigid\" with a cloth (its contacts carry Coulomb's friction \
+                 with the stick rule)",
+            ));
+        }
         Ok(Cluster {
             balls,
             mu,
@@ -343,6 +454,7 @@ impl Cluster {
             at_speed,
             stick,
             tangential,
+            cloth,
             law,
         })
     }
@@ -404,9 +516,13 @@ impl Cluster {
         } else {
             ClusterTangential::Rigid
         };
+        let cloth = self.cloth.map(|c| c.cloth(&balls[0]));
         let out = py
             .detach(move || {
-                let cluster = Kernel::new(balls, law, mu)?.with_tangential(tangential)?;
+                let mut cluster = Kernel::new(balls, law, mu)?.with_tangential(tangential)?;
+                if let Some(c) = cloth {
+                    cluster = cluster.with_cloth(c)?;
+                }
                 resolve_cluster(&cluster, &settings)
             })
             .map_err(|e| to_py(keyword(e)))?;
@@ -447,6 +563,24 @@ impl Cluster {
             contacts.append(e)?;
         }
         d.set_item("contacts", contacts)?;
+        if self.cloth.is_some() {
+            let cloth = PyList::empty(py);
+            for c in &out.cloth {
+                let e = PyDict::new(py);
+                e.set_item("ball", c.pair.0)?;
+                e.set_item("impulse", c.normal_impulse)?;
+                e.set_item(
+                    "friction_impulse",
+                    numpy::PyArray1::from_slice(py, c.friction_impulse.as_slice()),
+                )?;
+                e.set_item("start", c.start)?;
+                e.set_item("duration", c.duration)?;
+                e.set_item("heat", c.heat)?;
+                e.set_item("stick_time", c.stick_time)?;
+                cloth.append(e)?;
+            }
+            d.set_item("cloth_contacts", cloth)?;
+        }
         d.set_item("time", out.time)?;
         d.set_item("steps", out.stats.steps)?;
         d.set_item("evaluations", out.stats.evaluations)?;
@@ -482,6 +616,10 @@ impl Cluster {
         kwargs.set_item("at_speed", self.at_speed)?;
         kwargs.set_item("stick", self.stick)?;
         kwargs.set_item("tangential", &self.tangential)?;
+        match &self.cloth {
+            Some(c) => kwargs.set_item("cloth", c.as_dict(py)?)?,
+            None => kwargs.set_item("cloth", py.None())?,
+        }
         Ok((PyTuple::empty(py), kwargs))
     }
 
@@ -492,6 +630,7 @@ impl Cluster {
             .eq(other.balls.iter().map(|b| b.ball))
             && (self.mu, self.stick) == (other.mu, other.stick)
             && self.tangential == other.tangential
+            && self.cloth == other.cloth
             && self.law == other.law
     }
 
@@ -524,6 +663,18 @@ impl Cluster {
         }
         if self.tangential != "rigid" {
             s += &format!(", tangential={:?}", self.tangential);
+        }
+        if let Some(c) = &self.cloth {
+            s += &format!(
+                ", cloth={{'youngs_modulus': {:?}, 'poisson_ratio': {:?}, 'mu': {:?}",
+                c.material.youngs_modulus(),
+                c.material.poisson_ratio(),
+                c.mu
+            );
+            if let Some(h) = c.height {
+                s += &format!(", 'height': {h:?}");
+            }
+            s += &format!(", 'gravity': {:?}}}", c.gravity);
         }
         s + ")"
     }

@@ -96,3 +96,31 @@ def test_a_pocketed_ball_is_not_part_of_the_cluster():
     e = engine()
     e.resolver.resolve(shot, ball_ball_collision(shot.balls["b0"], shot.balls["b1"], 0.0))
     assert shot.balls["b2"].state.rvw[1].tolist() == [0.0, 0.0, 0.0]
+
+
+def test_the_cloth_passes_through_cluster_options():
+    """cluster_options={"cloth": ...}: the balls rest on pooltool's table (centres at z = R),
+    and the plug-in's result is the library's Cluster with that cloth on the same state;
+    along x only the cloth's friction acts from outside, so the x momentum falls by at most
+    mu_c times the cloth's normal impulses."""
+    R = pt.Ball.create("x").params.R
+    xs = [0.3, 0.3 + 2 * R, 0.3 + 4 * R + 1e-7]
+    shot = system(xs)
+    before = np.array([shot.balls[k].state.rvw for k in ("b0", "b1", "b2")])
+    assert np.all(before[:, 0, 2] == R)
+    cloth = {"youngs_modulus": 5e10, "poisson_ratio": 0.25, "mu": 0.2}
+    e = engine(cluster_options={"cloth": cloth})
+    e.resolver.resolve(shot, ball_ball_collision(shot.balls["b0"], shot.balls["b1"], 0.0))
+    after = np.array([shot.balls[k].state.rvw for k in ("b0", "b1", "b2")])
+    p = shot.balls["b0"].params
+    direct = bc.Cluster(balls=[bc.Ball(p.m, p.R, 0.4)] * 3, mu=p.u_b, youngs_modulus=5.4e9,
+                        poisson_ratio=0.34, damping="hunt-crossley", restitution=p.e_b,
+                        at_speed=1.0, cloth=cloth).resolve(before[:, 0], before[:, 1],
+                                                           before[:, 2])
+    v_direct = direct["velocities"].copy()
+    v_direct[:, 2] = 0.0
+    np.testing.assert_array_equal(after[:, 1], v_direct)
+    np.testing.assert_array_equal(after[:, 2], direct["spins"])
+    lost = 2.0 - after[:, 1, 0].sum()
+    cap = 0.2 * sum(c["impulse"] for c in direct["cloth_contacts"]) / p.m
+    assert 0.0 < lost <= cap * (1 + 1e-9)

@@ -1,0 +1,94 @@
+"""Cluster on the cloth (docs/cluster.md, "The cloth"): every ball rests on a bed pressed by
+its Hertz contact and preloaded by its weight, with Coulomb friction at its lowest point.
+Expected values from Newton's laws and Coulomb's bound, written out here:
+
+- without friction anywhere, two equal balls head on exchange velocities (momentum and
+  energy), and each ball's cloth impulse is its weight's, m g T over the run's time T (all
+  forces between them are horizontal, so nothing else pushes along z);
+- along x only the cloth's friction acts from outside: sum m v_x' = m v_0 + sum F_x, and
+  each |F| <= mu_c P (Coulomb) with P that ball's cloth impulse.
+"""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import pytest
+
+import billiard_contact as bc
+
+M, R, E, NU, G = 0.17, 0.028575, 5.4e9, 0.34, 9.81
+BALL = bc.Ball(mass=M, radius=R, alpha=0.4)
+SLATE = {"youngs_modulus": 5.0e10, "poisson_ratio": 0.25}
+
+
+def on_cloth(mu=0.0, mu_c=0.0, **kw):
+    return bc.Cluster(balls=[BALL, BALL], mu=mu, youngs_modulus=E, poisson_ratio=NU,
+                      cloth=dict(SLATE, mu=mu_c), **kw)
+
+
+def head_on(v=1.0):
+    p = np.array([[0.0, 0.0, R], [2.0 * R, 0.0, R]])
+    vel = np.array([[v, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    return p, vel, np.zeros((2, 3))
+
+
+def test_frictionless_cloth_carries_the_weights_only():
+    out = on_cloth().resolve(*head_on(), rtol=1e-10)
+    assert np.abs(out["velocities"][0]).max() < 1e-8
+    assert np.allclose(out["velocities"][1], [1.0, 0.0, 0.0], atol=1e-8)
+    weight = M * G * out["time"]
+    assert sorted(c["ball"] for c in out["cloth_contacts"]) == [0, 1]
+    for c in out["cloth_contacts"]:
+        assert c["impulse"] == pytest.approx(weight, rel=1e-9)
+        assert np.all(c["friction_impulse"] == 0.0)
+
+
+def test_cloth_friction_within_coulomb_and_the_x_momentum_balance():
+    mu_c = 0.2
+    out = on_cloth(mu_c=mu_c).resolve(*head_on(), rtol=1e-10)
+    p_out = M * out["velocities"][:, 0].sum()
+    friction = sum(c["friction_impulse"][0] for c in out["cloth_contacts"])
+    assert p_out == pytest.approx(M * 1.0 + friction, abs=1e-12)
+    for c in out["cloth_contacts"]:
+        assert np.linalg.norm(c["friction_impulse"]) <= mu_c * c["impulse"] * (1 + 1e-9)
+        assert c["friction_impulse"][0] <= 0.0
+
+
+def test_pickles_to_an_equal_model_with_the_same_answers():
+    c = on_cloth(mu=0.06, mu_c=0.2)
+    back = pickle.loads(pickle.dumps(c))
+    assert back == c and repr(back) == repr(c)
+    assert "cloth={'youngs_modulus': 50000000000.0" in repr(c)
+    a, b = c.resolve(*head_on()), back.resolve(*head_on())
+    assert np.array_equal(a["velocities"], b["velocities"])
+    assert a["cloth_contacts"][0]["impulse"] == b["cloth_contacts"][0]["impulse"]
+    # Without a cloth the result has no cloth contacts.
+    free = bc.Cluster(balls=[BALL, BALL], mu=0.06, youngs_modulus=E, poisson_ratio=NU)
+    p, v, w = head_on()
+    assert "cloth_contacts" not in free.resolve(p, v, w)
+
+
+@pytest.mark.parametrize("cloth, words", [
+    ({"youngs_modulus": 5e10}, ["cloth.poisson_ratio", "missing"]),
+    (dict(SLATE, muu=0.2), ["cloth.muu", "unknown key"]),
+    ({"youngs_modulus": -1.0, "poisson_ratio": 0.25}, ["cloth.youngs_modulus"]),
+])
+def test_bad_cloths_are_refused_naming_the_key(cloth, words):
+    with pytest.raises(ValueError) as e:
+        bc.Cluster(balls=[BALL, BALL], mu=0.1, youngs_modulus=E, poisson_ratio=NU, cloth=cloth)
+    for w in words:
+        assert w in str(e.value)
+
+
+def test_refusals_at_resolve_and_with_mindlin():
+    with pytest.raises(ValueError, match="cloth"):
+        bc.Cluster(balls=[BALL, BALL], mu=0.1, youngs_modulus=E, poisson_ratio=NU,
+                   tangential="mindlin", cloth=SLATE)
+    p, v, w = head_on()
+    p[1, 2] += 1e-3
+    with pytest.raises(ValueError, match=r"balls\[1\].*resting on the cloth"):
+        on_cloth().resolve(p, v, w)
+    with pytest.raises(ValueError, match=r"cloth.mu = -1"):
+        on_cloth(mu_c=-1.0).resolve(*head_on())
