@@ -243,3 +243,31 @@ fn cloth_refuses_bad_input() {
         CLUSTER_TANGENTIAL_FIELD
     );
 }
+
+/// The first touch: free balls fly to it as `first_touch_time` predicts (gap / v); on the
+/// cloth the struck ball slides there decelerating at mu_c g (it rolls only after
+/// 2 v / (7 mu_c g / 2) = 0.29 s, the gap takes 0.1 s), so it touches at the root of
+/// v t - mu_c g t^2 / 2 = gap.
+#[test]
+fn the_first_touch_is_the_runs_own() {
+    let gap = 0.2;
+    let v = 2.0;
+    let balls = vec![ball_of(M, R, -R - gap, v), ball_of(M, R, R, 0.0)];
+    let law = ClusterLaw::Materials(vec![resin(); 2], PairDamping::None);
+    let free = Cluster::new(balls, law, 0.0).unwrap();
+    let t0 = free.first_touch_time();
+    assert!((t0 - gap / v).abs() < 1e-12);
+    let out = resolve_cluster(&free, &settings()).unwrap();
+    assert!((out.first_touch - t0).abs() <= 1e-15 * t0);
+    let mu_c = 0.2;
+    let on = resolve_cluster(&free.with_cloth(slate(mu_c)).unwrap(), &settings()).unwrap();
+    // Sliding the whole way (it starts without spin): x(t) = v t - mu_c g t^2 / 2 reaches
+    // the gap at t = (v - sqrt(v^2 - 2 mu_c g gap)) / (mu_c g).
+    let a = mu_c * G;
+    let sliding = (v - (v * v - 2.0 * a * gap).sqrt()) / a;
+    assert!(
+        (on.first_touch - sliding).abs() < 1e-9 * sliding,
+        "{} vs {sliding}",
+        on.first_touch
+    );
+}

@@ -80,10 +80,10 @@ fn refuse_options(args: &RunArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// The sample times of `--samples n` for the run `out` of `scene`: t_0 + i (t_end - t_0) / n,
+/// The sample times of `--samples n` for the run `out`: t_0 + i (t_end - t_0) / n,
 /// i = 0..n, from the first touch t_0 to the end of the run t_end (s; the last exactly t_end).
-fn sample_times(scene: &ClusterScene, out: &ClusterOutcome, n: u64) -> Vec<f64> {
-    let (t0, t1) = (scene.cluster.first_touch_time().min(out.time), out.time);
+fn sample_times(out: &ClusterOutcome, n: u64) -> Vec<f64> {
+    let (t0, t1) = (out.first_touch.min(out.time), out.time);
     (0..=n)
         .map(|i| {
             if i == n {
@@ -121,7 +121,7 @@ fn traced_run(
     };
     let mut data = ClusterTraceData::new(&columns);
     let keep = args.plot_trace.is_some();
-    let times = args.samples.map(|n| sample_times(scene, first, n));
+    let times = args.samples.map(|n| sample_times(first, n));
     let mut sink = |row: &ClusterTraceRow<'_>| {
         let cells = columns.cells(row);
         if let Some(csv) = csv.as_mut() {

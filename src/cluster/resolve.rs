@@ -192,6 +192,10 @@ pub struct ClusterOutcome {
     pub stop: StopReason,
     /// Time (s) the run covered.
     pub time: f64,
+    /// Time (s) two balls first touched while approaching: [`Cluster::first_touch_time`]
+    /// for free balls; on a cloth, later when the cloth's friction slowed the balls on their
+    /// way (the run's own closing).
+    pub first_touch: f64,
     /// Work done.
     pub stats: ClusterStats,
 }
@@ -882,6 +886,7 @@ fn run_cluster(
         active: Vec::new(),
         records: Vec::new(),
         cloth_records: Vec::new(),
+        first_touch: None,
         stats: ClusterStats::default(),
         changes: 0,
         centre,
@@ -908,6 +913,7 @@ fn run_cluster(
         cloth: run.cloth_records,
         stop,
         time: run.t,
+        first_touch: run.first_touch.unwrap_or(run.t),
         stats: run.stats,
     })
 }
@@ -929,6 +935,8 @@ struct Run<'a> {
     records: Vec<ContactRecord>,
     /// The cloth's contacts that carried force (pair (ball, number of balls)).
     cloth_records: Vec<ContactRecord>,
+    /// Time (s) two balls first touched while approaching, once they have.
+    first_touch: Option<f64>,
     stats: ClusterStats,
     /// Changes of the contact set or of a contact's mode so far: a derivative kept from a
     /// step is reused only at the same count.
@@ -1029,6 +1037,13 @@ impl Run<'_> {
         self.changes += 1;
         let (xi, xj) = (pos(&self.y, i), pos(&self.y, j));
         let on_cloth = j == self.nballs();
+        if !on_cloth && self.first_touch.is_none() {
+            let nb = self.nb();
+            let closing = (pos(&self.y, nb + i) - pos(&self.y, nb + j)).dot(&(xj - xi));
+            if closing > 0.0 {
+                self.first_touch = Some(self.t);
+            }
+        }
         let n = if on_cloth {
             -Vector3::z()
         } else {

@@ -140,7 +140,7 @@ impl ClusterTraceFigure {
         data: &ClusterTraceData,
         samples: Option<u64>,
     ) -> Self {
-        let t0 = scene.cluster.first_touch_time();
+        let t0 = out.first_touch;
         let time = TimeAxis::for_duration(out.time - t0);
         // The pairs in the order they first pressed (balls of a rack touch from the start,
         // and press only once the impulse reaches them).
