@@ -271,3 +271,23 @@ fn the_first_touch_is_the_runs_own() {
         on.first_touch
     );
 }
+
+/// Without gravity the cloth carries nothing (no weight, horizontal normals): whatever its
+/// mu, two frictionless balls exchange velocities, the cloth's impulses are zero, and the
+/// run ends (the resting balls neither press nor close).
+#[test]
+fn without_gravity_the_cloth_carries_nothing() {
+    let balls = vec![ball_of(M, R, 0.0, 1.0), ball_of(M, R, 2.0 * R, 0.0)];
+    let law = ClusterLaw::Materials(vec![resin(); 2], PairDamping::None);
+    let mut cloth = slate(0.3);
+    cloth.gravity = 0.0;
+    let cluster = Cluster::new(balls, law, 0.0)
+        .unwrap()
+        .with_cloth(cloth)
+        .unwrap();
+    let out = resolve_cluster(&cluster, &settings()).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    assert!(out.balls[0].velocity.norm() < 1e-8);
+    assert!((out.balls[1].velocity - Vector3::x()).norm() < 1e-8);
+    assert!(out.cloth.is_empty(), "{:?}", out.cloth);
+}

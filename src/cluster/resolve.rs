@@ -1943,7 +1943,9 @@ impl Run<'_> {
         let (d, w) = sys.compression(&self.y, c);
         let m = self.bodies[c.i].m;
         let v = 0.4 * c.law.stiffness() * d.max(0.0).powf(2.5) - m * cloth.gravity * d;
-        0.5 * m * w * w + v < 0.0
+        // Without gravity a resting ball sits at V's minimum, 0, with no hold to spare: it
+        // stays as long as it neither presses nor closes.
+        0.5 * m * w * w + v < 0.0 || (d <= 0.0 && w <= 0.0)
     }
 
     /// Whether two balls flying freely from now touch within `horizon` (s).
