@@ -1575,6 +1575,7 @@ impl Run<'_> {
             if h < MIN_STEP * self.tau0 {
                 return Ok(StopReason::StepTooSmall);
             }
+            h = h.min(self.touch_bound());
             self.trace_start();
             // Each sliding contact's direction at the start of the step.
             {
@@ -1946,6 +1947,35 @@ impl Run<'_> {
         // Without gravity a resting ball sits at V's minimum, 0, with no hold to spare: it
         // stays as long as it neither presses nor closes.
         0.5 * m * w * w + v < 0.0 || (d <= 0.0 && w <= 0.0)
+    }
+
+    /// The longest step (s) after which every pair outside the contact set that would touch,
+    /// if the balls flew freely from now, is still overlapping: the earliest closest
+    /// approach of such a pair, or [`FIRST_STEP`] elastic contact times if that comes sooner. A closing is an event seen at a step's ends (the
+    /// pair apart, then overlapping); a step that carries a pair through the other ball
+    /// sees it apart at both. While a few contacts creep apart under heavy Kuwabara-Kono
+    /// damping the steps grow tenfold at each (to 34 s with gamma = 0.05 s), and balls
+    /// passed through each other: closed 4 cm deep they gave 69 mJ out of 8.5 µJ (found
+    /// by fuzzing).
+    fn touch_bound(&self) -> f64 {
+        let nb = self.nb();
+        let n = self.nballs();
+        let mut bound = f64::INFINITY;
+        for i in 0..n {
+            for j in i + 1..n {
+                if self.in_set(i, j) {
+                    continue;
+                }
+                let p = pos(&self.y, j) - pos(&self.y, i);
+                let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
+                if first_touch(p, u, self.bodies[i].r + self.bodies[j].r).is_some() {
+                    // Their closest approach, the middle of the time they would overlap:
+                    // a step that ends there sees them overlapping (at its deepest).
+                    bound = bound.min(-p.dot(&u) / u.norm_squared());
+                }
+            }
+        }
+        bound.max(FIRST_STEP * self.tau0)
     }
 
     /// Whether two balls flying freely from now touch within `horizon` (s).
