@@ -715,9 +715,11 @@ pub(crate) fn run(
         max_normal_force = max_normal_force.max(c.normal_force(&y));
         if ended {
             // The zero of the separation inside the last (tiny) step, from its rate (delta';
-            // the damped term's rate is gamma delta'' = -gamma F_n / m*, and F_n = 0 there).
+            // the damped term's rate is gamma delta'' = -gamma F_n / m*, and F_n = 0 there),
+            // within that step: at a creeping separation's delta' of 1e-16 m/s the line
+            // through the end put the zero 1e7 s before the start (found by fuzzing).
             let sep = c.law.separation(y[0], y[1]);
-            let end = t - sep / y[1].min(-f64::MIN_POSITIVE);
+            let end = (t - sep / y[1].min(-f64::MIN_POSITIVE)).clamp(t - h, t);
             trace.push(c.row(end, &y, mode));
             break end;
         }
