@@ -1066,9 +1066,17 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         }
         for c in &out.cloth {
             assert!(c.pair.0 < n && c.pair.1 == n, "{what}: cloth contact {c:?}");
+            // A stepped state, as the balls' friction impulses (below): within rtol of the
+            // momentum scale a step.
             let cap = cloth.mu * c.normal_impulse.max(0.0);
+            let momentum: f64 = balls
+                .iter()
+                .zip(&mass)
+                .map(|(b, m)| m * b.velocity.norm())
+                .sum();
             assert!(
-                c.friction_impulse.norm() <= cap * (1.0 + 1e-6) + 1e-12 * external_scale,
+                c.friction_impulse.norm()
+                    <= cap * (1.0 + 1e-6) + FRICTION_STEPS * settings.rtol * momentum,
                 "{what}: cloth friction above mu P = {cap:e} in {c:?}"
             );
         }
