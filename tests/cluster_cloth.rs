@@ -291,3 +291,52 @@ fn without_gravity_the_cloth_carries_nothing() {
     assert!((out.balls[1].velocity - Vector3::x()).norm() < 1e-8);
     assert!(out.cloth.is_empty(), "{:?}", out.cloth);
 }
+
+/// Three balls on the cloth spinning at up to 300 rad/s, two of them touching at rest and
+/// driven together by the cloth's friction on their spins (found by fuzzing): the pair was
+/// closed at the instant its closing was located, dropped as quiet at once and closed
+/// again a million times at t = 0. The run separates in a few dozen steps, with the stick
+/// rule on and off (the cloth's contacts keep it either way), within Coulomb's bound.
+#[test]
+fn a_pair_driven_together_by_the_cloth_is_not_dropped_as_quiet() {
+    let spun = |x: f64, y: f64, v: f64, w: [f64; 3]| ClusterBall {
+        ball: Ball::new(M, R, 0.4).unwrap(),
+        position: Vector3::new(x, y, R),
+        velocity: Vector3::new(v, 0.0, 0.0),
+        spin: Vector3::from(w),
+    };
+    let balls = vec![
+        spun(
+            0.0,
+            0.0,
+            0.5113333333333333,
+            [-262.3494721861447, -262.3529411764706, -300.0],
+        ),
+        spun(
+            0.031540078945206336,
+            -0.04840926834730898,
+            0.0,
+            [299.9914191750919, -161.81899490817173, 38.823529411764696],
+        ),
+        spun(
+            0.08869007894520634,
+            -0.04840926834730898,
+            0.0,
+            [-299.99999775606045, -300.0, -300.0],
+        ),
+    ];
+    let law = ClusterLaw::Materials(vec![resin(); 3], PairDamping::None);
+    let cluster = Cluster::new(balls, law, 0.06)
+        .unwrap()
+        .with_cloth(slate(0.2))
+        .unwrap();
+    for stick in [true, false] {
+        let s = ClusterSettings { rtol: 1e-8, stick };
+        let out = resolve_cluster(&cluster, &s).unwrap();
+        assert_eq!(out.stop, StopReason::Separated, "{:?}", out.stats);
+        assert!(out.stats.steps < 1000, "{:?}", out.stats);
+        for c in &out.cloth {
+            assert!(c.friction_impulse.norm() <= 0.2 * c.normal_impulse * (1.0 + 1e-6));
+        }
+    }
+}

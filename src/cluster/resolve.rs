@@ -1098,7 +1098,9 @@ impl Run<'_> {
         let sys = self.system(false);
         let s = sys.slip(&self.y, &self.active[k]);
         let sn = s.norm();
-        let stuck = self.active[k].mu > 0.0 && self.settings.stick && sn <= SLIP_FLOOR * self.v_ref;
+        // The cloth's contacts keep the stick rule whatever `stick` says of the balls'.
+        let stick = self.settings.stick || on_cloth;
+        let stuck = self.active[k].mu > 0.0 && stick && sn <= SLIP_FLOOR * self.v_ref;
         let c = &mut self.active[k];
         if sn > 0.0 {
             c.seed = s / sn;
@@ -1718,10 +1720,13 @@ impl Run<'_> {
                     Event::Stop(k) => {
                         let sl = self.system(false).slip(&self.y, &self.active[k]);
                         self.changes += 1;
+                        let cloth = self.nballs();
                         let c = &mut self.active[k];
                         c.stick_time = Some(self.t - c.start);
                         c.offset = sl;
-                        c.mode = if self.settings.stick {
+                        // The cloth's contacts keep the stick rule (a ball rolling on the
+                        // cloth is not pushed on by the friction it slid under).
+                        c.mode = if self.settings.stick || c.j == cloth {
                             Mode::Stuck
                         } else {
                             Mode::Continued
@@ -1910,13 +1915,19 @@ impl Run<'_> {
                 (c.law.force(d, w) <= 0.0 && w <= 0.0, !c.loaded && d < -tol)
             })
             .collect();
-        // The cloth's contacts stay: balls rest on it before and after.
+        // The cloth's contacts stay: balls rest on it before and after. On the cloth a pair
+        // closed at this instant is not quiet yet: its closing was located because the
+        // cloth's friction drives the balls together within the step (free balls in a
+        // quiet set move apart or along), and dropping it at once closed it again at the
+        // same instant a million times (three spinning balls, found by fuzzing).
         let cloth = self.nballs();
+        let on_cloth = self.cluster.cloth.is_some();
+        let now = self.t;
         let all_quiet = self
             .active
             .iter()
             .zip(&state)
-            .all(|(c, q)| q.0 || c.j == cloth);
+            .all(|(c, q)| (q.0 && !(on_cloth && c.start == now)) || c.j == cloth);
         for k in (0..self.active.len()).rev() {
             if (all_quiet && self.active[k].j != cloth) || state[k].1 {
                 self.open(k);
