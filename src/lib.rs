@@ -118,8 +118,8 @@ pub use base::settings::{Sampling, SolverSettings, Stats};
 pub use closed_form::kernel::ClosedForm;
 pub use cluster::params::{
     Cluster, ClusterBall, ClusterCloth, ClusterLaw, ClusterTangential, PairDamping,
-    CLOTH_DEFAULT_GRAVITY, CLOTH_DEFAULT_MU, CLUSTER_CLOTH_FIELD, CLUSTER_TANGENTIAL_FIELD,
-    CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
+    CLOTH_DEFAULT_GRAVITY, CLOTH_DEFAULT_MU, CLUSTER_CLOTH_FIELD, CLUSTER_MAX_POSITION,
+    CLUSTER_TANGENTIAL_FIELD, CLUSTER_TOUCH_TOLERANCE, MAX_CLUSTER_BALLS,
 };
 pub use cluster::resolve::{
     resolve_cluster, resolve_cluster_traced, BallOut, ClusterOutcome, ClusterSampling,

@@ -783,3 +783,36 @@ fn six_balls_no_stick_kuwabara_kono_close_only_when_overlapping() {
         "{k_in} {k_out} {heat}"
     );
 }
+
+/// Centres beyond a table's scale are refused naming the ball (1.8e308 m apart overflowed
+/// their distance and the run never ended; found by fuzzing).
+#[test]
+fn centres_far_beyond_a_table_are_refused() {
+    let far = |z: f64, v: f64| {
+        at(
+            Vector3::new(0.0, 0.0, z),
+            Vector3::new(v, 0.0, 0.0),
+            Vector3::zeros(),
+        )
+    };
+    let balls = vec![
+        far(-1.7976931348623157e308, 4.8),
+        at(
+            Vector3::new(2.0 * R, 0.0, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+        at(
+            Vector3::new(4.0 * R, 0.0, 0.0),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+    ];
+    let law = ClusterLaw::Same(ContactLaw::elastic(pool_k()).unwrap());
+    match Cluster::new(balls, law, 0.06) {
+        Err(Error::InvalidParameter { field, .. }) => {
+            assert_eq!(field, "cluster.balls[0].position")
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -24,6 +24,11 @@ pub const CLUSTER_TOUCH_TOLERANCE: f64 = crate::model::frame::TOUCH_TOLERANCE;
 /// compression of 1e-8 of 57 mm keeps about 1e-8 of its own value.
 pub(crate) const MIN_COMPRESSION: f64 = 1e-8;
 
+/// Largest coordinate of a ball's centre (m): a table is a few metres; at 1e4 m a position
+/// carries 2e-12 m of rounding, below 1e-8 of a ball's radius. Centres 1.8e308 m apart
+/// overflowed their distance and the run never ended (found by fuzzing).
+pub const CLUSTER_MAX_POSITION: f64 = 1e4;
+
 /// One ball of a cluster in the lab frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClusterBall {
@@ -176,6 +181,16 @@ impl Cluster {
             ));
         }
         for (i, b) in balls.iter().enumerate() {
+            if b.position.amax() > CLUSTER_MAX_POSITION {
+                return Err(Error::invalid(
+                    format!("cluster.balls[{i}].position"),
+                    format!("{:?}", b.position.as_slice()),
+                    format!(
+                        "coordinates within {CLUSTER_MAX_POSITION:e} m (a table's size; the \
+                         contacts' compressions drown in the rounding of larger ones)"
+                    ),
+                ));
+            }
             let all = [b.position, b.velocity, b.spin];
             if !all.iter().all(|v| v.iter().all(|x| x.is_finite())) {
                 return Err(Error::invalid(
