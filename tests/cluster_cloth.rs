@@ -340,3 +340,19 @@ fn a_pair_driven_together_by_the_cloth_is_not_dropped_as_quiet() {
         }
     }
 }
+
+/// A bed so soft that its Hertz stiffness underflows (E = 5e-324 Pa; found by fuzzing) is
+/// refused naming the cloth's modulus.
+#[test]
+fn a_cloth_without_stiffness_names_its_modulus() {
+    let balls = vec![ball_of(M, R, 0.0, 1.0), ball_of(M, R, 2.0 * R, 0.0)];
+    let law = ClusterLaw::Materials(vec![resin(); 2], PairDamping::None);
+    let mut cloth = slate(0.2);
+    cloth.material = Material::new(5e-324, 0.25).unwrap();
+    match Cluster::new(balls, law, 0.0).unwrap().with_cloth(cloth) {
+        Err(Error::InvalidParameter { field, .. }) => {
+            assert_eq!(field, "cluster.cloth.youngs_modulus")
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -357,7 +357,18 @@ impl Cluster {
                 Some(m) => sphere_plane_stiffness(&b.ball, &m[i], Some(&cloth.material)).2,
                 None => sphere_plane_stiffness(&b.ball, &cloth.material, None).2,
             };
-            let law = ContactLaw::elastic(k)?;
+            // A stiffness lost to underflow (a bed of E = 5e-324 Pa; found by fuzzing) is
+            // the cloth's material's fault: named by it.
+            let law = ContactLaw::elastic(k).map_err(|_| {
+                Error::invalid(
+                    "cluster.cloth.youngs_modulus",
+                    cloth.material.youngs_modulus(),
+                    format!(
+                        "a modulus that gives balls[{i}] a Hertz stiffness on the cloth ({k:e} \
+                         N/m^1.5 here)"
+                    ),
+                )
+            })?;
             // The weight's static compression: k delta^1.5 = m g.
             let preload = (b.ball.mass() * cloth.gravity / k).powf(2.0 / 3.0);
             if preload.is_nan() || preload >= r {
