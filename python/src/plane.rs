@@ -461,6 +461,15 @@ pub(crate) fn damping_law(
             (d, c)
         }
         (d, None, Some(v)) => {
+            // Checked before the stiffness, which may depend on it (a Hertz contact time at
+            // 0 m/s was refused naming `incoming`; found by fuzzing).
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::invalid(
+                    "at_speed",
+                    v,
+                    "finite and > 0 (m/s): the approach speed the restitution is calibrated at",
+                ));
+            }
             let k = stiffness(v).map_err(named)?;
             let l = ContactLaw::calibrated(k, d, restitution, v, mass).map_err(named)?;
             (l.damping(), l.coefficient())

@@ -124,6 +124,8 @@ def test_pickles_and_the_rigid_default_is_unchanged():
               damping="hunt-crossley", coefficient=-0.1), ["coefficient = -0.1"]),
         (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU, restitution=1.5,
               damping="hunt-crossley", at_speed=3.9), ["restitution = 1.5"]),
+        (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU,
+              damping="hunt-crossley", at_speed=0.0), ["at_speed = 0", "> 0"]),
         (dict(damping="hunt-crossley", coefficient=0.1), ["tangential", "rigid"]),
         (dict(youngs_modulus=E, poisson_ratio=NU), ["tangential", "rigid"]),
         (dict(tangential="mindlin", youngs_modulus=E, poisson_ratio=NU,
