@@ -310,6 +310,33 @@ fn tangential_pair_refuses_bad_inputs() {
         field(resolve_sphere_sphere_compliant(&a, &nan, x, 0.1, 1.0, &s)),
         "incoming.spin_b"
     );
+    // Either ball's alpha below the compliant contact's 1e-4 (docs/tangential.md).
+    let light = |mut s: CompliantSphere| {
+        s.ball = Ball::new(s.ball.mass(), s.ball.radius(), 1e-5).unwrap();
+        s
+    };
+    assert_eq!(
+        field(resolve_sphere_sphere_compliant(
+            &light(a),
+            &b,
+            x,
+            0.1,
+            1.0,
+            &s
+        )),
+        "balls.a.alpha"
+    );
+    assert_eq!(
+        field(resolve_sphere_sphere_compliant(
+            &a,
+            &light(b),
+            x,
+            0.1,
+            1.0,
+            &s
+        )),
+        "balls.b.alpha"
+    );
 }
 
 /// A rolling cue ball's cut shot (docs/throw.md#tangential-compliance): the slip holds the

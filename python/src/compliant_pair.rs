@@ -161,6 +161,10 @@ impl PairMindlin {
                 ("incoming.spin_a", "wa"),
                 ("incoming.spin_b", "wb"),
                 ("friction.mu", "mu"),
+                // A ball's alpha below the compliant contact's bound: ball A's or B's
+                // (the shared `alpha` when they are one ball).
+                ("balls.a.alpha", "a.alpha"),
+                ("balls.b.alpha", "b.alpha"),
                 // Hertz's contact time out of the doubles' range: the material.
                 ("contact.profile.duration", "youngs_modulus, poisson_ratio"),
             ]

@@ -519,6 +519,7 @@ impl BallPlane {
                         ("incoming.spin", "w"),
                         ("friction.mu", "mu"),
                         ("plane.normal", "normal"),
+                        ("balls.alpha", "alpha"),
                         // Hertz's contact time out of the doubles' range: the materials.
                         ("contact.profile.duration", "youngs_modulus, poisson_ratio"),
                     ]

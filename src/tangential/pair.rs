@@ -16,8 +16,8 @@ use crate::model::contact_law::Damping;
 use crate::model::material::{hertz_stiffness, reduced_mass, Material};
 use crate::model::params::Ball;
 use crate::tangential::impact::{
-    check_mu, chi, finite_vector, kinetic_energy, run, shear_compliance, unit_normal, Bodies,
-    Contact, Partner,
+    check_alpha, check_mu, chi, finite_vector, kinetic_energy, run, shear_compliance, unit_normal,
+    Bodies, Contact, Partner,
 };
 use crate::tangential::outcome::CompliantPairOutcome;
 use nalgebra::Vector3;
@@ -144,6 +144,8 @@ pub fn resolve_sphere_sphere_compliant_damped(
     settings: &SolverSettings,
 ) -> Result<CompliantPairOutcome, Error> {
     check_mu(mu)?;
+    check_alpha("balls.a.alpha", &a.ball)?;
+    check_alpha("balls.b.alpha", &b.ball)?;
     let n = unit_normal(
         "contact.normal",
         &normal,
