@@ -457,6 +457,33 @@ fn cluster_refuses_bad_input() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("approach"), "{err}");
+    // Touching and closing at 7e-310 m/s while sliding past at 2 mm/s is no approach: an
+    // impulse of 1e-307 of the momentum moves nothing (the grazing bound is 1e-40 of the
+    // relative speed); counted as one, it held the steps at their smallest for 1e6 steps.
+    let grazing = at(
+        Vector3::zeros(),
+        Vector3::new(7e-310, 0.002, 0.0),
+        Vector3::zeros(),
+    );
+    let touching = at(
+        Vector3::new(2.0 * R, 0.0, 0.0),
+        Vector3::zeros(),
+        Vector3::zeros(),
+    );
+    let err = Cluster::new(vec![grazing, touching], law.clone(), 0.0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("cluster.balls") && err.contains("approach"),
+        "{err}"
+    );
+    // Closing at 1e-30 of the sliding speed is an approach: the cluster is built.
+    let slow = at(
+        Vector3::zeros(),
+        Vector3::new(2e-33, 0.002, 0.0),
+        Vector3::zeros(),
+    );
+    assert!(Cluster::new(vec![slow, touching], law.clone(), 0.0).is_ok());
     let nan = at(
         Vector3::new(2.0 * R, 0.0, 0.0),
         Vector3::new(f64::NAN, 0.0, 0.0),

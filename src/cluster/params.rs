@@ -485,12 +485,21 @@ impl Cluster {
     }
 }
 
+/// An approach along the line of centres (m/s) slower than this fraction of the pair's
+/// relative speed is none, as the compliant kernel's grazing bound: an impulse of that
+/// fraction of the momentum changes no velocity to double precision. Two touching balls
+/// closing at 7e-310 m/s while sliding past each other at 2 mm/s held a cluster's steps at
+/// their smallest for 1e6 steps (found by fuzzing): the pair counted as about to close
+/// at every step and never did.
+const CLUSTER_GRAZING: f64 = 1e-40;
+
 /// The time (s) from now at which two balls in free flight, centre of the second at `p` (m)
 /// from the first's, relative velocity `u` (m/s), come to the distance `d` (m) while
-/// approaching: 0 when they touch (within the tolerance) and close; `None` when they never do.
+/// approaching: 0 when they touch (within the tolerance) and close; `None` when they never do
+/// (an approach slower than [`CLUSTER_GRAZING`] of their relative speed is none).
 pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64) -> Option<f64> {
     let b = p.dot(&u);
-    if b >= 0.0 {
+    if b >= -CLUSTER_GRAZING * p.norm() * u.norm() {
         return None;
     }
     let c = p.norm_squared() - d * d;
