@@ -629,6 +629,14 @@ def cluster_states(fdp: atheris.FuzzedDataProvider, balls: list, cloth: bool = F
     return s
 
 
+def beyond_materials(kw: dict) -> bool:
+    """Whether a cluster's keywords give a stiffness beyond any material's: a Young's modulus
+    over 1e13 Pa (ten times diamond's 1.2e12) or a Hertz stiffness over 1e12 N/m^1.5 (pool
+    balls of that modulus)."""
+    e, k = kw.get("youngs_modulus"), kw.get("stiffness")
+    return (isinstance(e, (int, float)) and e > 1e13) or (isinstance(k, (int, float)) and k > 1e12)
+
+
 def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     """bc.Cluster: a refusal naming an argument, or velocities and spins whose momentum is
     the incoming one (to the step control's rounding), contacts that push (P >= 0), within
@@ -745,7 +753,12 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         # The friction impulse is a stepped state: its error is rtol on the momentum scale
         # a step, as the Rust target allows (100 steps' worth).
         if excess > 1e-6 * cap + 100 * rtol * scale:
-            raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
+            if beyond_materials(kw):
+                # Open (docs/cluster.md): E = 1.2e21 Pa under Kuwabara-Kono gamma = 0.05 s,
+                # contacts of 3 ps, a friction impulse 1.3e-3 past mu P at every rtol.
+                known("cluster: friction past mu P, a modulus beyond any material", f"{what}: {c}")
+            else:
+                raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
         heat += c["heat"]
     if cloth is not None:
         # The balls start at the bottom of their potential (weight and the cloth's elastic
