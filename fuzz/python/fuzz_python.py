@@ -715,14 +715,16 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     # weights' over the run; each cloth friction within mu_c of its normal impulse.
     external = np.zeros(3)
     if cloth is not None:
-        g = cloth.get("gravity", 9.81)
+        # A key given as None is its default (as the package reads it).
+        g = 9.81 if cloth.get("gravity") is None else cloth["gravity"]
+        mu_cloth = 0.2 if cloth.get("mu") is None else cloth["mu"]
         for c in out["cloth_contacts"]:
             external += np.asarray(c["friction_impulse"]) + np.array([0.0, 0.0, c["impulse"]])
             scale += abs(c["impulse"]) + float(np.linalg.norm(c["friction_impulse"]))
             # A stepped state, as the balls' friction impulses: within rtol of the momentum
             # scale a step (100 steps' worth); the cloth's impulses are small beside the
             # balls' (mu_c m g over 50 us: 1.9e-6 N s of 1.2 N s was 4.9e-7 past mu P).
-            cap = cloth.get("mu", 0.2) * max(c["impulse"], 0.0)
+            cap = mu_cloth * max(c["impulse"], 0.0)
             rtol_c = call.get("rtol") if isinstance(call.get("rtol"), float) else 1e-8
             if np.linalg.norm(c["friction_impulse"]) > cap * (1 + 1e-6) + 100 * rtol_c * scale:
                 raise Finding(f"{what}: cloth friction above mu P: {c}")
