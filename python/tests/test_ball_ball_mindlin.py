@@ -253,6 +253,16 @@ def test_resolve_lab_refuses_a_method_and_untouching_balls():
                       [0, 0, 0])
 
 
+def test_a_ball_without_inertia_is_refused_naming_it():
+    # The compliant contact's bound (docs/tangential.md): alpha >= 1e-4 for each ball.
+    light = bc.Ball(mass=M, radius=R, alpha=1e-5)
+    solid = bc.Ball(mass=M, radius=R)
+    for kw, name in [(dict(a=light, b=solid), "a.alpha = "), (dict(a=solid, b=light), "b.alpha = ")]:
+        with pytest.raises(ValueError) as e:
+            head_on(model(mu=0.1, **kw), 1.0)
+        assert str(e.value).startswith(name) and "1e-4" in str(e.value), str(e.value)
+
+
 # The pooltool plug-in with the compliant pair.
 
 def pooltool_or_skip():

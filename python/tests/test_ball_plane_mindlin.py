@@ -143,6 +143,16 @@ def test_bad_keywords_are_refused_naming_them(kw, words):
         assert word in str(e.value), (word, str(e.value))
 
 
+def test_a_ball_without_inertia_is_refused_naming_alpha():
+    # The compliant contact's bound (docs/tangential.md): alpha >= 1e-4, as at a cushion; the
+    # sticking spring turns the spin 1/alpha times faster than the velocity.
+    with pytest.raises(ValueError) as e:
+        model(alpha=1e-5).resolve(at(30), [0, 0, 0], [0, 1, 0])
+    msg = str(e.value)
+    assert "alpha = " in msg and "1e-4" in msg and "balls." not in msg, msg
+    assert model(alpha=1e-4).resolve(at(30), [0, 0, 0], [0, 1, 0])["v"][1] > 0
+
+
 def test_a_method_is_refused_with_mindlin():
     with pytest.raises(ValueError, match="method"):
         model().resolve(at(30), [0, 0, 0], [0, 1, 0], method="dop853")
