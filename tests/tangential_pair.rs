@@ -310,6 +310,15 @@ fn tangential_pair_refuses_bad_inputs() {
         field(resolve_sphere_sphere_compliant(&a, &nan, x, 0.1, 1.0, &s)),
         "incoming.spin_b"
     );
+    // A kinetic energy past a double's range: ball B of 1e282 kg spinning at 1e34 rad/s
+    // (I w^2 / 2 ~ 1e345 J).
+    let mut heavy = b;
+    heavy.ball = Ball::new(1e282, b.ball.radius(), 0.4).unwrap();
+    heavy.spin = Vector3::new(1e34, 0.0, 0.0);
+    assert_eq!(
+        field(resolve_sphere_sphere_compliant(&a, &heavy, x, 0.1, 1.0, &s)),
+        "incoming.spin_b"
+    );
     // Either ball's alpha below the compliant contact's 1e-4 (docs/tangential.md).
     let light = |mut s: CompliantSphere| {
         s.ball = Ball::new(s.ball.mass(), s.ball.radius(), 1e-5).unwrap();

@@ -16,8 +16,8 @@ use crate::model::contact_law::Damping;
 use crate::model::material::{hertz_stiffness, reduced_mass, Material};
 use crate::model::params::Ball;
 use crate::tangential::impact::{
-    check_alpha, check_mu, chi, finite_vector, kinetic_energy, run, shear_compliance, unit_normal,
-    Bodies, Contact, Partner,
+    check_alpha, check_mu, chi, energy_in, finite_vector, kinetic_energy, run, shear_compliance,
+    unit_normal, Bodies, Contact, Partner,
 };
 use crate::tangential::outcome::CompliantPairOutcome;
 use nalgebra::Vector3;
@@ -172,6 +172,22 @@ pub fn resolve_sphere_sphere_compliant_damped(
             "balls approaching each other: (v_A - v_B).n > 0",
         ));
     }
+    let energy_in = energy_in(&[
+        (
+            &a.ball,
+            &a.velocity,
+            &a.spin,
+            "incoming.velocity_a",
+            "incoming.spin_a",
+        ),
+        (
+            &b.ball,
+            &b.velocity,
+            &b.spin,
+            "incoming.velocity_b",
+            "incoming.spin_b",
+        ),
+    ])?;
     let (e_star, effective_radius, k_n) =
         hertz_stiffness((&a.ball, &a.material), (&b.ball, &b.material));
     let g_star = 1.0 / (shear_compliance(&a.material) + shear_compliance(&b.material));
@@ -195,8 +211,6 @@ pub fn resolve_sphere_sphere_compliant_damped(
     let velocity_a = a.velocity + impulse / a.ball.mass();
     let velocity_b = b.velocity - impulse / b.ball.mass();
     let spin_b = Contact::partner_spin(&r.y);
-    let energy_in = kinetic_energy(&a.ball, &a.velocity, &a.spin)
-        + kinetic_energy(&b.ball, &b.velocity, &b.spin);
     let energy_out = kinetic_energy(&a.ball, &velocity_a, &Contact::spin(&r.y))
         + kinetic_energy(&b.ball, &velocity_b, &spin_b);
     let ball_a = r.outcome(
