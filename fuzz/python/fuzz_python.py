@@ -715,9 +715,10 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     # weights' over the run; each cloth friction within mu_c of its normal impulse.
     external = np.zeros(3)
     if cloth is not None:
-        # A key given as None is its default (as the package reads it).
-        g = 9.81 if cloth.get("gravity") is None else cloth["gravity"]
-        mu_cloth = 0.2 if cloth.get("mu") is None else cloth["mu"]
+        # A key given as None is its default (as the package reads it), and a NumPy scalar
+        # its value as a double (a float16 mu made the harness's own cap float16).
+        g = 9.81 if cloth.get("gravity") is None else float(cloth["gravity"])
+        mu_cloth = 0.2 if cloth.get("mu") is None else float(cloth["mu"])
         for c in out["cloth_contacts"]:
             external += np.asarray(c["friction_impulse"]) + np.array([0.0, 0.0, c["impulse"]])
             scale += abs(c["impulse"]) + float(np.linalg.norm(c["friction_impulse"]))
