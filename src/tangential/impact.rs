@@ -800,13 +800,20 @@ pub(crate) fn kinetic_energy(ball: &Ball, v: &Vector3<f64>, w: &Vector3<f64>) ->
     0.5 * ball.mass() * v.norm_squared() + 0.5 * ball.inertia() * w.norm_squared()
 }
 
+/// A ball coming into a contact: the ball, its velocity and spin, and their fields' names.
+pub(crate) type IncomingBall<'a> = (
+    &'a Ball,
+    &'a Vector3<f64>,
+    &'a Vector3<f64>,
+    &'a str,
+    &'a str,
+);
+
 /// The incoming kinetic energy (J) of the balls `(ball, velocity, spin, velocity's field,
 /// spin's field)`, refused naming the first term that is not a finite number: the outcome
 /// reports it, and a ball of 1e282 kg spinning at 1e34 rad/s gave infinity (found by
 /// fuzzing).
-pub(crate) fn energy_in(
-    balls: &[(&Ball, &Vector3<f64>, &Vector3<f64>, &str, &str)],
-) -> Result<f64, Error> {
+pub(crate) fn energy_in(balls: &[IncomingBall<'_>]) -> Result<f64, Error> {
     let refused = |field: &str, x: &Vector3<f64>, e: f64| {
         Error::invalid(
             field,
