@@ -899,3 +899,87 @@ fn a_slow_strike_is_the_fast_one_scaled() {
         );
     }
 }
+
+/// Contacts stuck from their closing under a force that jumps inside a step (Kuwabara-Kono
+/// gamma = 0.05 s): the stick solve at a step's inner stages asked for more friction than
+/// mu f while the step's ends did not, and that friction was kept. Coulomb's bound on every
+/// contact's impulses, |J_t| <= mu J_n, is the model's (each instant's friction is at most
+/// mu f), not the code's. A cue ball with spin into a zig-zag chain of four touching balls
+/// (found by a scan of such chains): steel (E = 1e11 Pa, mu 0.029) ended 2.0e-7 of mu P
+/// past the bound, a modulus of 1.2e21 Pa (mu 7.4e-4) 2.9 times past it (a friction of
+/// 2.5e-5 N s against a cap of 6.4e-6 N s, 3e-4 of the momentum).
+/// Young's modulus (Pa), mu, the cue ball's speed (m/s), direction (rad from x) and spin
+/// (rad/s), and the chain's turns (rad) from one ball to the next.
+type ChainCase = (f64, f64, f64, f64, Vector3<f64>, [f64; 4]);
+
+#[test]
+fn cluster_contacts_stuck_from_closing_keep_coulombs_bound() {
+    let cases: [ChainCase; 2] = [
+        (
+            1e11,
+            0.02856573824299885,
+            0.4985474506422008,
+            0.1999730379355913,
+            Vector3::new(
+                0.6976670937765789,
+                -0.9273204378651386,
+                -0.27860414532990435,
+            ),
+            [
+                -0.2103358062458922,
+                -0.8975331415013834,
+                -0.627775322231543,
+                -0.42319723128430753,
+            ],
+        ),
+        (
+            1.2e21,
+            0.0007389554275985533,
+            0.34110588911833534,
+            0.431050821118804,
+            Vector3::new(3.881221171577476, -7.241920652706931, 7.3774873257521305),
+            [
+                -0.7168280376937155,
+                -0.3243549225781961,
+                0.6650287420568242,
+                -0.7844087688986578,
+            ],
+        ),
+    ];
+    for (e, mu, v, dir, spin, turns) in cases {
+        let d = Vector3::new(dir.cos(), dir.sin(), 0.0);
+        // The cue ball 0.1 mm short of the first ball of the chain.
+        let mut balls = vec![at(-(2.0 * R + 1e-4) * d, v * d, spin)];
+        let (mut p, mut angle) = (Vector3::zeros(), 0.0_f64);
+        for turn in turns {
+            balls.push(at(p, Vector3::zeros(), Vector3::zeros()));
+            angle += turn;
+            p += 2.0 * R * Vector3::new(angle.cos(), angle.sin(), 0.0);
+        }
+        let material = Material::new(e, 0.34).unwrap();
+        let law = ClusterLaw::Materials(
+            vec![material; 5],
+            PairDamping::Coefficient(Damping::KuwabaraKono, 0.05),
+        );
+        let cl = Cluster::new(balls, law, mu).unwrap();
+        let out = resolve_cluster(&cl, &tight(1e-8)).unwrap();
+        assert_eq!(out.stop, StopReason::Separated);
+        let stuck: Vec<_> = out
+            .contacts
+            .iter()
+            .filter(|c| c.stick_time == Some(0.0))
+            .collect();
+        assert!(
+            !stuck.is_empty(),
+            "E = {e:e}: no contact stuck from its closing"
+        );
+        for c in &out.contacts {
+            let cap = mu * c.normal_impulse;
+            assert!(
+                c.friction_impulse.norm() <= cap * (1.0 + 1e-12),
+                "E = {e:e}: friction {:e} past mu P = {cap:e} in {c:?}",
+                c.friction_impulse.norm()
+            );
+        }
+    }
+}
