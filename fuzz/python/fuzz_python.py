@@ -636,23 +636,6 @@ def cluster_states(fdp: atheris.FuzzedDataProvider, balls: list, cloth: bool = F
     return s
 
 
-def beyond_materials(kw: dict) -> bool:
-    """Whether a cluster's keywords give a stiffness beyond any material's: a Young's modulus
-    over 1e13 Pa (ten times diamond's 1.2e12) or a Hertz stiffness over 1e12 N/m^1.5 (pool
-    balls of that modulus)."""
-    e, k = kw.get("youngs_modulus"), kw.get("stiffness")
-    return (isinstance(e, (int, float)) and e > 1e13) or (isinstance(k, (int, float)) and k > 1e12)
-
-
-def overloaded_stick(kw: dict, c: dict) -> bool:
-    """Whether a contact's friction past mu P is the cluster's open case (docs/cluster.md): a
-    contact stuck from its closing (stick time 0) whose stick solve asks for more than mu f
-    at a step's inner stages, unseen at the step's ends, under a force that jumps inside the
-    step (Kuwabara-Kono gamma = 0.05 s: 1.3e-3 of the cap past it at E = 1.2e21 Pa; on the
-    cloth with resin balls, 0.3 %), or a modulus beyond any material's."""
-    return beyond_materials(kw) or c.get("stick_time") == 0.0
-
-
 def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     """bc.Cluster: a refusal naming an argument, or velocities and spins whose momentum is
     the incoming one (to the step control's rounding), contacts that push (P >= 0), within
@@ -744,11 +727,7 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
             cap = mu_cloth * max(c["impulse"], 0.0)
             rtol_c = call.get("rtol") if isinstance(call.get("rtol"), float) else 1e-8
             if np.linalg.norm(c["friction_impulse"]) > cap * (1 + 1e-6) + 100 * rtol_c * scale:
-                if overloaded_stick(kw, c):
-                    known("cluster: friction past mu P, a stick solve overloaded inside a step",
-                          f"{what}: {c}")
-                else:
-                    raise Finding(f"{what}: cloth friction above mu P: {c}")
+                raise Finding(f"{what}: cloth friction above mu P: {c}")
         external[2] -= float(np.sum(m)) * g * out["time"]
     if np.any(np.abs(m @ v1 - m @ v0 - external) > 1e-9 * scale + 1e-300):
         raise Finding(f"{what}: momentum {m @ v0} -> {m @ v1} (outside {external})")
@@ -776,11 +755,7 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         # The friction impulse is a stepped state: its error is rtol on the momentum scale
         # a step, as the Rust target allows (100 steps' worth).
         if excess > 1e-6 * cap + 100 * rtol * scale:
-            if overloaded_stick(kw, c):
-                known("cluster: friction past mu P, a stick solve overloaded inside a step",
-                      f"{what}: {c}")
-            else:
-                raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
+            raise Finding(f"{what}: friction outside Coulomb's cone: {c}")
         heat += c["heat"]
     if cloth is not None:
         # The balls start at the bottom of their potential (weight and the cloth's elastic
