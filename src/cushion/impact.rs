@@ -18,7 +18,7 @@ use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::settings::{SolverSettings, Stats};
 use crate::base::validate::finite_output;
-use crate::model::params::Ball;
+use crate::model::params::{check_stepped_alpha, Ball};
 use nalgebra::Vector3;
 
 /// Events are located in P_I to this fraction of the impulse scale (1 + e) m v_n(0) /
@@ -490,14 +490,6 @@ fn jam_refusal_of(mu_cushion: f64, mu_table: f64, times: &str) -> Error {
     )
 }
 
-/// Smallest moment-of-inertia factor accepted against a cushion. The slips at the cushion
-/// and the cloth change 1/alpha times faster than the ball's velocity, and the stepping
-/// follows them: at 6 m/s with 300 rad/s of spin on every axis an impact took 1 ms at
-/// alpha = 0.4, 4 ms at 1e-4, 21 ms at 1e-5, 65 ms at 3e-6 and ran past dop853's 100 000
-/// steps at 1e-6 and below. No billiard ball comes near 1e-4 (a solid ball has 0.4, a
-/// shell 2/3), so the bound refuses at once what would otherwise end in a solver failure.
-pub(crate) const CUSHION_ALPHA_MIN: f64 = 1e-4;
-
 /// One run of [`resolve_cushion`] with `settings` as given.
 fn attempt(
     ball: &Ball,
@@ -533,17 +525,12 @@ fn attempt(
             ),
         ));
     }
-    if ball.alpha() < CUSHION_ALPHA_MIN {
-        return Err(Error::invalid(
-            "ball.alpha",
-            ball.alpha(),
-            format!(
-                "at least {CUSHION_ALPHA_MIN:e} against a cushion: the contacts' slips change \
-                 1/alpha times faster than the ball's velocity and the stepping's work grows \
-                 with it (a solid ball has 0.4)"
-            ),
-        ));
-    }
+    check_stepped_alpha(
+        "ball.alpha",
+        ball,
+        "against a cushion",
+        "the contacts' slips change 1/alpha times faster than the ball's velocity",
+    )?;
     if v.y <= 0.0 {
         return Err(Error::invalid(
             "ball.v",

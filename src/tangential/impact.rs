@@ -35,7 +35,7 @@ use crate::base::validate::finite;
 use crate::integrator::law::damping_within_bound;
 use crate::model::contact_law::{ContactLaw, Damping};
 use crate::model::material::{sphere_plane_stiffness, Material};
-use crate::model::params::{Ball, MU_MAX};
+use crate::model::params::{check_stepped_alpha, Ball, MU_MAX};
 use crate::tangential::outcome::{CompliantOutcome, CompliantTraceRow};
 use crate::tangential::stepper::{next_step, step, Z};
 use nalgebra::Vector3;
@@ -74,15 +74,6 @@ pub(crate) const NEGLIGIBLE_MU: f64 = 1e-20;
 const ALIGN_TURNS: f64 = 2.0;
 /// Relative margin of |S| over mu F_n before a sticking step counts as having slid.
 const CAP_MARGIN: f64 = 1e-10;
-/// Smallest moment-of-inertia factor of a ball in a compliant contact, as against a cushion
-/// (docs/cushion.md). While the spring sticks it carries the ball's tangential motion and
-/// spin, whose effective mass is about alpha m for a small alpha: the spring's period falls
-/// like sqrt(alpha) and the stepping follows it. A magnesium-alloy ball at 573 m/s on an
-/// aluminium plane (Kuwabara-Kono, mu 0.09, rtol 1e-11) took 384 steps (accepted and
-/// rejected) at alpha = 0.4, 3,713 at 1e-3, 8,273 at 1e-4, 58,096 at 1e-6, 183,197 at 1e-7
-/// and past 1e6 at 4.6e-10 (found by the `tangential` fuzz target). No billiard ball comes
-/// near 1e-4 (a solid ball has 0.4, a shell 2/3).
-pub(crate) const COMPLIANT_ALPHA_MIN: f64 = 1e-4;
 
 /// What ball 1 meets.
 #[derive(Debug, Clone, Copy)]
@@ -971,20 +962,15 @@ pub fn resolve_sphere_plane_compliant_damped(
     r.outcome(velocity, ball.mass(), chi(g_star, e_star, mu), energy)
 }
 
-/// Refuses a ball whose alpha is below [`COMPLIANT_ALPHA_MIN`], naming `field`.
+/// Refuses a ball whose alpha is below [`crate::model::params::STEPPED_ALPHA_MIN`], naming
+/// `field`.
 pub(crate) fn check_alpha(field: &str, ball: &Ball) -> Result<(), Error> {
-    if ball.alpha() >= COMPLIANT_ALPHA_MIN {
-        return Ok(());
-    }
-    Err(Error::invalid(
+    check_stepped_alpha(
         field,
-        ball.alpha(),
-        format!(
-            "at least {COMPLIANT_ALPHA_MIN:e} in a compliant contact: the tangential spring \
-             moves the ball's spin 1/alpha times faster than its velocity and the stepping's \
-             work grows with it (a solid ball has 0.4)"
-        ),
-    ))
+        ball,
+        "in a compliant contact",
+        "the tangential spring moves the ball's spin 1/alpha times faster than its velocity",
+    )
 }
 
 /// The shear compliance (2 - nu) / G of a material, G = E / (2 (1 + nu)): its share of 1/G*.
