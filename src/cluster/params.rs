@@ -499,7 +499,8 @@ const CLUSTER_GRAZING: f64 = 1e-40;
 /// (an approach slower than [`CLUSTER_GRAZING`] of their relative speed is none).
 pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64) -> Option<f64> {
     let b = p.dot(&u);
-    if b >= -CLUSTER_GRAZING * p.norm() * u.norm() {
+    // Separating pairs (most, at every step) first, without the bound's square roots.
+    if b >= 0.0 || b >= -CLUSTER_GRAZING * p.norm() * u.norm() {
         return None;
     }
     let c = p.norm_squared() - d * d;
