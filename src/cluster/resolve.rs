@@ -354,10 +354,18 @@ struct Forces {
     /// Per contact: normal force (N), friction on ball i (N), tangential slip (m/s),
     /// closing rate (m/s), compression (m).
     contact: Vec<ContactForce>,
-    /// Per contact: the friction (N) it needs, which the events and releases read: a stuck
+    /// Per contact, when a stuck contact presses (empty otherwise, [`Forces::need`]): the
+    /// friction (N) it needs.
+    need: Vec<Vector3<f64>>,
+}
+
+impl Forces {
+    /// The friction (N) contact `k` needs, which the events and releases read: a stuck
     /// contact's from the stick solve, which may pass mu f (its friction is then held to mu
     /// f along it), any other contact's its friction.
-    need: Vec<Vector3<f64>>,
+    fn need(&self, k: usize) -> Vector3<f64> {
+        self.need.get(k).copied().unwrap_or(self.contact[k].1)
+    }
 }
 
 /// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
@@ -427,7 +435,8 @@ impl System<'_> {
             a[0].z -= self.gravity;
         }
         let mut contact = Vec::with_capacity(self.active.len());
-        let mut need = Vec::with_capacity(self.active.len());
+        // Filled by the stick solve only (no allocation in a step without one).
+        let mut need = Vec::new();
         let floor = SLIP_FLOOR * self.v_ref;
         for (k, c) in self.active.iter().enumerate() {
             let (d, w) = self.compression(y, c);
@@ -458,7 +467,6 @@ impl System<'_> {
             };
             self.push(&mut acc, c, -c.n * f + friction);
             contact.push((f, friction, s, w, d));
-            need.push(friction);
         }
         if self.active.iter().any(|c| c.mode == Mode::Stuck) {
             self.stuck(&mut acc, &mut contact, &mut need);
@@ -532,7 +540,7 @@ impl System<'_> {
         &self,
         acc: &mut [[Vector3<f64>; 2]],
         contact: &mut [ContactForce],
-        need: &mut [Vector3<f64>],
+        need: &mut Vec<Vector3<f64>>,
     ) {
         let stuck: Vec<usize> = (0..self.active.len())
             .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > self.f_floor)
@@ -540,6 +548,7 @@ impl System<'_> {
         if stuck.is_empty() {
             return;
         }
+        *need = contact.iter().map(|c| c.1).collect();
         let k = stuck.len();
         let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
         let mut b = DVector::<f64>::zeros(2 * k);
@@ -1260,7 +1269,7 @@ impl Run<'_> {
             Event::Close(i, j) => -self.gap_function(y, i, j),
             Event::Release(k) => {
                 let fs = sys.forces(y);
-                self.active[k].mu * fs.contact[k].0 - fs.need[k].norm()
+                self.active[k].mu * fs.contact[k].0 - fs.need(k).norm()
             }
             Event::SpringSlide(k) => {
                 let c = &self.active[k];
@@ -1288,7 +1297,7 @@ impl Run<'_> {
             // The friction each stuck contact needs against its bound, at both ends.
             let (f0, f1) = (sys.forces(y0), sys.forces(y1));
             for (k, c) in self.active.iter().enumerate() {
-                let g = |x: &Forces| c.mu * x.contact[k].0 - x.need[k].norm();
+                let g = |x: &Forces| c.mu * x.contact[k].0 - x.need(k).norm();
                 let (a, b) = (f0.contact[k].0, f1.contact[k].0);
                 if c.mode == Mode::Stuck
                     && a > sys.f_floor
@@ -1367,7 +1376,7 @@ impl Run<'_> {
         let fs = sys.forces(y1);
         idle.into_iter()
             .filter_map(|k| {
-                let (f, fr) = (fs.contact[k].0, fs.need[k]);
+                let (f, fr) = (fs.contact[k].0, fs.need(k));
                 let mu = self.active[k].mu;
                 (mu > 0.0 && f > sys.f_floor && fr.norm() > mu * f * (1.0 + RELEASE_SLACK))
                     .then_some((k, fr))
@@ -1800,7 +1809,7 @@ impl Run<'_> {
                 let fs = self.system(false).forces(&self.y);
                 self.stats.evaluations += 1;
                 for &k in &released {
-                    self.release(k, fs.need[k], fs.contact[k].2);
+                    self.release(k, fs.need(k), fs.contact[k].2);
                 }
             }
             // Released contacts slide from here: their directions before any index moves.
@@ -1828,12 +1837,8 @@ impl Run<'_> {
             let fs = sys.forces(&self.y);
             self.stats.evaluations += 1;
             let mut worst: Option<(usize, f64)> = None;
-            for (k, (c, (f, fr))) in self
-                .active
-                .iter_mut()
-                .zip(fs.contact.iter().map(|x| x.0).zip(&fs.need))
-                .enumerate()
-            {
+            for (k, c) in self.active.iter_mut().enumerate() {
+                let (f, fr) = (fs.contact[k].0, fs.need(k));
                 if f > 0.0 {
                     c.loaded = true;
                 }
@@ -1849,7 +1854,7 @@ impl Run<'_> {
                 }
             }
             let Some((k, _)) = worst else { break };
-            let (fr, sl) = (fs.need[k], fs.contact[k].2);
+            let (fr, sl) = (fs.need(k), fs.contact[k].2);
             self.release(k, fr, sl);
             released.push(k);
         }
