@@ -1136,7 +1136,11 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         .zip(&out.balls)
         .map(|(a, b)| kinetic(a.ball.mass(), a.ball.inertia(), &b.velocity, &b.spin))
         .sum();
-    let tol = 1e3 * settings.rtol;
+    // The energy balance to 1e3 rtol, and a quarter of rtol a step past 4000 steps: a long
+    // run adds up its steps' errors (five spinning rubber balls on the cloth, 17.7 s in 21,027
+    // steps at rtol 1e-8, were 1.2e-5 of the energy off their balance with the cloth's and
+    // gravity's store, 0.057 rtol a step; 0.026 at rtol 1e-10: found by the Python target).
+    let tol = settings.rtol * 1e3_f64.max(0.25 * out.stats.steps as f64);
     // Mindlin's spring has no stick rule to switch off: it never creates energy.
     let dissipative = settings.stick || cluster.tangential() == ClusterTangential::Mindlin;
     if stopped {
