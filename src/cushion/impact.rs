@@ -18,7 +18,7 @@ use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::settings::{SolverSettings, Stats};
 use crate::base::validate::finite_output;
-use crate::model::params::{check_stepped_alpha, Ball};
+use crate::model::params::{check_stepped_alpha, energy_in, Ball};
 use nalgebra::Vector3;
 
 /// Events are located in P_I to this fraction of the impulse scale (1 + e) m v_n(0) /
@@ -514,6 +514,9 @@ fn attempt(
             "finite numbers (rad/s)",
         ));
     }
+    // Finite velocities and spins whose energy overflows end in NaN (a ball of radius
+    // 1.2e21 m spinning at 7.7e307 rad/s: found by the Python target).
+    energy_in(&[(ball, &v, &w, "ball.v", "ball.w")])?;
     let h = cushion.height();
     if !(h > r && h < 2.0 * r) {
         return Err(Error::invalid(

@@ -4,19 +4,13 @@
 use super::cloth::{horizontal, Table};
 use super::roll_out::{roll_out, RollOut};
 use crate::base::error::Error;
-use crate::model::params::{Ball, BallPair};
+use crate::model::params::{kinetic_energy, Ball, BallPair};
 use crate::model::state::LabBall;
 use nalgebra::Vector3;
 use serde::Serialize;
 
 /// Evaluation points inside each segment for the energy check (plus both ends).
 const ENERGY_POINTS: u32 = 16;
-
-/// Kinetic energy (J) of one ball with `velocity` (m/s) and `spin` (rad/s):
-/// m |v|^2 / 2 + alpha m r^2 |w|^2 / 2.
-pub(crate) fn kinetic_energy(ball: &Ball, velocity: &Vector3<f64>, spin: &Vector3<f64>) -> f64 {
-    0.5 * ball.mass() * velocity.norm_squared() + 0.5 * ball.inertia() * spin.norm_squared()
-}
 
 /// Self-checks of a table phase, scaled like the contact's checks
 /// (docs/model.md#scales-and-scaled-errors).

@@ -35,7 +35,7 @@ use crate::base::validate::finite;
 use crate::integrator::law::damping_within_bound;
 use crate::model::contact_law::{ContactLaw, Damping};
 use crate::model::material::{sphere_plane_stiffness, Material};
-use crate::model::params::{check_stepped_alpha, Ball, MU_MAX};
+use crate::model::params::{check_stepped_alpha, energy_in, kinetic_energy, Ball, MU_MAX};
 use crate::tangential::outcome::{CompliantOutcome, CompliantTraceRow};
 use crate::tangential::stepper::{next_step, step, Z};
 use nalgebra::Vector3;
@@ -784,49 +784,6 @@ pub(crate) fn chi(g_star: f64, e_star: f64, mu: f64) -> f64 {
     } else {
         f64::NAN
     }
-}
-
-/// Kinetic energy (J) of `ball` at velocity `v` (m/s) and spin `w` (rad/s).
-pub(crate) fn kinetic_energy(ball: &Ball, v: &Vector3<f64>, w: &Vector3<f64>) -> f64 {
-    0.5 * ball.mass() * v.norm_squared() + 0.5 * ball.inertia() * w.norm_squared()
-}
-
-/// A ball coming into a contact: the ball, its velocity and spin, and their fields' names.
-pub(crate) type IncomingBall<'a> = (
-    &'a Ball,
-    &'a Vector3<f64>,
-    &'a Vector3<f64>,
-    &'a str,
-    &'a str,
-);
-
-/// The incoming kinetic energy (J) of the balls `(ball, velocity, spin, velocity's field,
-/// spin's field)`, refused naming the first term that is not a finite number: the outcome
-/// reports it, and a ball of 1e282 kg spinning at 1e34 rad/s gave infinity (found by
-/// fuzzing).
-pub(crate) fn energy_in(balls: &[IncomingBall<'_>]) -> Result<f64, Error> {
-    let refused = |field: &str, x: &Vector3<f64>, e: f64| {
-        Error::invalid(
-            field,
-            format!("[{}, {}, {}] (a kinetic energy of {e:e} J)", x.x, x.y, x.z),
-            "velocities and spins whose kinetic energy is a finite number of joules",
-        )
-    };
-    let mut total = 0.0;
-    for &(ball, v, w, v_field, w_field) in balls {
-        total += kinetic_energy(ball, v, w);
-        if !total.is_finite() {
-            // The spin's term when it alone overflows, else the velocity's.
-            let e_w = 0.5 * ball.inertia() * w.norm_squared();
-            let e_v = 0.5 * ball.mass() * v.norm_squared();
-            return Err(if e_v.is_finite() && !e_w.is_finite() {
-                refused(w_field, w, e_w)
-            } else {
-                refused(v_field, v, e_v)
-            });
-        }
-    }
-    Ok(total)
 }
 
 /// A `ball` of `ball_material` meeting a plane of `plane_material` (`None`: rigid) with

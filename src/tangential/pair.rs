@@ -14,10 +14,10 @@ use crate::base::settings::SolverSettings;
 use crate::base::validate::positive;
 use crate::model::contact_law::Damping;
 use crate::model::material::{hertz_stiffness, reduced_mass, Material};
-use crate::model::params::Ball;
+use crate::model::params::{energy_in, kinetic_energy, Ball};
 use crate::tangential::impact::{
-    check_alpha, check_mu, chi, energy_in, finite_vector, kinetic_energy, run, shear_compliance,
-    unit_normal, Bodies, Contact, Partner,
+    check_alpha, check_mu, chi, finite_vector, run, shear_compliance, unit_normal, Bodies, Contact,
+    Partner,
 };
 use crate::tangential::outcome::CompliantPairOutcome;
 use nalgebra::Vector3;
