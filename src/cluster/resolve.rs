@@ -887,8 +887,11 @@ fn run_cluster(
             y[6 * nb + 3 * b + k] = ball.spin[k];
         }
     }
-    // Natural scales: the largest relative speed, and the elastic compression and contact
-    // time of the softest, heaviest pair at it.
+    // Natural scales: the largest relative speed; the contact time of the softest, heaviest
+    // pair at it, and the elastic compression of the stiffest, lightest (the positions'
+    // error is judged on it: on the softest pair's, a rubber ball's 40 times a steel pair's,
+    // eight balls of rubber, resin and steel at rtol 1e-4 ended 1.1e-1 of their energy off
+    // its balance; found by fuzzing).
     let mut v_ref: f64 = 0.0;
     for i in 0..nballs {
         for j in i + 1..nballs {
@@ -897,21 +900,20 @@ fn run_cluster(
             v_ref = v_ref.max(a.spin.norm() * bodies[i].r + b.spin.norm() * bodies[j].r);
         }
     }
-    let (mut delta0, mut tau0) = (0.0f64, 0.0f64);
+    let (mut delta0, mut tau0) = (f64::INFINITY, 0.0f64);
     for i in 0..nballs {
         for j in i + 1..nballs {
             let m = bodies[i].m * bodies[j].m / (bodies[i].m + bodies[j].m);
             let k = cluster.laws[pair_index(nballs, i, j)].stiffness();
             let (d, t) = elastic_impact(k, m, v_ref);
-            delta0 = delta0.max(d);
+            delta0 = delta0.min(d);
             tau0 = tau0.max(t);
         }
     }
-    // A ball's impact on the cloth at that speed.
+    // A ball's impact on the cloth at that speed (its time only: the cloth's compression
+    // is mostly the weight's preload, on the scale of the balls' pairs).
     for (law, body) in cluster.cloth_laws.iter().zip(&bodies) {
-        let (d, t) = elastic_impact(law.stiffness(), body.m, v_ref);
-        delta0 = delta0.max(d);
-        tau0 = tau0.max(t);
+        tau0 = tau0.max(elastic_impact(law.stiffness(), body.m, v_ref).1);
     }
     let balls_only = &bodies[..nballs];
     let m_min = balls_only.iter().map(|b| b.m).fold(f64::INFINITY, f64::min);
