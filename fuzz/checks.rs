@@ -1182,8 +1182,27 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
                 "{what}: stick time of {c:?}"
             );
         }
-        if k0.is_finite() && dissipative {
+        // A Kuwabara-Kono contact opens where its force returns to zero, while its surfaces
+        // still overlap, and its record counts the elastic energy left there as heat; if
+        // the pair closes again before they part, the next record starts with that overlap
+        // and its own heat can be negative (-1.2e-3 J of 4.35 J, the pair's records summing
+        // to 0.38 J; found by fuzzing): the promise is then the pair's, over its records.
+        let kk = cluster.law(c.pair.0, c.pair.1).damping() == Damping::KuwabaraKono;
+        if k0.is_finite() && dissipative && !kk {
             assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
+        }
+        if k0.is_finite() && dissipative && kk {
+            let pair: f64 = out
+                .contacts
+                .iter()
+                .filter(|d| d.pair == c.pair)
+                .map(|d| d.heat)
+                .sum();
+            assert!(
+                pair >= -tol * k0,
+                "{what}: heat of pair {:?}'s records {pair:e} (K_in {k0:e})",
+                c.pair
+            );
         }
         let cap = mu * c.normal_impulse.max(0.0);
         let excess = c.friction_impulse.norm() - cap - 1e-12 * scale;
