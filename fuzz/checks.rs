@@ -714,9 +714,13 @@ pub const CLUSTER_MAX_BALLS: usize = 8;
 pub const CLUSTER_MIN_RTOL: f64 = 1e-10;
 /// Clusters of this many balls or more run only at rtol of at least
 /// [`CLUSTER_MANY_MIN_RTOL`] (work per input: docs/cluster.md's known open case of a
-/// hovering slip).
+/// hovering slip; a 6-ball rubber rack at 1 mm/s on a steel cloth, mu 0.5, took 404,583
+/// steps at rtol 1e-9, 11.5 s here and past 120 s instrumented).
 pub const CLUSTER_MANY: usize = 5;
-pub const CLUSTER_MANY_MIN_RTOL: f64 = 1e-9;
+pub const CLUSTER_MANY_MIN_RTOL: f64 = 1e-8;
+/// Below this rtol a run of fewer than [`CLUSTER_MAX_BALLS`] may stop at the work bound
+/// (the hovering slip).
+pub const CLUSTER_HOVERING_RTOL: f64 = 1e-9;
 /// Offset of the cluster input's raw overrides (after the header and 8 balls of 5 bytes).
 const CLUSTER_OVERRIDES: usize = 48;
 /// Fields a cluster override can set per ball (position, velocity, spin, mass, radius,
@@ -1071,7 +1075,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         // Kuwabara-Kono, mu 1) took 397 steps at rtol 1e-8, 322,493 at 1e-9 and reached
         // the work bound at 3e-10. Such a run ends at the work bound, said by its stop.
         assert!(
-            n >= CLUSTER_MAX_BALLS || settings.rtol < CLUSTER_MANY_MIN_RTOL || allow_stopped(),
+            n >= CLUSTER_MAX_BALLS || settings.rtol < CLUSTER_HOVERING_RTOL || allow_stopped(),
             "{what}: the run stopped after {:?}",
             out.stats
         );
