@@ -354,8 +354,8 @@ struct Forces {
     /// Per contact: normal force (N), friction on ball i (N), tangential slip (m/s),
     /// closing rate (m/s), compression (m).
     contact: Vec<ContactForce>,
-    /// Per contact, when a stuck contact presses (empty otherwise, [`Forces::need`]): the
-    /// friction (N) it needs.
+    /// Per contact, once a stuck contact needs more than mu f (empty otherwise,
+    /// [`Forces::need`]): the friction (N) it needs.
     need: Vec<Vector3<f64>>,
 }
 
@@ -548,7 +548,6 @@ impl System<'_> {
         if stuck.is_empty() {
             return;
         }
-        *need = contact.iter().map(|c| c.1).collect();
         let k = stuck.len();
         let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
         let mut b = DVector::<f64>::zeros(2 * k);
@@ -595,14 +594,18 @@ impl System<'_> {
             let c = &self.active[ci];
             let f = c.t[0] * x[2 * p] + c.t[1] * x[2 * p + 1];
             let (cap, n) = (c.mu * contact[ci].0, f.norm());
-            let held = if n > cap * (1.0 + RELEASE_SLACK) {
-                f * (cap / n)
-            } else {
-                f
-            };
+            let over = n > cap * (1.0 + RELEASE_SLACK);
+            // The needs are kept apart only once one is held (no allocation otherwise: the
+            // contacts before it carry what they need).
+            if over && need.is_empty() {
+                *need = contact.iter().map(|c| c.1).collect();
+            }
+            if !need.is_empty() {
+                need[ci] = f;
+            }
+            let held = if over { f * (cap / n) } else { f };
             self.push(acc, c, held);
             contact[ci].1 = held;
-            need[ci] = f;
         }
     }
 
