@@ -21,7 +21,7 @@ use crate::model::material::elastic_impact;
 use crate::tangential::impact::{
     capped, mindlin_stiffness, spring_slide_rate, spring_slides, spring_stick_rate, NEGLIGIBLE_MU,
 };
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix2, Vector2, Vector3};
 use std::cell::Cell;
 
 /// Default relative tolerance of the step control.
@@ -548,9 +548,56 @@ impl System<'_> {
         if stuck.is_empty() {
             return;
         }
-        let k = stuck.len();
-        let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
-        let mut b = DVector::<f64>::zeros(2 * k);
+        // One stuck contact (two balls, or a ball on the cloth) solves its 2 x 2 system on
+        // the stack (the same LU, no allocation: 8 % of the two-ball run's time went to
+        // the dynamic matrix).
+        let (x1, xn);
+        let x: &[f64] = if stuck.len() == 1 {
+            let (mut a, mut b) = (Matrix2::zeros(), Vector2::zeros());
+            self.stick_system(&stuck, acc, &mut a, &mut b);
+            let Some(x) = a.lu().solve(&b) else {
+                return;
+            };
+            x1 = x;
+            x1.as_slice()
+        } else {
+            let k = stuck.len();
+            let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
+            let mut b = DVector::<f64>::zeros(2 * k);
+            self.stick_system(&stuck, acc, &mut a, &mut b);
+            let Some(x) = a.lu().solve(&b) else {
+                return;
+            };
+            xn = x;
+            xn.as_slice()
+        };
+        for (p, &ci) in stuck.iter().enumerate() {
+            let c = &self.active[ci];
+            let f = c.t[0] * x[2 * p] + c.t[1] * x[2 * p + 1];
+            let (cap, n) = (c.mu * contact[ci].0, f.norm());
+            let over = n > cap * (1.0 + RELEASE_SLACK);
+            // The needs are kept apart only once one is held (no allocation otherwise: the
+            // contacts before it carry what they need).
+            if over && need.is_empty() {
+                *need = contact.iter().map(|c| c.1).collect();
+            }
+            if !need.is_empty() {
+                need[ci] = f;
+            }
+            let held = if over { f * (cap / n) } else { f };
+            self.push(acc, c, held);
+            contact[ci].1 = held;
+        }
+    }
+
+    /// The stick solve's linear system: `a` x = `b`, x the tangential forces of the
+    /// contacts `stuck` (two per contact, in its tangent basis), `b` minus their slips'
+    /// rates under the accelerations `acc` of the other forces.
+    fn stick_system<A, B>(&self, stuck: &[usize], acc: &[[Vector3<f64>; 2]], a: &mut A, b: &mut B)
+    where
+        A: std::ops::IndexMut<(usize, usize), Output = f64>,
+        B: std::ops::IndexMut<usize, Output = f64>,
+    {
         // Role of a ball in a contact: the sign of its velocity in the slip and its lever.
         let role = |c: &Active, ball: usize| -> Option<(f64, f64)> {
             if ball == c.i {
@@ -587,30 +634,10 @@ impl System<'_> {
                 }
             }
         }
-        let Some(x) = a.lu().solve(&b) else {
-            return;
-        };
-        for (p, &ci) in stuck.iter().enumerate() {
-            let c = &self.active[ci];
-            let f = c.t[0] * x[2 * p] + c.t[1] * x[2 * p + 1];
-            let (cap, n) = (c.mu * contact[ci].0, f.norm());
-            let over = n > cap * (1.0 + RELEASE_SLACK);
-            // The needs are kept apart only once one is held (no allocation otherwise: the
-            // contacts before it carry what they need).
-            if over && need.is_empty() {
-                *need = contact.iter().map(|c| c.1).collect();
-            }
-            if !need.is_empty() {
-                need[ci] = f;
-            }
-            let held = if over { f * (cap / n) } else { f };
-            self.push(acc, c, held);
-            contact[ci].1 = held;
-        }
     }
 
-    /// dy/dt at `y`.
-    fn derivative(&self, y: &[f64], dy: &mut [f64]) {
+    /// dy/dt at `y`, and the forces it came from.
+    fn derivative(&self, y: &[f64], dy: &mut [f64]) -> Forces {
         let nb = self.nb();
         let fs = self.forces(y);
         dy[..3 * nb].copy_from_slice(&y[3 * nb..6 * nb]);
@@ -651,6 +678,7 @@ impl System<'_> {
                 dy[o + PER_CONTACT + 1] = rate[1];
             }
         }
+        fs
     }
 
     /// One Dormand-Prince 5(4) step of size `h` from `y` (derivative `k0` there): the new
@@ -661,6 +689,7 @@ impl System<'_> {
         let mut k = vec![vec![0.0; n]; 7];
         k[0].copy_from_slice(k0);
         let mut ys = vec![0.0; n];
+        let mut end = None;
         for s in 1..7 {
             ys.copy_from_slice(y);
             for (kj, &aj) in k[..s].iter().zip(&DOPRI5_A[s - 1][..s]) {
@@ -670,10 +699,9 @@ impl System<'_> {
                     }
                 }
             }
-            let (head, tail) = k.split_at_mut(s);
-            let _ = head;
-            self.derivative(&ys, &mut tail[0]);
+            end = Some(self.derivative(&ys, &mut k[s]));
         }
+        let end = end.expect("six stages");
         // Row 7 of a is the 5th-order solution: the last stage was evaluated at it.
         let npos = 3 * self.nb();
         let mut sum = 0.0;
@@ -691,16 +719,20 @@ impl System<'_> {
             y: ys,
             err: (sum / n as f64).sqrt(),
             k,
+            end,
         }
     }
 }
 
-/// One Dormand-Prince step: the new state, its error norm, and the seven stage
-/// derivatives (the last one at the new state).
+/// One Dormand-Prince step: the new state, its error norm, the seven stage derivatives
+/// (the last one at the new state) and the forces at the new state (those of the last
+/// stage: the events, the loading check and the check after the step read them instead of
+/// evaluating them again).
 struct StepOut {
     y: Vec<f64>,
     err: f64,
     k: Vec<Vec<f64>>,
+    end: Forces,
 }
 
 /// Coefficients of the continuous extension of Dormand-Prince 5(4) (order 4), on stages
@@ -944,6 +976,7 @@ fn run_cluster(
         t: 0.0,
         y,
         active: Vec::new(),
+        paired: vec![false; nb * nb],
         records: Vec::new(),
         cloth_records: Vec::new(),
         first_touch: None,
@@ -994,6 +1027,9 @@ struct Run<'a> {
     /// Balls (9 per ball), then the open contacts' accumulators (5 each).
     y: Vec<f64>,
     active: Vec<Active>,
+    /// Whether pair (i, j) is in `active`, at i * bodies + j (the per-step scans of every
+    /// pair read it: a search of the set per pair was a tenth of a 16-ball break's time).
+    paired: Vec<bool>,
     records: Vec<ContactRecord>,
     /// The cloth's contacts that carried force (pair (ball, number of balls)).
     cloth_records: Vec<ContactRecord>,
@@ -1156,6 +1192,8 @@ impl Run<'_> {
             start: self.t,
             stick_time: None,
         };
+        let nb = self.nb();
+        self.paired[c.i * nb + c.j] = true;
         self.active.push(c);
         self.y.extend(std::iter::repeat_n(0.0, self.pc()));
         if self.mindlin() {
@@ -1182,6 +1220,8 @@ impl Run<'_> {
     fn open(&mut self, k: usize) {
         self.changes += 1;
         let c = self.active.remove(k);
+        let nb = self.nb();
+        self.paired[c.i * nb + c.j] = false;
         let o = PER_BALL * self.nb() + self.pc() * k;
         let acc: Vec<f64> = self.y.drain(o..o + self.pc()).collect();
         let record = ContactRecord {
@@ -1208,7 +1248,7 @@ impl Run<'_> {
 
     /// Whether pair (i, j) is in the contact set.
     fn in_set(&self, i: usize, j: usize) -> bool {
-        self.active.iter().any(|c| c.i == i && c.j == j)
+        self.paired[i * self.nb() + j]
     }
 
     /// Closes the pairs not in the set that press (separation function >= 0 from the
@@ -1295,20 +1335,25 @@ impl Run<'_> {
         }
     }
 
-    /// The events crossed between `y0` and `y1`.
-    fn crossings(&self, sys: &System<'_>, y0: &[f64], y1: &[f64]) -> Vec<Event> {
+    /// The events crossed between `y0` and `y1`, whose forces (under `sys`) are `f0` and
+    /// `f1`.
+    fn crossings(
+        &self,
+        sys: &System<'_>,
+        (y0, f0): (&[f64], &Forces),
+        (y1, f1): (&[f64], &Forces),
+    ) -> Vec<Event> {
         let mut out = Vec::new();
         if self.active.iter().any(|c| c.mode == Mode::Stuck) {
             // The friction each stuck contact needs against its bound, at both ends.
-            let (f0, f1) = (sys.forces(y0), sys.forces(y1));
             for (k, c) in self.active.iter().enumerate() {
                 let g = |x: &Forces| c.mu * x.contact[k].0 - x.need(k).norm();
                 let (a, b) = (f0.contact[k].0, f1.contact[k].0);
                 if c.mode == Mode::Stuck
                     && a > sys.f_floor
                     && b > sys.f_floor
-                    && g(&f0) > 0.0
-                    && g(&f1) <= 0.0
+                    && g(f0) > 0.0
+                    && g(f1) <= 0.0
                 {
                     out.push(Event::Release(k));
                 }
@@ -1356,8 +1401,9 @@ impl Run<'_> {
                 if self.in_set(i, j) {
                     continue;
                 }
+                // The end first: most pairs are apart there.
                 let e = Event::Close(i, j);
-                if self.event_value(sys, y0, e) >= 0.0 && self.event_value(sys, y1, e) < 0.0 {
+                if self.event_value(sys, y1, e) < 0.0 && self.event_value(sys, y0, e) >= 0.0 {
                     out.push(e);
                 }
             }
@@ -1365,9 +1411,9 @@ impl Run<'_> {
         out
     }
 
-    /// The stuck contacts without normal force at the current state that press at `y1` with
-    /// a friction past mu f there, with that friction (N).
-    fn loading_slips(&self, sys: &System<'_>, y1: &[f64]) -> Vec<(usize, Vector3<f64>)> {
+    /// The stuck contacts without normal force at the current state that press at the step's
+    /// end (forces `fs` there) with a friction past mu f there, with that friction (N).
+    fn loading_slips(&self, sys: &System<'_>, fs: &Forces) -> Vec<(usize, Vector3<f64>)> {
         let idle: Vec<usize> = (0..self.active.len())
             .filter(|&k| {
                 let c = &self.active[k];
@@ -1378,7 +1424,6 @@ impl Run<'_> {
         if idle.iter().all(|&k| self.active[k].mu == 0.0) {
             return Vec::new();
         }
-        let fs = sys.forces(y1);
         idle.into_iter()
             .filter_map(|k| {
                 let (f, fr) = (fs.contact[k].0, fs.need(k));
@@ -1603,7 +1648,9 @@ impl Run<'_> {
             }
         }
         let mut h = FIRST_STEP * self.tau0;
-        let mut k0: Option<(u64, Vec<f64>)> = None;
+        // The derivative at the current state and its forces, kept while the contacts' modes
+        // stand (`changes`).
+        let mut k0: Option<(u64, Vec<f64>, Forces)> = None;
         loop {
             if self.stats.steps + self.stats.rejected >= CLUSTER_MAX_STEPS {
                 return Ok(StopReason::WorkBound);
@@ -1665,12 +1712,12 @@ impl Run<'_> {
             }
             let scale = self.scale();
             let sys = self.system(false);
-            let d0 = match k0.take() {
-                Some((n, k)) if n == self.changes => k,
+            let (d0, f0) = match k0.take() {
+                Some((n, k, f)) if n == self.changes => (k, f),
                 _ => {
                     let mut d = vec![0.0; self.y.len()];
-                    sys.derivative(&self.y, &mut d);
-                    d
+                    let f = sys.derivative(&self.y, &mut d);
+                    (d, f)
                 }
             };
             let mut out = sys.step(&self.y, &d0, h, &scale, self.settings.rtol);
@@ -1687,11 +1734,11 @@ impl Run<'_> {
                 // and the step is judged as it came.
                 let fsys = self.system(true);
                 let mut df = vec![0.0; self.y.len()];
-                fsys.derivative(&self.y, &mut df);
+                let ff = fsys.derivative(&self.y, &mut df);
                 let fout = fsys.step(&self.y, &df, h, &scale, self.settings.rtol);
                 evals += fsys.evaluations.get();
                 if fout.err <= 1.0 {
-                    let ev = self.crossings(&fsys, &self.y, &fout.y);
+                    let ev = self.crossings(&fsys, (&self.y, &ff), (&fout.y, &fout.end));
                     if !ev.is_empty() {
                         (out, frozen, events) = (fout, true, ev);
                     }
@@ -1706,11 +1753,11 @@ impl Run<'_> {
             if err > 1.0 || !err.is_finite() {
                 self.stats.rejected += 1;
                 h = DOPRI5_CONTROL.next(h, if err.is_finite() { err } else { 1e10 });
-                k0 = Some((self.changes, d0));
+                k0 = Some((self.changes, d0, f0));
                 continue;
             }
             let sys = self.system(frozen);
-            let loading = self.loading_slips(&sys, &out.y);
+            let loading = self.loading_slips(&sys, &out.end);
             if !loading.is_empty() {
                 // A stuck contact without force at the start presses by the end and needs
                 // more friction than mu f: it slides from the start, along the friction it
@@ -1732,7 +1779,7 @@ impl Run<'_> {
                 continue;
             }
             if !frozen {
-                events = self.crossings(&sys, &self.y, &out.y);
+                events = self.crossings(&sys, (&self.y, &f0), (&out.y, &out.end));
             }
             if events.is_empty() {
                 let dense = self.samples_within(h).then(|| Dense::new(&self.y, &out, h));
@@ -1745,9 +1792,10 @@ impl Run<'_> {
                 self.trace_step(t0, dense.as_ref(), frozen);
                 h = hn;
                 // The last stage is the derivative at the new state (first same as last),
-                // the next step's first, unless the contacts' modes changed.
-                if !self.after_step(Vec::new()) && !frozen {
-                    k0 = Some((self.changes, last));
+                // the next step's first, unless the contacts' modes changed; its forces are
+                // those the check after the step reads (not under a frozen step's friction).
+                if !self.after_step(Vec::new(), (!frozen).then_some(&out.end)) && !frozen {
+                    k0 = Some((self.changes, last, out.end));
                 }
                 continue;
             }
@@ -1818,7 +1866,7 @@ impl Run<'_> {
                 }
             }
             // Released contacts slide from here: their directions before any index moves.
-            self.after_step(released);
+            self.after_step(released, None);
             opened.sort_unstable();
             for k in opened.into_iter().rev() {
                 self.open(k);
@@ -1833,14 +1881,23 @@ impl Run<'_> {
     /// tight rack two contacts of one ball were released together and the second's slip
     /// then ran against the direction it was released along). The released contacts then
     /// slide along directions consistent with their slips' rates (`release_directions`).
-    /// `released`: contacts already released by a located event.
+    /// `released`: contacts already released by a located event; `at`: the forces at the
+    /// current state when the caller has them (evaluated otherwise).
     /// Returns whether any contact was released (the right-hand side changed).
-    fn after_step(&mut self, mut released: Vec<usize>) -> bool {
+    fn after_step(&mut self, mut released: Vec<usize>, at: Option<&Forces>) -> bool {
         let springs = self.mindlin() && self.spring_modes();
+        let mut at = at.filter(|_| !springs);
         loop {
             let sys = self.system(false);
-            let fs = sys.forces(&self.y);
-            self.stats.evaluations += 1;
+            let owned;
+            let fs = match at.take() {
+                Some(f) => f,
+                None => {
+                    owned = sys.forces(&self.y);
+                    self.stats.evaluations += 1;
+                    &owned
+                }
+            };
             let mut worst: Option<(usize, f64)> = None;
             for (k, c) in self.active.iter_mut().enumerate() {
                 let (f, fr) = (fs.contact[k].0, fs.need(k));
