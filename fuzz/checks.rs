@@ -1161,6 +1161,12 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
     }
     let mu = cluster.mu();
     let mut heat = 0.0;
+    // Each pair's heat over its records, summed once (in the records' order): summed per
+    // record it is quadratic in the records, and a run can hold thousands.
+    let mut pair_heats = std::collections::HashMap::new();
+    for d in &out.contacts {
+        *pair_heats.entry(d.pair).or_insert(0.0) += d.heat;
+    }
     for c in &out.contacts {
         let (i, j) = c.pair;
         assert!(i < j && j < n, "{what}: contact {c:?}");
@@ -1196,12 +1202,7 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
             assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
         }
         if k0.is_finite() && dissipative && kk {
-            let pair: f64 = out
-                .contacts
-                .iter()
-                .filter(|d| d.pair == c.pair)
-                .map(|d| d.heat)
-                .sum();
+            let pair: f64 = pair_heats[&c.pair];
             assert!(
                 pair >= -tol * k0,
                 "{what}: heat of pair {:?}'s records {pair:e} (K_in {k0:e})",

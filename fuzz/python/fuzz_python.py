@@ -751,6 +751,12 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     r = call.get("rtol")
     rtol = r if isinstance(r, float) and math.isfinite(r) and r > 0 else 1e-8
     tol = max(1e-5, 1e3 * rtol, 0.25 * rtol * out["steps"])
+    # Each pair's heat over its records, summed once (a run can hold 18,000 records: summed
+    # per record, the check took 107 s of a 0.45 s run).
+    pair_heats: dict = {}
+    for d in out["contacts"]:
+        key = tuple(d["pair"])
+        pair_heats[key] = pair_heats.get(key, 0.0) + d["heat"]
     for c in out["contacts"]:
         i, j = c["pair"]
         # The impulse is a state of the stepping: a contact that closes at zero compression
@@ -765,7 +771,7 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
         # whose heat can then be negative: the promise is the pair's, over its records (as
         # the Rust target holds it).
         if kw.get("damping") == "kuwabara-kono":
-            pair_heat = sum(d["heat"] for d in out["contacts"] if tuple(d["pair"]) == (i, j))
+            pair_heat = pair_heats[(i, j)]
             if sticks and not pair_heat >= -tol * k0:
                 raise Finding(f"{what}: a pair's heat below zero ({pair_heat}): {c}")
         elif sticks and not c["heat"] >= -tol * k0:
