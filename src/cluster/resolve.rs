@@ -1281,6 +1281,22 @@ impl Run<'_> {
         }
     }
 
+    /// The overlap (m) of a pair not in the set, from its centres' distance (for a ball and
+    /// the cloth, from its height): the closing event's function, the pair closing where it
+    /// starts to overlap. Not the separation function below, whose damped part turns
+    /// negative while a receding pair still overlaps (Kuwabara-Kono: delta + gamma delta' <
+    /// 0 once delta' < -delta / gamma): a step bounded by a pair's closest approach ends
+    /// near it, and just past it the pair overlaps but recedes, so the crossing was not
+    /// seen. Two balls on the cloth under gamma = 0.05 s, one driven at 3.2 m/s through the
+    /// other in one step of 18 ms, passed through each other (found by fuzzing the Python
+    /// package: the pair then closed 44 um deep, its record's heat -2.6e-3 J).
+    fn overlap(&self, y: &[f64], i: usize, j: usize) -> f64 {
+        if j == self.nballs() {
+            return self.bodies[i].r - (pos(y, i).z - pos(y, j).z);
+        }
+        self.bodies[i].r + self.bodies[j].r - (pos(y, j) - pos(y, i)).norm()
+    }
+
     /// The law's separation function of a pair not in the set, from its centres' distance,
     /// and never above the compression itself: a pair presses only when it overlaps. Under
     /// Kuwabara-Kono, delta + gamma delta' alone turns positive while an approaching pair is
@@ -1316,7 +1332,7 @@ impl Run<'_> {
                 let (d, w) = sys.compression(y, c);
                 c.law.separation(d, w)
             }
-            Event::Close(i, j) => -self.gap_function(y, i, j),
+            Event::Close(i, j) => -self.overlap(y, i, j),
             Event::Release(k) => {
                 let fs = sys.forces(y);
                 self.active[k].mu * fs.contact[k].0 - fs.need(k).norm()
