@@ -1047,16 +1047,13 @@ fn allow_stopped() -> bool {
 /// The friction impulse is a state of the stepping, its error held to rtol on the momentum
 /// scale per step: against a contact's cap mu P, 2.7e-4 of that scale in a rack, it is
 /// rtol times 3700 (an 8-ball rack at rtol 1e-8 reported 4.4e-5 of its cap past it; 1e-10,
-/// 1e-6 of it: the excess falls with rtol). The allowance is 100 steps' worth of it, for
-/// Mindlin's springs; with the rigid stick rule every contact is put back on its bound
-/// after a step that passes it, and the promise is the bound to the rounding.
+/// 1e-6 of it: the excess falls with rtol). The allowance is 100 steps' worth of it.
 const FRICTION_STEPS: f64 = 100.0;
 
 fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &ClusterOutcome) {
     let balls = cluster.balls();
     let n = balls.len();
     let what = format!("cluster of {n} ({:?}, rtol {:e})", out.stop, settings.rtol);
-    let mindlin = cluster.tangential() == ClusterTangential::Mindlin;
     assert_eq!(out.balls.len(), n, "{what}: balls out");
     for (i, b) in out.balls.iter().enumerate() {
         assert!(
@@ -1106,13 +1103,9 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
                 .zip(&mass)
                 .map(|(b, m)| m * b.velocity.norm())
                 .sum();
-            let allowed = if mindlin {
-                cap * (1.0 + 1e-6) + FRICTION_STEPS * settings.rtol * momentum
-            } else {
-                cap * (1.0 + 1e-12) + 1e-12 * momentum
-            };
             assert!(
-                c.friction_impulse.norm() <= allowed,
+                c.friction_impulse.norm()
+                    <= cap * (1.0 + 1e-6) + FRICTION_STEPS * settings.rtol * momentum,
                 "{what}: cloth friction above mu P = {cap:e} in {c:?}"
             );
         }
@@ -1218,13 +1211,8 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         }
         let cap = mu * c.normal_impulse.max(0.0);
         let excess = c.friction_impulse.norm() - cap - 1e-12 * scale;
-        let allowed = if mindlin {
-            1e-6 * cap + FRICTION_STEPS * settings.rtol * scale
-        } else {
-            1e-12 * cap
-        };
         assert!(
-            excess <= allowed,
+            excess <= 1e-6 * cap + FRICTION_STEPS * settings.rtol * scale,
             "{what}: friction impulse {:e} above mu P = {cap:e} in {c:?}",
             c.friction_impulse.norm()
         );

@@ -48,11 +48,6 @@ const EVENT_TRIALS: usize = 100;
 /// needed friction comes out of a linear solve accurate to about 1e-12.
 const RELEASE_SLACK: f64 = 1e-9;
 
-/// Relative excess of a contact's friction impulse over mu times its normal impulse past
-/// which it is put back on Coulomb's bound after a step (`keep_in_cone`): above the
-/// rounding of the sums, so that a sliding contact on its bound is not touched.
-const CONE_SLACK: f64 = 1e-13;
-
 /// Most fixed-point iterations of the directions of contacts released together.
 const RELEASE_ITERATIONS: usize = 30;
 
@@ -1281,22 +1276,6 @@ impl Run<'_> {
         }
     }
 
-    /// The overlap (m) of a pair not in the set, from its centres' distance (for a ball and
-    /// the cloth, from its height): the closing event's function, the pair closing where it
-    /// starts to overlap. Not the separation function below, whose damped part turns
-    /// negative while a receding pair still overlaps (Kuwabara-Kono: delta + gamma delta' <
-    /// 0 once delta' < -delta / gamma): a step bounded by a pair's closest approach ends
-    /// near it, and just past it the pair overlaps but recedes, so the crossing was not
-    /// seen. Two balls on the cloth under gamma = 0.05 s, one driven at 3.2 m/s through the
-    /// other in one step of 18 ms, passed through each other (found by fuzzing the Python
-    /// package: the pair then closed 44 um deep, its record's heat -2.6e-3 J).
-    fn overlap(&self, y: &[f64], i: usize, j: usize) -> f64 {
-        if j == self.nballs() {
-            return self.bodies[i].r - (pos(y, i).z - pos(y, j).z);
-        }
-        self.bodies[i].r + self.bodies[j].r - (pos(y, j) - pos(y, i)).norm()
-    }
-
     /// The law's separation function of a pair not in the set, from its centres' distance,
     /// and never above the compression itself: a pair presses only when it overlaps. Under
     /// Kuwabara-Kono, delta + gamma delta' alone turns positive while an approaching pair is
@@ -1332,7 +1311,7 @@ impl Run<'_> {
                 let (d, w) = sys.compression(y, c);
                 c.law.separation(d, w)
             }
-            Event::Close(i, j) => -self.overlap(y, i, j),
+            Event::Close(i, j) => -self.gap_function(y, i, j),
             Event::Release(k) => {
                 let fs = sys.forces(y);
                 self.active[k].mu * fs.contact[k].0 - fs.need(k).norm()
@@ -1810,15 +1789,12 @@ impl Run<'_> {
                 let hn = DOPRI5_CONTROL.next(h, err);
                 let last = out.k.swap_remove(6);
                 self.y = out.y;
-                let projected = self.keep_in_cone();
                 self.trace_step(t0, dense.as_ref(), frozen);
                 h = hn;
                 // The last stage is the derivative at the new state (first same as last),
-                // the next step's first, unless the contacts' modes or the state changed;
-                // its forces are those the check after the step reads (not under a frozen
-                // step's friction).
-                let fresh = !frozen && !projected;
-                if !self.after_step(Vec::new(), fresh.then_some(&out.end)) && fresh {
+                // the next step's first, unless the contacts' modes changed; its forces are
+                // those the check after the step reads (not under a frozen step's friction).
+                if !self.after_step(Vec::new(), (!frozen).then_some(&out.end)) && !frozen {
                     k0 = Some((self.changes, last, out.end));
                 }
                 continue;
@@ -1843,7 +1819,6 @@ impl Run<'_> {
             self.stats.steps += 1;
             let t0 = self.t;
             self.y = ya;
-            self.keep_in_cone();
             self.t += at;
             self.trace_step(t0, Some(&dense), frozen);
             // Every event located at that time (or crossed by it), contacts removed last.
@@ -1949,60 +1924,6 @@ impl Run<'_> {
             self.release_directions(&released);
         }
         springs || !released.is_empty()
-    }
-
-    /// After a step: a contact whose friction impulse has passed mu times its normal impulse
-    /// (Coulomb's bound on the whole contact, |J_t| <= mu J_n) is put back on it, the excess
-    /// taken back from its balls as an impulse at the contact point (momentum and the
-    /// model's angular momentum kept) and the kinetic energy that changes by it given to
-    /// the heat (the balance still closes). Every stage's friction is within mu f (sliding,
-    /// or held there by the stick solve), but a step adds the stages with the
-    /// Dormand-Prince weights, one of them negative: when the friction turns inside a step,
-    /// or the normal force falls to zero in it, the sum can pass mu times the summed normal
-    /// impulse. A resin ball resting on the cloth under Kuwabara-Kono gamma = 0.05 s, its
-    /// slip's direction turning in the first step, ended 0.15 % past mu P (4.6e-8 N s;
-    /// found by fuzzing). The exact impulses are inside the bound, so what is taken back is
-    /// within the steps' error. Mindlin's springs keep their own cap. Returns whether the
-    /// state changed.
-    fn keep_in_cone(&mut self) -> bool {
-        let nb = self.nb();
-        let pc = self.pc();
-        let mut changed = false;
-        for (k, c) in self.active.iter().enumerate() {
-            if c.mu == 0.0 || c.mode.spring() {
-                continue;
-            }
-            let o = PER_BALL * nb + pc * k;
-            let j = Vector3::new(self.y[o + 1], self.y[o + 2], self.y[o + 3]);
-            let (cap, n) = (c.mu * self.y[o].max(0.0), j.norm());
-            if n <= cap * (1.0 + CONE_SLACK) {
-                continue;
-            }
-            let excess = j * (1.0 - cap / n);
-            let (bi, bj) = (&self.bodies[c.i], &self.bodies[c.j]);
-            let torque = c.n.cross(&excess);
-            // Taking the impulse back changes the kinetic energy by -excess . s, s the slip
-            // of ball i's contact point over ball j's.
-            let slip = {
-                let v = |b: usize| pos(&self.y, nb + b);
-                let w = |b: usize| pos(&self.y, 2 * nb + b);
-                let s = v(c.i) - v(c.j) + (w(c.i) * c.ri + w(c.j) * c.rj).cross(&c.n);
-                s - c.n * s.dot(&c.n)
-            };
-            self.y[o + 4] += excess.dot(&slip);
-            for q in 0..3 {
-                self.y[o + 1 + q] -= excess[q];
-                self.y[3 * nb + 3 * c.i + q] -= excess[q] / bi.m;
-                self.y[3 * nb + 3 * c.j + q] += excess[q] / bj.m;
-                self.y[6 * nb + 3 * c.i + q] -= torque[q] * (c.ri / bi.inertia);
-                self.y[6 * nb + 3 * c.j + q] -= torque[q] * (c.rj / bj.inertia);
-            }
-            changed = true;
-        }
-        if changed {
-            self.changes += 1;
-        }
-        changed
     }
 
     /// After a step under Mindlin's spring: each spring's mode from the state, as the pair
