@@ -1222,7 +1222,7 @@ impl Run<'_> {
         let c = self.active.remove(k);
         let nb = self.nb();
         self.paired[c.i * nb + c.j] = false;
-        let o = PER_BALL * self.nb() + self.pc() * k;
+        let o = PER_BALL * nb + self.pc() * k;
         let acc: Vec<f64> = self.y.drain(o..o + self.pc()).collect();
         let record = ContactRecord {
             pair: (c.i, c.j),
@@ -2115,7 +2115,7 @@ impl Run<'_> {
                     // separation function delta + gamma delta' was negative there: no
                     // closing was seen and a ball passed through another (found by
                     // fuzzing the Python package).
-                    bound = bound.min(0.5 * (t + -p.dot(&u) / u.norm_squared()));
+                    bound = bound.min(0.5 * (t - p.dot(&u) / u.norm_squared()));
                 }
             }
         }
