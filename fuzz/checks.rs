@@ -1243,29 +1243,42 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
         // the allowance is 100 rtol a landing).
         let compliance =
             |m: &Material| (1.0 - m.poisson_ratio() * m.poisson_ratio()) / m.youngs_modulus();
-        let landings: f64 = balls
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let ball = cluster.materials().map_or(0.0, |m| compliance(&m[i]));
-                let e_star = 1.0 / (ball + compliance(&cloth.material));
-                let k = 4.0 / 3.0 * e_star * b.ball.radius().sqrt();
-                let weight = b.ball.mass() * cloth.gravity;
-                let count = out.cloth.iter().filter(|c| c.pair.0 == i).count();
-                weight * (weight / k).powf(2.0 / 3.0) * count as f64
-            })
-            .sum::<f64>()
-            * 100.0
-            * settings.rtol;
-        let scale = k0.max(k1).max(heat.abs());
+        //
+        // What the cloth and gravity hold at the end: each ball's V(delta_out) - V(delta_s),
+        // V(delta) = (2/5) k max(delta, 0)^(5/2) - m g delta (the Hertz spring's energy and
+        // the weight's), delta = r - (z - height) + delta_s its compression of the cloth, a
+        // ball resting at its input height compressing it by delta_s. K_in = K_out + heat +
+        // held to the allowance, both ways (reading only held >= 0, a cloth that sank by
+        // delta_s after a ball's first hop passed: six balls gained 1.1e-7 J that way).
+        //
+        // The energy the steps carry includes the cloth's store under the weights,
+        // sum m g delta_s, through which a ball's vertical motion on the cloth passes: the
+        // per-step allowance (tol) is on it too (eight balls at rest on a steel cloth, struck
+        // at 1 mm/s at rtol 1e-3, oscillate on it for 3.9 s; their kinetic energy went from
+        // 9.3e-8 J to 2.8e-6 J with a store of 1.3e-6 J).
+        let (mut landings, mut held, mut store) = (0.0, 0.0, 0.0);
+        for (i, (b, o)) in balls.iter().zip(&out.balls).enumerate() {
+            let ball = cluster.materials().map_or(0.0, |m| compliance(&m[i]));
+            let e_star = 1.0 / (ball + compliance(&cloth.material));
+            let k = 4.0 / 3.0 * e_star * b.ball.radius().sqrt();
+            let weight = b.ball.mass() * cloth.gravity;
+            let ds = (weight / k).powf(2.0 / 3.0);
+            let count = out.cloth.iter().filter(|c| c.pair.0 == i).count();
+            landings += weight * ds * count as f64 * 100.0 * settings.rtol;
+            store += weight * ds;
+            let v = |d: f64| 0.4 * k * d.max(0.0).powf(2.5) - weight * d;
+            held += v(b.ball.radius() - (o.position.z - cloth.height) + ds) - v(ds);
+        }
+        let scale = k0.max(k1).max(heat.abs()) + store;
         assert!(
-            k1 <= k0 * (1.0 + tol) + landings || !dissipative,
-            "{what}: kinetic energy {k0:e} -> {k1:e} on the cloth (landings' allowance {landings:e})"
+            k1 <= k0 + tol * (k0 + store) + landings || !dissipative,
+            "{what}: kinetic energy {k0:e} -> {k1:e} on the cloth (store {store:e}, landings' \
+             allowance {landings:e})"
         );
         assert!(
-            k0 - k1 - heat >= -(tol * scale + landings),
-            "{what}: kinetic energy {k0:e} -> {k1:e} with heat {heat:e} on the cloth \
-             (landings' allowance {landings:e})"
+            (k0 - k1 - heat - held).abs() <= tol * scale + landings,
+            "{what}: kinetic energy {k0:e} -> {k1:e} with heat {heat:e} and {held:e} held by \
+             the cloth (landings' allowance {landings:e})"
         );
         return;
     }

@@ -434,3 +434,85 @@ fn balls_on_the_cloth_do_not_pass_through_each_other() {
         assert!(pair >= -1e-5 * k_in, "pair {:?}: heat {pair:e}", c.pair);
     }
 }
+
+/// A ball pressed into the elastic cloth hops, lands and hops again, while another ball
+/// rolls up to it (frictionless everywhere, elastic). Its vertical motion is a ball on a
+/// Hertz spring under gravity: with delta = R - z + delta_s its compression of the cloth
+/// (z = R where it rests, at the static compression delta_s, k delta_s^(3/2) = m g),
+/// E_z = m w^2 / 2 + V(delta), V(delta) = (2/5) k max(delta, 0)^(5/2) - m g delta, is
+/// constant until the other ball touches it: every landing meets the cloth it left. And
+/// the whole run keeps K_in = K_out + heat + held, held = V(delta_out) - V(delta_s) summed
+/// over the balls (heat 0 here: elastic, no friction).
+#[test]
+fn a_hopping_ball_lands_on_the_cloth_it_left() {
+    let w0 = -0.01;
+    let gap = 60e-6;
+    let mut pressed = ball_of(M, R, 2.0 * R + gap, 0.0);
+    pressed.velocity.z = w0;
+    let balls = vec![ball_of(M, R, 0.0, 0.01), pressed];
+    let law = ClusterLaw::Materials(vec![resin(); 2], PairDamping::None);
+    let cluster = Cluster::new(balls, law, 0.0)
+        .unwrap()
+        .with_cloth(slate(0.0))
+        .unwrap();
+    // Hertz sphere on a flat bed: k = (4/3) E* sqrt(R), 1/E* the sum of (1 - nu^2) / E.
+    let compliance = |e: f64, nu: f64| (1.0 - nu * nu) / e;
+    let e_star = 1.0 / (compliance(5.4e9, 0.34) + compliance(5.0e10, 0.25));
+    let k = 4.0 / 3.0 * e_star * R.sqrt();
+    let ds = (M * G / k).powf(2.0 / 3.0);
+    let v = |d: f64| 0.4 * k * d.max(0.0).powf(2.5) - M * G * d;
+    let e_z = |b: &BallOut| 0.5 * M * b.velocity.z * b.velocity.z + v(R - b.position.z + ds);
+    let e_z0 = 0.5 * M * w0 * w0 + v(ds);
+    // It leaves the cloth (E_z > V(0) = 0) and flies 2 sqrt(2 E_z / m) / g = 1.9 ms a hop:
+    // the other ball, 60 um away at 1 cm/s, reaches it after three landings.
+    assert!(e_z0 > 0.0);
+    let (mut rows, mut airborne_rows, mut worst) = (0, 0, 0.0_f64);
+    let mut touched = false;
+    let mut sink = |r: &ClusterTraceRow<'_>| {
+        touched |= r.contacts.iter().any(|c| c.pair == (0, 1));
+        if touched {
+            return;
+        }
+        rows += 1;
+        if r.balls[1].position.z > R {
+            airborne_rows += 1;
+        }
+        worst = worst.max((e_z(&r.balls[1]) - e_z0).abs());
+    };
+    let trace = ClusterTrace {
+        sampling: ClusterSampling::Steps,
+        sink: &mut sink,
+    };
+    let out = resolve_cluster_traced(&cluster, &settings(), trace).unwrap();
+    assert_eq!(out.stop, StopReason::Separated);
+    assert!(
+        rows > 10 && airborne_rows > 0,
+        "{rows} rows, {airborne_rows} in the air"
+    );
+    let landings = out.cloth.iter().filter(|c| c.pair.0 == 1).count();
+    assert!(
+        landings >= 3,
+        "{landings} cloth contacts of the hopping ball"
+    );
+    // The energy of each landing passes through the cloth's store, m g delta_s about.
+    assert!(
+        worst <= 1e-6 * e_z0,
+        "the hopping ball's vertical energy moved by {worst:e} J of {e_z0:e} J"
+    );
+    let k_in = 0.5 * M * (0.01 * 0.01 + w0 * w0);
+    let k_out: f64 = out
+        .balls
+        .iter()
+        .map(|b| 0.5 * M * b.velocity.norm_squared())
+        .sum();
+    let held: f64 = out
+        .balls
+        .iter()
+        .map(|b| v(R - b.position.z + ds) - v(ds))
+        .sum();
+    let heat: f64 = out.contacts.iter().chain(&out.cloth).map(|c| c.heat).sum();
+    assert!(
+        (k_in - k_out - heat - held).abs() <= 1e-7 * k_in,
+        "K_in {k_in:e} K_out {k_out:e} heat {heat:e} held {held:e}"
+    );
+}
