@@ -542,6 +542,9 @@ class ClusterResult(TypedDict):
     """Evaluations of the right-hand side."""
     cloth_contacts: NotRequired[list[ClothContact]]
     """With a cloth: each ball's contact with it."""
+    cloth_held: NotRequired[float]
+    """With a cloth: the energy (J) its spring and gravity hold at the end; the kinetic
+    energy in is the kinetic energy out plus every contact's heat plus this."""
 
 class Cluster:
     """N balls resolved together (docs/cluster.md): every pair that touches or comes to

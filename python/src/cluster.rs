@@ -472,7 +472,10 @@ impl Cluster {
     /// "impulse" (normal impulse on ball j, N s), "friction_impulse" (on ball i, (3,),
     /// N s), "normal" (from i to j), "start" and "duration" (s), "heat" (J) and
     /// "stick_time" (s from its closing, or None)), "time" (s covered), "steps" and
-    /// "evaluations". A run that cannot finish (the step control stalls or the work bound
+    /// "evaluations"; with a cloth also "cloth_contacts" (one dict per ball's contact with
+    /// it) and "cloth_held" (J: what the cloth's spring and gravity hold at the end, so that
+    /// the kinetic energy in is the kinetic energy out plus every heat plus it). A run that
+    /// cannot finish (the step control stalls or the work bound
     /// is reached) raises RuntimeError; nothing partial is returned.
     #[pyo3(signature = (positions, velocities, spins, rtol = None))]
     fn resolve<'py>(
@@ -517,13 +520,15 @@ impl Cluster {
             ClusterTangential::Rigid
         };
         let cloth = self.cloth.map(|c| c.cloth(&balls[0]));
-        let out = py
+        let (out, held) = py
             .detach(move || {
                 let mut cluster = Kernel::new(balls, law, mu)?.with_tangential(tangential)?;
                 if let Some(c) = cloth {
                     cluster = cluster.with_cloth(c)?;
                 }
-                resolve_cluster(&cluster, &settings)
+                let out = resolve_cluster(&cluster, &settings)?;
+                let held = out.cloth_held(&cluster);
+                Ok::<_, Error>((out, held))
             })
             .map_err(|e| to_py(keyword(e)))?;
         if out.stop != StopReason::Separated {
@@ -580,6 +585,7 @@ impl Cluster {
                 cloth.append(e)?;
             }
             d.set_item("cloth_contacts", cloth)?;
+            d.set_item("cloth_held", held)?;
         }
         d.set_item("time", out.time)?;
         d.set_item("steps", out.stats.steps)?;

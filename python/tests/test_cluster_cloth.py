@@ -92,3 +92,30 @@ def test_refusals_at_resolve_and_with_mindlin():
         on_cloth().resolve(p, v, w)
     with pytest.raises(ValueError, match=r"cloth.mu = -1"):
         on_cloth(mu_c=-1.0).resolve(*head_on())
+
+
+def test_a_ball_pressed_into_the_cloth_balances_with_what_the_cloth_holds():
+    """A ball pressed into the elastic cloth at 1 cm/s hops while the other rolls up to it
+    (elastic, frictionless). The cloth's store, written out: delta = R - z + delta_s the
+    compression (z = R where a ball rests, at k delta_s^(3/2) = m g), V(delta) = (2/5) k
+    max(delta, 0)^(5/2) - m g delta, k = (4/3) E* sqrt(R) with 1/E* the sum of (1 - nu^2)/E
+    of ball and bed; held = sum V(delta_out) - V(delta_s), and K_in = K_out + heat + held."""
+    p = np.array([[0.0, 0.0, R], [2.0 * R + 60e-6, 0.0, R]])
+    v = np.array([[0.01, 0.0, 0.0], [0.0, 0.0, -0.01]])
+    out = on_cloth().resolve(p, v, np.zeros((2, 3)), rtol=1e-10)
+    e_star = 1.0 / ((1 - NU**2) / E + (1 - 0.25**2) / 5.0e10)
+    k = 4.0 / 3.0 * e_star * np.sqrt(R)
+    ds = (M * G / k) ** (2.0 / 3.0)
+
+    def store(d):
+        return 0.4 * k * max(d, 0.0) ** 2.5 - M * G * d
+
+    held = sum(store(R - z + ds) - store(ds) for z in out["positions"][:, 2])
+    assert out["cloth_held"] == pytest.approx(held, rel=1e-12, abs=1e-18)
+    k_in = 0.5 * M * (0.01**2 + 0.01**2)
+    k_out = 0.5 * M * float(np.sum(out["velocities"] ** 2)) + 0.2 * M * R * R * float(
+        np.sum(out["spins"] ** 2))
+    heat = sum(c["heat"] for c in out["contacts"] + out["cloth_contacts"])
+    assert k_in - k_out - heat - out["cloth_held"] == pytest.approx(0.0, abs=1e-7 * k_in)
+    # The ball hopped: it landed on the cloth again (a cloth contact per landing).
+    assert sum(c["ball"] == 1 for c in out["cloth_contacts"]) >= 2

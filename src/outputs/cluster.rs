@@ -58,15 +58,11 @@ impl Balances {
             .map(|(b, o)| kinetic(&b.ball, &o.velocity, &o.spin))
             .sum();
         let heat = out.contacts.iter().chain(&out.cloth).map(|c| c.heat).sum();
-        let (mut held, mut external) = (0.0, Vector3::zeros());
+        let held = out.cloth_held(cluster);
+        let mut external = Vector3::zeros();
         if let Some(cloth) = cluster.cloth {
-            for (i, (b, o)) in balls.iter().zip(&out.balls).enumerate() {
-                let (k, preload) = (cluster.cloth_laws[i].stiffness(), cluster.cloth_preloads[i]);
-                let m = b.ball.mass();
-                let v = |d: f64| 0.4 * k * d.max(0.0).powf(2.5) - m * cloth.gravity * d;
-                let delta = b.ball.radius() - (o.position.z - cloth.height) + preload;
-                held += v(delta) - v(preload);
-                external -= Vector3::z() * (m * cloth.gravity * out.time);
+            for b in balls {
+                external -= Vector3::z() * (b.ball.mass() * cloth.gravity * out.time);
             }
             for c in &out.cloth {
                 external += c.friction_impulse - c.normal * c.normal_impulse;
