@@ -718,6 +718,8 @@ pub const CLUSTER_MIN_RTOL: f64 = 1e-10;
 /// steps at rtol 1e-9, 11.5 s here and past 120 s instrumented).
 pub const CLUSTER_MANY: usize = 5;
 pub const CLUSTER_MANY_MIN_RTOL: f64 = 1e-8;
+/// Cloth runs of this many balls or more take rtol [`CLUSTER_HOVERING_RTOL`] or looser.
+pub const CLUSTER_CLOTH_MANY: usize = 4;
 /// Below this rtol a run of fewer than [`CLUSTER_MAX_BALLS`] may stop at the work bound
 /// (the hovering slip).
 pub const CLUSTER_HOVERING_RTOL: f64 = 1e-9;
@@ -978,6 +980,13 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
         let (e, nu, _) = MATERIALS[usize::from(c >> 5)];
         (e, nu, 0.5 * unit(c & 31) * unit(c & 31))
     });
+    // Work per input: on the cloth every ball adds a contact, and a run below rtol 1e-9 may
+    // hover to the work bound (allowed there): four rubber and steel balls at mu 1 took
+    // 1e6 steps, 6.5 s here and past 179 s instrumented. Cloth runs of 4 balls or more
+    // take rtol 1e-9 or looser.
+    if cloth.is_some() && n >= CLUSTER_CLOTH_MANY && rtol < CLUSTER_HOVERING_RTOL {
+        return Verdict::Skipped;
+    }
     if cloth.is_some() && b0 & 0x80 == 0 {
         for ball in &mut balls {
             ball.position.z = ball.ball.radius();
