@@ -613,3 +613,78 @@ fn tangential_stuck_limit_and_the_other_spring_rules() {
         assert!(stuck(rule) > 1.01, "{}", stuck(rule));
     }
 }
+
+/// Head on along a normal that is no coordinate axis (found by fuzzing the Python package:
+/// normal (1, 1, 1) / sqrt 3): the slip is zero but for the rounding of the velocities, and
+/// the tangent basis taken from it was no tangent, so friction pushed along the normal and
+/// the ball left the plane at 1.79 times its speed (mu 1). Elastic and head on, momentum and
+/// energy give P = 2 m v for a ball on a rigid plane and P = 2 m_A m_B / (m_A + m_B) v_rel
+/// for two balls, the velocities reversed along n, no tangential impulse; whatever mu.
+#[test]
+fn tangential_head_on_along_a_diagonal_normal_is_elastic() {
+    let (ball, mat) = (
+        sphere(1000.0, 0.028575),
+        Material::new(5.4e9, 0.34).unwrap(),
+    );
+    let m = ball.mass();
+    for n in [
+        Vector3::new(1.0, 1.0, 1.0).normalize(),
+        Vector3::new(-1.0, 1.0, 1.0).normalize(),
+        Vector3::new(0.6, 0.0, 0.8),
+    ] {
+        for mu in [0.2, 1.0] {
+            let v = -3.0 * n;
+            let out = resolve_sphere_plane_compliant(
+                &ball,
+                mat,
+                None,
+                mu,
+                v,
+                Vector3::zeros(),
+                n,
+                &tight(),
+            )
+            .unwrap();
+            assert!(
+                (out.normal_impulse - 2.0 * m * 3.0).abs() <= 1e-7 * m * 3.0,
+                "n {n:?} mu {mu}: P {} against 2 m v = {}",
+                out.normal_impulse,
+                2.0 * m * 3.0
+            );
+            assert!(
+                (out.velocity - 3.0 * n).norm() <= 1e-7 * 3.0,
+                "{:?}",
+                out.velocity
+            );
+            assert!(out.tangential_impulse.norm() <= 1e-12 * m * 3.0, "{out:?}");
+            // Two equal balls meeting along n at 3 m/s each: they exchange velocities.
+            let a = CompliantSphere {
+                ball,
+                material: mat,
+                velocity: 3.0 * n,
+                spin: Vector3::zeros(),
+            };
+            let b = CompliantSphere {
+                velocity: -3.0 * n,
+                ..a
+            };
+            let pair = resolve_sphere_sphere_compliant(&a, &b, n, mu, 1.0, &tight()).unwrap();
+            let reduced = m / 2.0;
+            assert!(
+                (pair.ball_a.normal_impulse - 2.0 * reduced * 6.0).abs() <= 1e-7 * reduced * 6.0,
+                "pair, n {n:?} mu {mu}: P {}",
+                pair.ball_a.normal_impulse
+            );
+            assert!(
+                (pair.ball_a.velocity + 3.0 * n).norm() <= 1e-7 * 3.0,
+                "{:?}",
+                pair.ball_a.velocity
+            );
+            assert!(
+                (pair.velocity_b - 3.0 * n).norm() <= 1e-7 * 3.0,
+                "{:?}",
+                pair.velocity_b
+            );
+        }
+    }
+}
