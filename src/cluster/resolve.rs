@@ -1045,11 +1045,11 @@ fn run_cluster(
         }),
     };
     let stop = run.go()?;
-    // A run that stopped (work bound, step too small) records the contacts still in the
-    // set as they stand, so that the outcome's impulses account for the balls' momentum up
-    // to the stop: on the cloth the contacts' impulses are the momentum from outside, and
-    // left out they broke its balance by 0.41 N s (four rubber balls on the cloth at the
-    // work bound; found by fuzzing).
+    // The contacts still in the set are recorded as they stand: on the cloth its contacts
+    // at any end, and in a run that stopped (work bound, step too small) every contact, so
+    // that the outcome's impulses account for the balls' momentum up to the stop (on the
+    // cloth they are the momentum from outside; left out at a stop they broke its balance
+    // by 0.41 N s: four rubber balls at the work bound, found by fuzzing).
     for k in (0..run.active.len()).rev() {
         run.open(k);
     }
@@ -1747,10 +1747,8 @@ impl Run<'_> {
                     && !self.touches_within(horizon)
                     && self.active.iter().all(|c| self.settled_on_cloth(c))
                 {
+                    // The cloth's contacts are recorded by `run_cluster`, as at any end.
                     self.trace_flight(f64::INFINITY);
-                    for k in (0..self.active.len()).rev() {
-                        self.open(k);
-                    }
                     return Ok(StopReason::Separated);
                 }
             } else if self.active.is_empty() {
