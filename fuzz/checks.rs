@@ -718,8 +718,6 @@ pub const CLUSTER_MIN_RTOL: f64 = 1e-10;
 /// steps at rtol 1e-9, 11.5 s here and past 120 s instrumented).
 pub const CLUSTER_MANY: usize = 5;
 pub const CLUSTER_MANY_MIN_RTOL: f64 = 1e-8;
-/// Free clusters at this rtol or coarser are skipped (an open case, docs/cluster.md).
-pub const CLUSTER_COARSE_RTOL: f64 = 1e-3;
 /// Cloth runs of this many balls or more take rtol [`CLUSTER_HOVERING_RTOL`] or looser.
 pub const CLUSTER_CLOTH_MANY: usize = 4;
 /// Below this rtol a run of fewer than [`CLUSTER_MAX_BALLS`] may stop at the work bound
@@ -987,15 +985,6 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
     // 1e6 steps, 6.5 s here and past 179 s instrumented. Cloth runs of 4 balls or more
     // take rtol 1e-9 or looser.
     if cloth.is_some() && n >= CLUSTER_CLOTH_MANY && rtol < CLUSTER_HOVERING_RTOL {
-        return Verdict::Skipped;
-    }
-    // Open case (docs/cluster.md, fuzz/open/cluster/): free clusters at the coarsest rtol,
-    // 1e-3. Eight balls of mixed materials under heavy Hunt-Crossley damping (c = 1.33 s/m)
-    // left with 10.7 J of 2.5 J: a contact's opening located on a coarse step's continuous
-    // extension 9.6 um short of its zero, the pair closed again 67 um deep, and the step
-    // through that stiff, heavily damped contact was accepted 62 J off the balance (fine
-    // from rtol 1e-4). On the cloth rtol 1e-3 runs (its own promise below).
-    if cloth.is_none() && rtol >= CLUSTER_COARSE_RTOL {
         return Verdict::Skipped;
     }
     if cloth.is_some() && b0 & 0x80 == 0 {
