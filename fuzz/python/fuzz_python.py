@@ -822,18 +822,8 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
             held += v(radius - (float(out["positions"][i][2]) - height) + ds) - v(ds)
         big = max(k0, k1, abs(heat)) + store
         if (sticks and k1 > k0 + tol * (k0 + store)) or abs(k0 - k1 - heat - held) > tol * big:
-            message = (f"{what}: energy {k0} -> {k1} with heat {heat} and {held} held by "
-                       f"the cloth (store {store})")
-            # Open (docs/cluster.md): balls of E = 1.2e21 Pa on the cloth under
-            # Kuwabara-Kono without the stick rule chatter at rtol 1e-8 only (9,368 contact
-            # records, 0.156 J of 41.5 J off; fine at 1e-7 and 1e-9). Counted, not a finding,
-            # so that campaigns go past it (it stopped three of them within 1,100 CPU s).
-            modulus = kw.get("youngs_modulus")
-            stiff = isinstance(modulus, (int, float)) and float(modulus) >= 1e18
-            if stiff and not sticks and kw.get("damping") == "kuwabara-kono":
-                known("cluster: stiff Kuwabara-Kono balls on the cloth chatter (open)", message)
-                return
-            raise Finding(message)
+            raise Finding(f"{what}: energy {k0} -> {k1} with heat {heat} and {held} held by "
+                          f"the cloth (store {store})")
         return
     big = max(k0, k1, abs(heat))
     if (sticks and k1 > k0 * (1 + tol)) or abs(k0 - k1 - heat) > tol * big + 1e-300:
