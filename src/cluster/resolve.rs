@@ -1947,7 +1947,10 @@ impl Run<'_> {
                     // energy, closed again 67 um deep, 62 J off the balance; found by
                     // fuzzing). Otherwise the step ends there without it, and the next one
                     // locates it again, from closer.
-                    Event::Open(k) => *g <= self.settings.rtol * self.open_scale(&self.active[k]),
+                    Event::Open(k) => {
+                        (*time <= at || *g <= 0.0)
+                            && *g <= self.settings.rtol * self.open_scale(&self.active[k])
+                    }
                     Event::Close(..) => *time <= at || *g < 0.0,
                     _ => *time <= at || *g <= 0.0,
                 };
