@@ -760,7 +760,8 @@ const CLUSTER_GLOBAL_FIELDS: usize = 6;
 ///   `overrides`), fields 12 per ball then the 6 globals of `CLUSTER_GLOBAL_FIELDS`;
 /// - `CLUSTER_TANGENTIAL_BYTE` (past the overrides' 27 bytes): bit 0 Mindlin's spring at
 ///   every contact (`ClusterTangential::Mindlin`; refused naming `cluster.tangential` when
-///   the laws are not from the materials).
+///   the laws are not from the materials), bit 1 a cloth (the next byte its material and
+///   mu, the one after its damping: see the code).
 ///
 /// Promises: a refusal names its field; or the run's balls, contacts and time are finite
 /// and
@@ -980,6 +981,27 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
         let (e, nu, _) = MATERIALS[usize::from(c >> 5)];
         (e, nu, 0.5 * unit(c & 31) * unit(c & 31))
     });
+    // Byte 82: the cloth's damping (bits 0-1: elastic, Hunt-Crossley beta = 10^(2 u - 2)
+    // s/m, Kuwabara-Kono gamma = 10^(2 u - 7) s, or a restitution 0.1 + 0.9 u at 1 m/s under
+    // the law of bit 2; u the upper five bits over 31).
+    let cloth_damping = {
+        let c = b(CLUSTER_TANGENTIAL_BYTE + 2);
+        let u = f64::from(c >> 3) / 31.0;
+        match c & 3 {
+            0 => PairDamping::None,
+            1 => PairDamping::Coefficient(Damping::HuntCrossley, 10f64.powf(2.0 * u - 2.0)),
+            2 => PairDamping::Coefficient(Damping::KuwabaraKono, 10f64.powf(2.0 * u - 7.0)),
+            _ => PairDamping::Restitution {
+                damping: if c & 4 != 0 {
+                    Damping::KuwabaraKono
+                } else {
+                    Damping::HuntCrossley
+                },
+                restitution: 0.1 + 0.9 * u,
+                at_speed: 1.0,
+            },
+        }
+    };
     // Work per input: on the cloth every ball adds a contact, and a run below rtol 1e-9 may
     // hover to the work bound (allowed there): four rubber and steel balls at mu 1 took
     // 1e6 steps, 6.5 s here and past 179 s instrumented. Cloth runs of 4 balls or more
@@ -1000,6 +1022,13 @@ pub fn check_cluster(data: &[u8]) -> Verdict {
                 material,
                 mu: mu_c,
                 gravity: 9.81,
+            })
+            .and_then(|c| {
+                if cloth_damping == PairDamping::None {
+                    Ok(c)
+                } else {
+                    c.with_cloth_damping(cloth_damping)
+                }
             })
         }),
     };

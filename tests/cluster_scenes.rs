@@ -576,3 +576,61 @@ fn the_break_on_the_cloth_balances_and_names_its_keys() {
         refused(&bin(&["run", &path]), &want);
     }
 }
+
+/// The break on a damped cloth (`[cloth] damping`, `restitution`, `at_speed`, the keys
+/// `[contact.law]` names the same way): the report names the law and each ball's calibrated
+/// coefficient (one mass, one coefficient), and its energy balance closes with the damping's
+/// heat; a restitution without its speed, or with a coefficient too, is refused naming the
+/// cloth's key.
+#[test]
+fn a_damped_cloth_is_reported_and_balances() {
+    let dir = fresh_dir("cluster_damped_cloth_scene");
+    let text = std::fs::read_to_string(scene("break_nine_ball_cloth.toml")).unwrap();
+    let v = |name: &str, to: &str| variant(&dir, name, &text, "# gravity = 9.81", to);
+    let damped = v(
+        "damped.toml",
+        "damping = \"hunt-crossley\"\nrestitution = 0.5\nat_speed = 1.0",
+    );
+    let out = bin(&["run", &damped, "--json"]);
+    succeeded(&out);
+    let j: Value = serde_json::from_slice(&out.stdout).unwrap();
+    check_shape(&j, 10);
+    let cloth = &j["cloth"];
+    assert_eq!(cloth["damping"], "hunt-crossley");
+    let c = cloth["coefficients"].as_array().unwrap();
+    assert_eq!(c.len(), 10);
+    let c0 = c[0].as_f64().unwrap();
+    assert!(
+        c0 > 0.0 && c.iter().all(|x| x.as_f64() == Some(c0)),
+        "{c:?}"
+    );
+    assert!(
+        number(&j["check"], "energy_balance_error") < 1e-5,
+        "{}",
+        j["check"]
+    );
+    // The elastic cloth's report has neither key.
+    let plain = bin(&["run", &scene("break_nine_ball_cloth.toml"), "--json"]);
+    let p: Value = serde_json::from_slice(&plain.stdout).unwrap();
+    assert!(p["cloth"].get("damping").is_none() && p["cloth"].get("coefficients").is_none());
+    for (name, keys, want) in [
+        (
+            "no_speed.toml",
+            "damping = \"hunt-crossley\"\nrestitution = 0.5",
+            vec!["cloth.at_speed", "missing"],
+        ),
+        (
+            "both.toml",
+            "damping = \"kuwabara-kono\"\nrestitution = 0.5\nat_speed = 1.0\ncoefficient = 1e-5",
+            vec!["cloth.coefficient", "cloth.restitution"],
+        ),
+        (
+            "bad_e.toml",
+            "damping = \"hunt-crossley\"\nrestitution = 1.5\nat_speed = 1.0",
+            vec!["cloth.restitution"],
+        ),
+        ("bad_name.toml", "damping = \"viscous\"", vec!["damping"]),
+    ] {
+        refused(&bin(&["run", &v(name, keys)]), &want);
+    }
+}

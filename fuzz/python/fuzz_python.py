@@ -693,6 +693,28 @@ def surface_cluster(fdp: atheris.FuzzedDataProvider) -> None:
     draw_rtol(fdp, call, True)
     if isinstance(call.get("rtol"), float) and 0 < call["rtol"] < 1e-10:
         call["rtol"] = 1e-10  # the work of one input stays bounded
+    resolved_and_checked(model, kw, states, call, what, sticks)
+    # Then the same balls on a damped bed, from the bytes left (drawn last, so that the
+    # inputs kept before the cloth's damping existed keep their meaning).
+    if isinstance(cloth, dict) and fdp.remaining_bytes() > 0:
+        cloth = dict(cloth)
+        cloth["damping"] = pick(fdp, ["hunt-crossley", "kuwabara-kono", None, "viscous"])
+        if fdp.ConsumeBool():
+            cloth.update(draw_keywords(fdp, {"restitution": 0.5, "at_speed": 1.0}, set()))
+        else:
+            base = 0.5 if cloth["damping"] == "hunt-crossley" else 2e-5
+            cloth.update(draw_keywords(fdp, {"coefficient": base}, set()))
+        kw = dict(kw, cloth=cloth)
+        what = f"Cluster({kw})"
+        model = constructed(bc.Cluster, kw, CLUSTER_ARGS)
+        if model is not None:
+            resolved_and_checked(model, kw, states, call, what, sticks)
+
+
+def resolved_and_checked(model, kw: dict, states: dict, call: dict, what: str,
+                         sticks: bool) -> None:
+    """`model.resolve(**states, **call)` and its promises (the cluster surface's)."""
+    cloth = kw.get("cloth")
     what += f".resolve({states}, {call})"
     try:
         out = model.resolve(**states, **call)

@@ -522,6 +522,14 @@ class ClothSpec(TypedDict, total=False):
     """The cloth's z (m; default the first ball's z minus its radius)."""
     gravity: float
     """Gravity along -z (m/s^2; default 9.81)."""
+    damping: Optional[Literal["hunt-crossley", "kuwabara-kono"]]
+    """Damping of each ball's contact with the bed (default None: elastic)."""
+    coefficient: float
+    """Its coefficient (s/m or s), or instead restitution with at_speed."""
+    restitution: float
+    """The restitution a ball dropped at at_speed has (calibrated on each ball's mass)."""
+    at_speed: float
+    """The drop speed (m/s) of that restitution."""
 
 class ClusterResult(TypedDict):
     """Outgoing state of Cluster.resolve: a row per ball, in the order of Cluster.balls."""

@@ -66,16 +66,33 @@ pub struct Cluster {
 }
 
 /// The `cloth=` keyword's dict, checked.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 struct ClothSpec {
     material: Material,
     mu: f64,
     height: Option<f64>,
     gravity: f64,
+    /// The damping keys as given ("damping" by its name).
+    damping: Option<String>,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+    /// The damping they give (elastic by default).
+    pair: PairDamping,
 }
 
 /// The keys of the `cloth=` dict (the scene's [cloth] keys).
-const CLOTH_KEYS: [&str; 5] = ["youngs_modulus", "poisson_ratio", "mu", "height", "gravity"];
+const CLOTH_KEYS: [&str; 9] = [
+    "youngs_modulus",
+    "poisson_ratio",
+    "mu",
+    "height",
+    "gravity",
+    "damping",
+    "coefficient",
+    "restitution",
+    "at_speed",
+];
 
 impl ClothSpec {
     /// From the `cloth=` dict: unknown keys, missing material, bad numbers raise ValueError
@@ -119,11 +136,38 @@ impl ClothSpec {
         let material =
             Material::in_section("cloth", need("youngs_modulus")?, need("poisson_ratio")?)
                 .map_err(to_py)?;
+        let damping: Option<String> = match d.get_item("damping")? {
+            None => None,
+            Some(v) if v.is_none() => None,
+            Some(v) => Some(v.extract().map_err(|_| {
+                PyTypeError::new_err(
+                    "cloth.damping: expected None, \"hunt-crossley\" or \"kuwabara-kono\"",
+                )
+            })?),
+        };
+        let law = damping_of(damping.as_deref()).map_err(|e| {
+            bad(
+                "cloth.damping",
+                format!("{:?}", damping.as_deref().unwrap_or("")),
+                &match e {
+                    Error::InvalidParameter { expected, .. } => expected,
+                    e => e.to_string(),
+                },
+            )
+        })?;
+        let (coefficient, restitution, at_speed) =
+            (get("coefficient")?, get("restitution")?, get("at_speed")?);
+        let pair = pair_damping_of("cloth.", law, coefficient, restitution, at_speed)?;
         Ok(ClothSpec {
             material,
             mu: get("mu")?.unwrap_or(CLOTH_DEFAULT_MU),
             height: get("height")?,
             gravity: get("gravity")?.unwrap_or(CLOTH_DEFAULT_GRAVITY),
+            damping,
+            coefficient,
+            restitution,
+            at_speed,
+            pair,
         })
     }
 
@@ -137,6 +181,18 @@ impl ClothSpec {
             d.set_item("height", h)?;
         }
         d.set_item("gravity", self.gravity)?;
+        if let Some(name) = &self.damping {
+            d.set_item("damping", name)?;
+        }
+        for (k, x) in [
+            ("coefficient", self.coefficient),
+            ("restitution", self.restitution),
+            ("at_speed", self.at_speed),
+        ] {
+            if let Some(x) = x {
+                d.set_item(k, x)?;
+            }
+        }
         Ok(d)
     }
 
@@ -201,6 +257,63 @@ pub(crate) fn damping_of(name: Option<&str>) -> Result<Damping, Error> {
     }
 }
 
+/// The damping of a law from the keywords `damping`, `coefficient`, `restitution` and
+/// `at_speed` (refused as the scene file's are: the coefficient or the restitution with
+/// its speed), their names prefixed by `p` in errors ("" for the pairs, "cloth." for the
+/// cloth's dict).
+fn pair_damping_of(
+    p: &str,
+    damping: Damping,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+) -> PyResult<PairDamping> {
+    let calibration = match (coefficient, restitution, at_speed) {
+        (Some(_), Some(_), _) => {
+            return Err(bad(
+                &format!("{p}coefficient, {p}restitution"),
+                "both given",
+                "the coefficient or the restitution (with at_speed), not both",
+            ))
+        }
+        (_, Some(_), None) | (_, None, Some(_)) => {
+            return Err(bad(
+                &format!("{p}restitution, {p}at_speed"),
+                "one given without the other",
+                "restitution and at_speed together",
+            ))
+        }
+        (_, Some(e), Some(v)) => Some((e, v)),
+        (_, None, None) => None,
+    };
+    if damping == Damping::None && coefficient.is_some() {
+        return Err(bad(
+            &format!("{p}coefficient"),
+            "given with damping None",
+            "no coefficient for elastic Hertz; name a damping law",
+        ));
+    }
+    Ok(match (coefficient, calibration) {
+        (Some(c), _) => PairDamping::Coefficient(damping, c),
+        (None, Some((e, v))) => PairDamping::Restitution {
+            damping,
+            restitution: e,
+            at_speed: v,
+        },
+        (None, None) if damping == Damping::None => PairDamping::None,
+        (None, None) => {
+            return Err(bad(
+                &format!("{p}damping"),
+                format!(
+                    "{:?} without a coefficient or a restitution",
+                    damping.name()
+                ),
+                "coefficient=, or restitution= with at_speed=",
+            ))
+        }
+    })
+}
+
 /// The law of every pair from the keywords, refused as the scene file's `[contact.law]`
 /// is: exactly one of the stiffness or the material, the coefficient or the restitution
 /// with its speed.
@@ -234,50 +347,7 @@ fn law_of(
             ))
         }
     };
-    let calibration = match (coefficient, restitution, at_speed) {
-        (Some(_), Some(_), _) => {
-            return Err(bad(
-                "coefficient, restitution",
-                "both given",
-                "the coefficient or the restitution (with at_speed), not both",
-            ))
-        }
-        (_, Some(_), None) | (_, None, Some(_)) => {
-            return Err(bad(
-                "restitution, at_speed",
-                "one given without the other",
-                "restitution and at_speed together",
-            ))
-        }
-        (_, Some(e), Some(v)) => Some((e, v)),
-        (_, None, None) => None,
-    };
-    if damping == Damping::None && coefficient.is_some() {
-        return Err(bad(
-            "coefficient",
-            "given with damping None",
-            "no coefficient for elastic Hertz; name a damping law",
-        ));
-    }
-    let pair_damping = match (coefficient, calibration) {
-        (Some(c), _) => PairDamping::Coefficient(damping, c),
-        (None, Some((e, v))) => PairDamping::Restitution {
-            damping,
-            restitution: e,
-            at_speed: v,
-        },
-        (None, None) if damping == Damping::None => PairDamping::None,
-        (None, None) => {
-            return Err(bad(
-                "damping",
-                format!(
-                    "{:?} without a coefficient or a restitution",
-                    damping.name()
-                ),
-                "coefficient=, or restitution= with at_speed=",
-            ))
-        }
-    };
+    let pair_damping = pair_damping_of("", damping, coefficient, restitution, at_speed)?;
     match (stiffness, material) {
         (Some(_), Some(_)) => Err(bad(
             "stiffness",
@@ -519,12 +589,15 @@ impl Cluster {
         } else {
             ClusterTangential::Rigid
         };
-        let cloth = self.cloth.map(|c| c.cloth(&balls[0]));
+        let cloth = self.cloth.as_ref().map(|c| (c.cloth(&balls[0]), c.pair));
         let (out, held) = py
             .detach(move || {
                 let mut cluster = Kernel::new(balls, law, mu)?.with_tangential(tangential)?;
-                if let Some(c) = cloth {
+                if let Some((c, damping)) = cloth {
                     cluster = cluster.with_cloth(c)?;
+                    if damping != PairDamping::None {
+                        cluster = cluster.with_cloth_damping(damping)?;
+                    }
                 }
                 let out = resolve_cluster(&cluster, &settings)?;
                 let held = out.cloth_held(&cluster);
@@ -680,7 +753,20 @@ impl Cluster {
             if let Some(h) = c.height {
                 s += &format!(", 'height': {h:?}");
             }
-            s += &format!(", 'gravity': {:?}}}", c.gravity);
+            s += &format!(", 'gravity': {:?}", c.gravity);
+            if let Some(name) = &c.damping {
+                s += &format!(", 'damping': '{name}'");
+            }
+            for (k, x) in [
+                ("coefficient", c.coefficient),
+                ("restitution", c.restitution),
+                ("at_speed", c.at_speed),
+            ] {
+                if let Some(x) = x {
+                    s += &format!(", '{k}': {x:?}");
+                }
+            }
+            s += "}";
         }
         s + ")"
     }

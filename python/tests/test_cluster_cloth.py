@@ -119,3 +119,61 @@ def test_a_ball_pressed_into_the_cloth_balances_with_what_the_cloth_holds():
     assert k_in - k_out - heat - out["cloth_held"] == pytest.approx(0.0, abs=1e-7 * k_in)
     # The ball hopped: it landed on the cloth again (a cloth contact per landing).
     assert sum(c["ball"] == 1 for c in out["cloth_contacts"]) >= 2
+
+
+def test_a_damped_cloth_returns_its_restitution_and_balances():
+    """A ball dropped at 1 m/s onto a bed calibrated to restitution 0.5 at that speed (no
+    gravity, no friction: the drop is the ball's alone) leaves at 0.5 m/s, the calibration's
+    promise; with gravity and friction a ball pressed in at 1 cm/s beside a rolling one
+    closes K_in = K_out + heat + held (the damping's work in the cloth contacts' heat, the
+    store written out as above). The dict round-trips through repr and pickle."""
+    damped = {"damping": "hunt-crossley", "restitution": 0.5, "at_speed": 1.0}
+    drop = bc.Cluster(balls=[BALL, BALL], mu=0.0, youngs_modulus=E, poisson_ratio=NU,
+                      cloth=dict(SLATE, mu=0.0, gravity=0.0, **damped))
+    p = np.array([[0.0, 0.0, R], [2.0 * R, 0.0, R]])
+    v = np.array([[1e-3, 0.0, -1.0], [0.0, 0.0, 0.0]])
+    out = drop.resolve(p, v, np.zeros((2, 3)), rtol=1e-10)
+    assert out["velocities"][0][2] == pytest.approx(0.5, abs=1e-6)
+    back = pickle.loads(pickle.dumps(drop))
+    assert back == drop and repr(back) == repr(drop)
+    assert "'damping': 'hunt-crossley', 'restitution': 0.5, 'at_speed': 1.0" in repr(drop)
+
+    c = bc.Cluster(balls=[BALL, BALL], mu=0.06, youngs_modulus=E, poisson_ratio=NU,
+                   cloth=dict(SLATE, mu=0.2, damping="kuwabara-kono", coefficient=2e-5))
+    p = np.array([[0.0, 0.0, R], [2.0 * R + 60e-6, 0.0, R]])
+    v = np.array([[0.01, 0.0, 0.0], [0.0, 0.0, -0.01]])
+    out = c.resolve(p, v, np.zeros((2, 3)), rtol=1e-10)
+    e_star = 1.0 / ((1 - NU**2) / E + (1 - 0.25**2) / 5.0e10)
+    k = 4.0 / 3.0 * e_star * np.sqrt(R)
+    ds = (M * G / k) ** (2.0 / 3.0)
+
+    def store(d):
+        return 0.4 * k * max(d, 0.0) ** 2.5 - M * G * d
+
+    held = sum(store(R - z + ds) - store(ds) for z in out["positions"][:, 2])
+    k_in = 0.5 * M * (0.01**2 + 0.01**2)
+    k_out = 0.5 * M * float(np.sum(out["velocities"] ** 2)) + 0.2 * M * R * R * float(
+        np.sum(out["spins"] ** 2))
+    heat = sum(c["heat"] for c in out["contacts"] + out["cloth_contacts"])
+    assert k_in - k_out - heat - held == pytest.approx(0.0, abs=1e-7 * k_in)
+    # The damping took energy from the pressed ball's vertical motion.
+    assert sum(c["heat"] for c in out["cloth_contacts"] if c["ball"] == 1) > 0.0
+
+
+@pytest.mark.parametrize("keys, words", [
+    ({"damping": "viscous"}, ["cloth.damping", "hunt-crossley"]),
+    ({"damping": "hunt-crossley", "restitution": 0.5}, ["cloth.restitution", "cloth.at_speed"]),
+    ({"coefficient": 0.1}, ["cloth.coefficient", "damping"]),
+    ({"damping": "hunt-crossley"}, ["cloth.damping", "coefficient"]),
+])
+def test_bad_cloth_dampings_are_refused_naming_the_key(keys, words):
+    with pytest.raises(ValueError) as e:
+        bc.Cluster(balls=[BALL, BALL], mu=0.1, youngs_modulus=E, poisson_ratio=NU,
+                   cloth=dict(SLATE, **keys))
+    for w in words:
+        assert w in str(e.value)
+    # A restitution out of range is refused when the cloth is built, naming it.
+    c = bc.Cluster(balls=[BALL, BALL], mu=0.1, youngs_modulus=E, poisson_ratio=NU,
+                   cloth=dict(SLATE, damping="hunt-crossley", restitution=1.5, at_speed=1.0))
+    with pytest.raises(ValueError, match=r"cloth.restitution = 1.5"):
+        c.resolve(*head_on())

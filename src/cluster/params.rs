@@ -62,6 +62,15 @@ pub enum PairDamping {
 }
 
 impl PairDamping {
+    /// The damping law (none, Hunt-Crossley or Kuwabara-Kono).
+    pub fn damping(&self) -> Damping {
+        match *self {
+            PairDamping::None => Damping::None,
+            PairDamping::Coefficient(d, _) => d,
+            PairDamping::Restitution { damping, .. } => damping,
+        }
+    }
+
     /// The law of a pair of stiffness `k` (N/m^1.5) and reduced mass `reduced_mass` (kg):
     /// a calibrated damping runs its head-on calibration on that mass.
     pub fn law(&self, k: f64, reduced_mass: f64) -> Result<ContactLaw, Error> {
@@ -104,8 +113,12 @@ pub struct Cluster {
     pub(crate) shear: Vec<f64>,
     /// The cloth under the balls, if they rest on one ([`Cluster::with_cloth`]).
     pub(crate) cloth: Option<ClusterCloth>,
-    /// Each ball's elastic Hertz law on the cloth (empty without one).
+    /// Each ball's Hertz law on the cloth, elastic unless [`Cluster::with_cloth_damping`]
+    /// (empty without a cloth).
     pub(crate) cloth_laws: Vec<ContactLaw>,
+    /// The damping of every ball's contact with the cloth ([`PairDamping::None`] unless
+    /// [`Cluster::with_cloth_damping`]).
+    pub(crate) cloth_damping: PairDamping,
     /// Each ball's static compression of the cloth under its weight (m; empty without one).
     pub(crate) cloth_preloads: Vec<f64>,
 }
@@ -295,6 +308,7 @@ impl Cluster {
             shear: Vec::new(),
             cloth: None,
             cloth_laws: Vec::new(),
+            cloth_damping: PairDamping::None,
             cloth_preloads: Vec::new(),
         })
     }
@@ -390,6 +404,104 @@ impl Cluster {
     /// The cloth the balls rest on, if any.
     pub fn cloth(&self) -> Option<&ClusterCloth> {
         self.cloth.as_ref()
+    }
+
+    /// The cluster with every ball's contact with the cloth damped by `damping` (a real
+    /// cloth returns about half of a drop's speed; the default is elastic). A coefficient
+    /// is taken as given; a restitution is calibrated for each ball on its own mass, the bed
+    /// immovable, on the contact alone (no gravity, no preload: docs/cluster.md#the-cloth).
+    /// The weight's static compression is the elastic law's (the damping force vanishes
+    /// at rest), and the damping's work is each cloth contact's heat besides friction's.
+    /// Refused naming `cluster.cloth` without a cloth ([`Cluster::with_cloth`] first).
+    ///
+    /// ```
+    /// use billiard_contact::nalgebra::Vector3;
+    /// use billiard_contact::*;
+    /// // A ball dropped onto a steel bed at 1 m/s beside another that it nudges at 1 mm/s,
+    /// // its contact with the bed calibrated to return half of that speed.
+    /// let resin = Material::new(5.4e9, 0.34).unwrap();
+    /// let r = 0.028575;
+    /// let ball = |x: f64, v: Vector3<f64>| ClusterBall {
+    ///     ball: Ball::new(0.17, r, 0.4).unwrap(),
+    ///     position: Vector3::new(x, 0.0, r),
+    ///     velocity: v,
+    ///     spin: Vector3::zeros(),
+    /// };
+    /// let cluster = Cluster::new(
+    ///     vec![ball(0.0, Vector3::new(1e-3, 0.0, -1.0)), ball(2.0 * r, Vector3::zeros())],
+    ///     ClusterLaw::Materials(vec![resin; 2], PairDamping::None),
+    ///     0.0,
+    /// )
+    /// .unwrap()
+    /// .with_cloth(ClusterCloth {
+    ///     height: 0.0,
+    ///     material: Material::new(2.0e11, 0.3).unwrap(),
+    ///     mu: 0.2,
+    ///     gravity: 0.0,
+    /// })
+    /// .unwrap()
+    /// .with_cloth_damping(PairDamping::Restitution {
+    ///     damping: Damping::HuntCrossley,
+    ///     restitution: 0.5,
+    ///     at_speed: 1.0,
+    /// })
+    /// .unwrap();
+    /// let out = resolve_cluster(&cluster, &ClusterSettings::default()).unwrap();
+    /// assert!((out.balls[0].velocity.z - 0.5).abs() < 1e-6);
+    /// ```
+    pub fn with_cloth_damping(mut self, damping: PairDamping) -> Result<Self, Error> {
+        if self.cloth.is_none() {
+            return Err(Error::invalid(
+                CLUSTER_CLOTH_FIELD,
+                "a cloth damping without a cloth",
+                "a cloth first (with_cloth), then its damping",
+            ));
+        }
+        // One calibration per kind of ball (stiffness on the bed and mass).
+        let mut done: Vec<(f64, f64, ContactLaw)> = Vec::new();
+        let laws = self
+            .cloth_laws
+            .iter()
+            .zip(&self.balls)
+            .map(|(law, b)| {
+                let (k, m) = (law.stiffness(), b.ball.mass());
+                if let Some(&(_, _, l)) = done.iter().find(|d| d.0 == k && d.1 == m) {
+                    return Ok(l);
+                }
+                let l = damping.law(k, m)?;
+                done.push((k, m, l));
+                Ok(l)
+            })
+            .collect::<Result<Vec<_>, Error>>()
+            .map_err(|e| match e {
+                Error::InvalidParameter {
+                    field,
+                    value,
+                    expected,
+                } => Error::InvalidParameter {
+                    field: format!(
+                        "cluster.cloth.{}",
+                        field.strip_prefix("contact.law.").unwrap_or(&field)
+                    ),
+                    value,
+                    expected,
+                },
+                e => e,
+            })?;
+        self.cloth_laws = laws;
+        self.cloth_damping = damping;
+        Ok(self)
+    }
+
+    /// The damping of the balls' contacts with the cloth ([`Cluster::with_cloth_damping`]).
+    pub fn cloth_damping(&self) -> PairDamping {
+        self.cloth_damping
+    }
+
+    /// Ball `i`'s law on the cloth (its Hertz stiffness from the two materials, its damping
+    /// coefficient calibrated on its mass), if the balls rest on one.
+    pub fn cloth_law(&self, i: usize) -> Option<ContactLaw> {
+        self.cloth_laws.get(i).copied()
     }
 
     /// The cluster with the tangential law `tangential` at every contact. Mindlin's spring

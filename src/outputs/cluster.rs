@@ -3,7 +3,7 @@
 
 use crate::base::error::Error;
 use crate::base::number::{count, decimal, sci, shortest, si};
-use crate::cluster::params::{Cluster, ClusterBall};
+use crate::cluster::params::{Cluster, ClusterBall, PairDamping};
 use crate::cluster::resolve::{ClusterOutcome, ClusterSettings};
 use crate::model::params::Ball;
 use crate::outputs::report::{v3, Num};
@@ -131,6 +131,12 @@ struct ClothJson {
     youngs_modulus: Num,
     poisson_ratio: Num,
     gravity: Num,
+    /// The damping law of the balls' contacts with the bed (absent when elastic).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    damping: Option<&'static str>,
+    /// Each ball's damping coefficient on the bed (beta s/m or gamma s; absent when elastic).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    coefficients: Option<Vec<Num>>,
     contacts: Vec<ClothContactJson>,
     held: Num,
     external_impulse: [Num; 3],
@@ -175,6 +181,13 @@ impl ClusterReport {
             youngs_modulus: Num(c.material.youngs_modulus()),
             poisson_ratio: Num(c.material.poisson_ratio()),
             gravity: Num(c.gravity),
+            damping: (scene.cluster.cloth_damping() != PairDamping::None)
+                .then(|| scene.cluster.cloth_damping().damping().name()),
+            coefficients: (scene.cluster.cloth_damping() != PairDamping::None).then(|| {
+                (0..scene.cluster.balls().len())
+                    .filter_map(|i| scene.cluster.cloth_law(i).map(|l| Num(l.coefficient())))
+                    .collect()
+            }),
             contacts: out
                 .cloth
                 .iter()

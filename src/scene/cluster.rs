@@ -28,6 +28,9 @@
 //! # mu = 0.2                  # Coulomb's friction between ball and cloth; default 0.2
 //! # height = -0.028575        # m, the cloth's z; default balls[0]'s z minus its radius
 //! # gravity = 9.81            # m/s^2 along -z; default 9.81
+//! # damping = "hunt-crossley" # each ball's contact with the bed: none (default: elastic) |
+//!                             # hunt-crossley | kuwabara-kono, as [contact.law] names them
+//! # restitution = 0.5         # with at_speed (m/s, the ball's drop speed); or coefficient
 //! [solver]                    # optional
 //! rtol = 1e-8                 # the kernel's default
 //! [effects]                   # optional
@@ -88,6 +91,37 @@ struct RawCloth {
     mu: Option<f64>,
     height: Option<f64>,
     gravity: Option<f64>,
+    #[serde(default, deserialize_with = "optional_name")]
+    damping: Option<Damping>,
+    coefficient: Option<f64>,
+    restitution: Option<f64>,
+    at_speed: Option<f64>,
+}
+
+impl RawCloth {
+    /// The damping of every ball's contact with the cloth, from the keys `[contact.law]`
+    /// names the same way (elastic by default), its errors naming `cloth.<key>`.
+    fn damping(&self) -> Result<PairDamping, Error> {
+        pair_damping(&LawSpec {
+            stiffness: None,
+            damping: self.damping.unwrap_or(Damping::None),
+            coefficient: self.coefficient,
+            restitution: self.restitution,
+            at_speed: self.at_speed,
+        })
+        .map_err(|e| match e {
+            Error::InvalidParameter {
+                field,
+                value,
+                expected,
+            } => Error::InvalidParameter {
+                field: field.replace("contact.law.", "cloth."),
+                value: value.replace("contact.law.", "cloth."),
+                expected,
+            },
+            e => e,
+        })
+    }
 }
 
 #[derive(Deserialize)]
@@ -327,7 +361,13 @@ impl ClusterScene {
                         mu: cl.mu.unwrap_or(CLOTH_DEFAULT_MU),
                         gravity: cl.gravity.unwrap_or(CLOTH_DEFAULT_GRAVITY),
                     };
-                    c.with_cloth(cloth)
+                    let damping = cl.damping()?;
+                    let c = c.with_cloth(cloth)?;
+                    if damping == PairDamping::None {
+                        Ok(c)
+                    } else {
+                        c.with_cloth_damping(damping)
+                    }
                 }
             })
             .map_err(|e| scene_fields(e, CLUSTER_RTOL_FIELD))?;
