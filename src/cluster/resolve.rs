@@ -1283,7 +1283,7 @@ impl Run<'_> {
         self.y.extend(std::iter::repeat_n(0.0, self.pc()));
         let k = self.active.len() - 1;
         if on_cloth && self.t > 0.0 && self.active[k].law.damping() != Damping::None {
-            // A damped cloth contact that let go while the bed was compressed (`open`) can
+            // A damped cloth contact that let go while the bed was compressed (`let_go`) can
             // close again while the ball is still below the bed's surface: the bed's spring
             // starts compressed, its (2/5) k delta^(5/2) out of nothing; booked against the
             // contact's heat, so that K_in = K_out + heat + held stays closed.
