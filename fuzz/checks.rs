@@ -1270,9 +1270,6 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
                 .all(|x| x.is_finite()),
             "{what}: cloth contact {c:?}"
         );
-        if k0.is_finite() && dissipative {
-            assert!(c.heat >= -tol * k0, "{what}: heat of {c:?} (K_in {k0:e})");
-        }
         heat += c.heat;
     }
     if let (true, Some(cloth)) = (k0.is_finite(), cluster.cloth()) {
@@ -1313,6 +1310,19 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
             store += weight * ds;
             let v = |d: f64| 0.4 * k * d.max(0.0).powf(2.5) - weight * d;
             held += v(b.ball.radius() - (o.position.z - cloth.height) + ds) - v(ds);
+        }
+        // Each cloth contact's heat is not below its stepping's error, on the same allowance
+        // as the balance: a damped bed's heat draws on the cloth's store (four slow balls on
+        // a Kuwabara-Kono bed at rtol 1e-3, K_in 1.8e-7 J, oscillating on it for 1.3 s: a
+        // contact's heat -8.5e-7 J, the balance 8.8e-7 J off, 5.9e-9 J at rtol 1e-4; found
+        // by fuzzing).
+        if dissipative {
+            for c in &out.cloth {
+                assert!(
+                    c.heat >= -(tol * (k0 + store) + landings),
+                    "{what}: heat of {c:?} (K_in {k0:e}, store {store:e})"
+                );
+            }
         }
         let scale = k0.max(k1).max(heat.abs()) + store;
         assert!(
