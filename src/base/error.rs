@@ -236,6 +236,23 @@ impl Error {
         }
     }
 
+    /// The error with `from` in its field and value named `to` instead (a law's keys
+    /// `contact.law.` given in another section, `cloth.`); other errors as they are.
+    pub(crate) fn moved(self, from: &str, to: &str) -> Self {
+        match self {
+            Error::InvalidParameter {
+                field,
+                value,
+                expected,
+            } => Error::InvalidParameter {
+                field: field.replace(from, to),
+                value: value.replace(from, to),
+                expected,
+            },
+            e => e,
+        }
+    }
+
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {

@@ -473,21 +473,7 @@ impl Cluster {
                 Ok(l)
             })
             .collect::<Result<Vec<_>, Error>>()
-            .map_err(|e| match e {
-                Error::InvalidParameter {
-                    field,
-                    value,
-                    expected,
-                } => Error::InvalidParameter {
-                    field: format!(
-                        "cluster.cloth.{}",
-                        field.strip_prefix("contact.law.").unwrap_or(&field)
-                    ),
-                    value,
-                    expected,
-                },
-                e => e,
-            })?;
+            .map_err(|e| e.moved("contact.law.", "cluster.cloth."))?;
         self.cloth_laws = laws;
         self.cloth_damping = damping;
         Ok(self)

@@ -141,6 +141,13 @@ impl ContactLaw {
         self.coefficient
     }
 
+    /// The energy (J) Hertz's spring holds at compression `delta` (m): (2/5) k delta^(5/2),
+    /// 0 while apart (the damping term holds none).
+    #[inline]
+    pub fn elastic_energy(&self, delta: f64) -> f64 {
+        0.4 * self.stiffness * delta.max(0.0).powf(2.5)
+    }
+
     /// The normal force f (N) at compression `delta` (m) closing at `delta_dot` (m/s),
     /// clipped at 0: no force while apart (delta <= 0) and no pull.
     #[inline]

@@ -109,18 +109,7 @@ impl RawCloth {
             restitution: self.restitution,
             at_speed: self.at_speed,
         })
-        .map_err(|e| match e {
-            Error::InvalidParameter {
-                field,
-                value,
-                expected,
-            } => Error::InvalidParameter {
-                field: field.replace("contact.law.", "cloth."),
-                value: value.replace("contact.law.", "cloth."),
-                expected,
-            },
-            e => e,
-        })
+        .map_err(|e| e.moved("contact.law.", "cloth."))
     }
 }
 
