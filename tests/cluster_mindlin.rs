@@ -74,27 +74,13 @@ fn kinetic(balls: &[ClusterBall], v: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
         .sum()
 }
 
-/// The two-ball collision through the cluster with Mindlin's spring and through the pair
-/// kernel `resolve_sphere_sphere_compliant_damped` (its own Dormand-Prince, its own events),
-/// on the same balls, materials, damping and mu. Returns the largest difference of the
-/// outgoing velocities and r times spins over the speed scale, and the cluster's outcome.
+/// The two-ball collision through the cluster with Mindlin's spring at `rtol` and through
+/// the pair kernel `resolve_sphere_sphere_compliant_damped` at 1e-12 (its own
+/// Dormand-Prince, its own events), on the same balls, materials, damping and mu. Returns
+/// the largest difference of the outgoing velocities and r times spins over the speed
+/// scale, and the cluster's outcome.
 #[allow(clippy::too_many_arguments)]
 fn against_pair(
-    materials: (Material, Material),
-    damping: PairDamping,
-    mu: f64,
-    n: Vector3<f64>,
-    va: Vector3<f64>,
-    wa: Vector3<f64>,
-    vb: Vector3<f64>,
-    wb: Vector3<f64>,
-) -> (f64, ClusterOutcome) {
-    against_pair_at(1e-11, materials, damping, mu, n, va, wa, vb, wb)
-}
-
-/// [`against_pair`] with the cluster at `rtol` (the pair kernel stays at 1e-12).
-#[allow(clippy::too_many_arguments)]
-fn against_pair_at(
     rtol: f64,
     materials: (Material, Material),
     damping: PairDamping,
@@ -187,6 +173,9 @@ fn against_pair_at(
     (worst, out)
 }
 
+/// The cluster's tolerance against the pair kernel's 1e-12.
+const CLUSTER_RTOL: f64 = 1e-11;
+
 /// Within the two kernels' tolerances (rtol 1e-11 and 1e-12): 1e-8 of the speed.
 const PAIR_AGREEMENT: f64 = 1e-8;
 
@@ -213,8 +202,17 @@ fn two_balls_match_the_pair_kernel_undamped() {
         ),
     ];
     for (mu, va, wa, vb, wb) in cases {
-        let (worst, out) =
-            against_pair((resin(), ivory()), PairDamping::None, mu, n, va, wa, vb, wb);
+        let (worst, out) = against_pair(
+            CLUSTER_RTOL,
+            (resin(), ivory()),
+            PairDamping::None,
+            mu,
+            n,
+            va,
+            wa,
+            vb,
+            wb,
+        );
         assert!(worst < PAIR_AGREEMENT, "mu {mu}: {worst:e}");
         assert!(out.contacts[0].friction_impulse.norm() > 1e-4 * out.contacts[0].normal_impulse);
     }
@@ -226,6 +224,7 @@ fn two_balls_match_the_pair_kernel_undamped() {
 #[test]
 fn two_balls_of_one_material_match_the_pair_kernel() {
     let (worst, _) = against_pair(
+        CLUSTER_RTOL,
         (resin(), resin()),
         PairDamping::None,
         0.2,
@@ -254,6 +253,7 @@ fn two_balls_match_the_pair_kernel_damped() {
         },
     ] {
         let (worst, _) = against_pair(
+            CLUSTER_RTOL,
             (resin(), ivory()),
             damping,
             0.3,
@@ -477,7 +477,7 @@ fn a_tiny_cap_slides_without_chattering() {
     };
     for mu in [0.0056, 0.002] {
         for (rtol, bound) in [(1e-4, 1e-5), (1e-6, 1e-7)] {
-            let (worst, out) = against_pair_at(
+            let (worst, out) = against_pair(
                 rtol,
                 (resin(), resin()),
                 kk,
