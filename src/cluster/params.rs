@@ -235,7 +235,7 @@ impl Cluster {
                         ),
                     ));
                 }
-                approaching |= first_touch(p, b.velocity - a.velocity, d).is_some();
+                approaching |= first_touch(p, b.velocity - a.velocity, d, 0.0).is_some();
             }
         }
         if !approaching {
@@ -569,7 +569,7 @@ impl Cluster {
             for j in i + 1..b.len() {
                 let d = b[i].ball.radius() + b[j].ball.radius();
                 let p = b[j].position - b[i].position;
-                if let Some(t) = first_touch(p, b[j].velocity - b[i].velocity, d) {
+                if let Some(t) = first_touch(p, b[j].velocity - b[i].velocity, d, 0.0) {
                     first = first.min(t);
                 }
             }
@@ -589,16 +589,17 @@ impl Cluster {
 /// closing at 7e-310 m/s while sliding past each other at 2 mm/s held a cluster's steps at
 /// their smallest for 1e6 steps (found by fuzzing): the pair counted as about to close
 /// at every step and never did.
-const CLUSTER_GRAZING: f64 = 1e-40;
+pub(crate) const CLUSTER_GRAZING: f64 = 1e-40;
 
 /// The time (s) from now at which two balls in free flight, centre of the second at `p` (m)
 /// from the first's, relative velocity `u` (m/s), come to the distance `d` (m) while
 /// approaching: 0 when they touch (within the tolerance) and close; `None` when they never do
-/// (an approach slower than [`CLUSTER_GRAZING`] of their relative speed is none).
-pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64) -> Option<f64> {
+/// (an approach slower than [`CLUSTER_GRAZING`] of their relative speed, or than `floor`
+/// (m/s), is none).
+pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64, floor: f64) -> Option<f64> {
     let b = p.dot(&u);
     // Separating pairs (most, at every step) first, without the bound's square roots.
-    if b >= 0.0 || b >= -CLUSTER_GRAZING * p.norm() * u.norm() {
+    if b >= 0.0 || b >= -p.norm() * (CLUSTER_GRAZING * u.norm()).max(floor) {
         return None;
     }
     let c = p.norm_squared() - d * d;

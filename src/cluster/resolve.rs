@@ -11,7 +11,9 @@
 //! s = v_i - v_j + r_i w_i x n + r_j w_j x n, its tangential part s_t = s - (s . n) n
 //! (eqs 5-6 of two balls).
 
-use super::params::{first_touch, pair_index, Cluster, ClusterTangential, CLUSTER_TOUCH_TOLERANCE};
+use super::params::{
+    first_touch, pair_index, Cluster, ClusterTangential, CLUSTER_GRAZING, CLUSTER_TOUCH_TOLERANCE,
+};
 use crate::base::error::Error;
 use crate::base::root::{illinois_update, Bound, Side};
 use crate::cushion::tableau::{DOPRI5_A, DOPRI5_CONTROL, DOPRI5_E};
@@ -2316,14 +2318,22 @@ impl Run<'_> {
     /// apart by more than the touch tolerance).
     fn drop_quiet(&mut self) {
         let sys = self.system(false);
-        // Per contact: (no force and not closing, unloaded and apart by the tolerance).
+        // Per contact: (no force and not closing, unloaded and apart by the tolerance). A
+        // closing slower than [`CLUSTER_GRAZING`] of the reference speed is none, as for a
+        // pair outside the set (`first_touch`): two balls apart by 1.4e-17 m closing at
+        // 7.7e-184 m/s kept an 8-ball run stepping to the work bound, its steps growing to
+        // 6e10 s (found by fuzzing).
+        let grazing = self.grazing();
         let state: Vec<(bool, bool)> = self
             .active
             .iter()
             .map(|c| {
                 let (d, w) = sys.compression(&self.y, c);
                 let tol = CLUSTER_TOUCH_TOLERANCE * (c.ri + c.rj);
-                (c.law.force(d, w) <= 0.0 && w <= 0.0, !c.loaded && d < -tol)
+                (
+                    c.law.force(d, w) <= 0.0 && w <= grazing,
+                    !c.loaded && d < -tol,
+                )
             })
             .collect();
         // The cloth's contacts stay: balls rest on it before and after. On the cloth a pair
@@ -2344,6 +2354,12 @@ impl Run<'_> {
                 self.open(k);
             }
         }
+    }
+
+    /// The slowest approach (m/s) the run counts: [`CLUSTER_GRAZING`] of the reference
+    /// speed, for a contact in the set as for a pair outside it (`first_touch`).
+    fn grazing(&self) -> f64 {
+        CLUSTER_GRAZING * self.v_ref
     }
 
     /// Whether the ball of cloth contact `c` stays on the cloth: its vertical energy about
@@ -2390,7 +2406,9 @@ impl Run<'_> {
                 }
                 let p = pos(&self.y, j) - pos(&self.y, i);
                 let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
-                if let Some(t) = first_touch(p, u, self.bodies[i].r + self.bodies[j].r) {
+                if let Some(t) =
+                    first_touch(p, u, self.bodies[i].r + self.bodies[j].r, self.grazing())
+                {
                     // Halfway from their first touch to their closest approach: a step
                     // that ends there sees them overlapping and still approaching. Not at
                     // the closest approach itself: the cloth's friction moves balls off
@@ -2414,7 +2432,8 @@ impl Run<'_> {
             (i + 1..n).any(|j| {
                 let p = pos(&self.y, j) - pos(&self.y, i);
                 let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
-                first_touch(p, u, self.bodies[i].r + self.bodies[j].r).is_some_and(|t| t <= horizon)
+                first_touch(p, u, self.bodies[i].r + self.bodies[j].r, self.grazing())
+                    .is_some_and(|t| t <= horizon)
             })
         })
     }
@@ -2427,7 +2446,9 @@ impl Run<'_> {
             for j in i + 1..nb {
                 let p = pos(&self.y, j) - pos(&self.y, i);
                 let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
-                if let Some(t) = first_touch(p, u, self.bodies[i].r + self.bodies[j].r) {
+                if let Some(t) =
+                    first_touch(p, u, self.bodies[i].r + self.bodies[j].r, self.grazing())
+                {
                     next = Some(next.map_or(t, |x: f64| x.min(t)));
                 }
             }
@@ -2447,7 +2468,7 @@ impl Run<'_> {
                 let p = pos(&self.y, j) - pos(&self.y, i);
                 let u = pos(&self.y, nb + j) - pos(&self.y, nb + i);
                 let d = self.bodies[i].r + self.bodies[j].r;
-                if first_touch(p, u, d) == Some(0.0) {
+                if first_touch(p, u, d, self.grazing()) == Some(0.0) {
                     self.close(i, j);
                 }
             }
