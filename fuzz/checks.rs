@@ -1101,11 +1101,16 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
     let pumped =
         !settings.stick && cluster.tangential() == ClusterTangential::Rigid && k_out > 10.0 * k_in;
     if stopped {
-        // Below 8 balls a stopped run is a finding at any rtol. (A slip hovering at the edge
-        // of Coulomb's cone took four rubber balls to the work bound at rtol 3e-10 and was
-        // allowed below 1e-9; it is stepped inside the stability region since.)
+        // Below 8 balls a stopped run is a finding at any rtol, and at 8 one that reaches the
+        // work bound (the documented failure of tight racks is `StepTooSmall`; an 8-ball run
+        // held to the work bound by a pair closing at 7.7e-184 m/s was found as a timeout).
+        // (A slip hovering at the edge of Coulomb's cone took four rubber balls to the work
+        // bound at rtol 3e-10 and was allowed below 1e-9; it is stepped inside the
+        // stability region since.)
         assert!(
-            n >= CLUSTER_MAX_BALLS || allow_stopped() || pumped,
+            (n >= CLUSTER_MAX_BALLS && out.stop == StopReason::StepTooSmall)
+                || allow_stopped()
+                || pumped,
             "{what}: the run stopped after {:?}",
             out.stats
         );
