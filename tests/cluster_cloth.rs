@@ -6,6 +6,8 @@
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
 
+use crate::common::cluster::kinetic;
+
 const M: f64 = 0.17;
 const R: f64 = 0.028575;
 const G: f64 = 9.81;
@@ -38,21 +40,6 @@ fn settings() -> ClusterSettings {
         rtol: 1e-10,
         stick: true,
     }
-}
-
-/// The kinetic energy (J) of `balls` moving at `states` (velocity, spin), each with its
-/// own mass and moment of inertia.
-fn kinetic<'a>(
-    balls: &[ClusterBall],
-    states: impl Iterator<Item = (&'a Vector3<f64>, &'a Vector3<f64>)>,
-) -> f64 {
-    balls
-        .iter()
-        .zip(states)
-        .map(|(b, (v, w))| {
-            0.5 * b.ball.mass() * v.norm_squared() + 0.5 * b.ball.inertia() * w.norm_squared()
-        })
-        .sum()
 }
 
 /// The energy balance of `out`, the run of `cluster`: K_in - K_out - heat - held (J), with
@@ -608,11 +595,7 @@ fn a_stopped_run_on_the_cloth_accounts_for_its_momentum() {
         .unwrap()
         .with_cloth(cloth)
         .unwrap();
-    let settings = ClusterSettings {
-        rtol: 1e-10,
-        stick: true,
-    };
-    let out = resolve_cluster(&cluster, &settings).unwrap();
+    let out = resolve_cluster(&cluster, &settings()).unwrap();
     let p_in: Vector3<f64> = balls.iter().map(|b| b.ball.mass() * b.velocity).sum();
     let p_out: Vector3<f64> = balls
         .iter()

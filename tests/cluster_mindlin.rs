@@ -6,6 +6,8 @@
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
 
+use crate::common::cluster::kinetic;
+
 /// Phenolic resin (Pa, dimensionless).
 fn resin() -> Material {
     Material::new(5.4e9, 0.34).unwrap()
@@ -62,16 +64,6 @@ fn momentum(balls: &[ClusterBall], out: &ClusterOutcome) -> (Vector3<f64>, Vecto
         .zip(&out.balls)
         .fold(Vector3::zeros(), |s, (b, o)| s + o.velocity * b.ball.mass());
     (p_in, p_out)
-}
-
-fn kinetic(balls: &[ClusterBall], v: &[(Vector3<f64>, Vector3<f64>)]) -> f64 {
-    balls
-        .iter()
-        .zip(v)
-        .map(|(b, (v, w))| {
-            0.5 * b.ball.mass() * v.norm_squared() + 0.5 * b.ball.inertia() * w.norm_squared()
-        })
-        .sum()
 }
 
 /// The two-ball collision through the cluster with Mindlin's spring at `rtol` and through
@@ -152,20 +144,8 @@ fn against_pair(
         (p_out - p_in).norm() / p_scale
     );
     // Kinetic energy is not created.
-    let e_in = kinetic(
-        &balls,
-        &balls
-            .iter()
-            .map(|b| (b.velocity, b.spin))
-            .collect::<Vec<_>>(),
-    );
-    let e_out = kinetic(
-        &balls,
-        &out.balls
-            .iter()
-            .map(|b| (b.velocity, b.spin))
-            .collect::<Vec<_>>(),
-    );
+    let e_in = kinetic(&balls, balls.iter().map(|b| (&b.velocity, &b.spin)));
+    let e_out = kinetic(&balls, out.balls.iter().map(|b| (&b.velocity, &b.spin)));
     assert!(
         e_out <= e_in * (1.0 + 1e-10),
         "energy in {e_in}, out {e_out}"
@@ -337,20 +317,8 @@ fn three_oblique_balls_conserve_momentum_and_keep_coulomb() {
         let (p_in, p_out) = momentum(&balls, &out);
         let scale = ball_a().mass() * 2.0;
         assert!((p_out - p_in).norm() <= 1e-12 * scale, "mu {mu}");
-        let e_in = kinetic(
-            &balls,
-            &balls
-                .iter()
-                .map(|b| (b.velocity, b.spin))
-                .collect::<Vec<_>>(),
-        );
-        let e_out = kinetic(
-            &balls,
-            &out.balls
-                .iter()
-                .map(|b| (b.velocity, b.spin))
-                .collect::<Vec<_>>(),
-        );
+        let e_in = kinetic(&balls, balls.iter().map(|b| (&b.velocity, &b.spin)));
+        let e_out = kinetic(&balls, out.balls.iter().map(|b| (&b.velocity, &b.spin)));
         assert!(e_out <= e_in * (1.0 + 1e-10), "mu {mu}: {e_in} -> {e_out}");
         let mut rubbed = false;
         for c in &out.contacts {

@@ -4,14 +4,16 @@
 //! first principles (contact-point velocities, Coulomb friction opposing the slip, r x F
 //! torques), in any frame, the force profiles' cumulative impulses are computed by their own
 //! formulas or quadratures, a ball's roll-out on the cloth follows its physics (`table`), and
-//! a scene file is read with `toml`, not through the crate's scene code (`scene_file`). The
-//! one part that uses the crate is `collision`, which builds its input, a `Collision`. Each
+//! a scene file is read with a scene file is read with `toml`, not through the crate's scene code (`scene_file`). The
+//! parts that use the crate are `collision`, which builds its input, a `Collision`, and
+//! `cluster`, which sums a cluster's kinetic energy from its balls' masses and inertias. Each
 //! test file uses a part of it (hence `dead_code`).
 #![allow(dead_code)]
 
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 
+pub mod cluster;
 pub mod collision;
 pub mod compliant;
 pub mod hertz_chain;
