@@ -104,9 +104,9 @@ const MIN_STEP: f64 = 1e-15;
 /// size over the step within a factor [`HOVER_KEEP`], at its rate at the step's start (a
 /// slip running down to a stop, located as an event, or growing from a release, whose
 /// direction settles as it grows, is not hovering). A hovering contact's step is held to
-/// [`HOVER_STEP`] / lambda, inside the explicit step's stability: at its edge (lambda h about 3.3 for Dormand-Prince on the real axis) the
-/// direction chatters from step to step, the error estimate lets it pass, and the
-/// friction's mean direction is off. Measured on a 7-ball rack (docs/cluster.md): unheld,
+/// [`HOVER_STEP`] / lambda, inside the explicit step's stability: at its edge (lambda h
+/// about 3.3 for Dormand-Prince on the real axis) the direction chatters from step to step,
+/// the error estimate lets it pass, and the friction's mean direction is off. Measured on a 7-ball rack (docs/cluster.md): unheld,
 /// the cue ball's outgoing v_x converged to -0.47388152 m/s in 2.9e6 steps at rtol 1e-12;
 /// held at 2 / lambda, to -0.47387948 m/s in 3.1e4 steps, the value a linearly implicit
 /// step (RODAS) and holds at 0.5 to 2.5 / lambda give; at 3 / lambda the chatter returns.
