@@ -434,8 +434,13 @@ fn cluster_scenes_refuse_mindlin_without_materials() {
 /// 10 leaves room. A sliding spring read off the cap by the step's error (the tolerance on
 /// the spring's scale, far above a cap of 1e-6 N) was a sticking one that crossed the cap
 /// again at the next step: 2,784 to 17,038 events here, and a five-ball line at rtol 1e-6
-/// reached the work bound (found by fuzzing). The answer against the pair kernel, which
-/// judges a sliding spring on its cap.
+/// reached the work bound (found by fuzzing).
+///
+/// On that cap the spring's direction relaxes towards -u at k_t |u| / (mu f), far faster
+/// than the contact moves; stepped as such it held the steps to 4,350-36,758 a run; stepped
+/// as Coulomb's friction once that turn is faster than a step, 9-83 steps. The answer
+/// against the pair kernel at rtol 1e-12: an explicit run at rtol keeps its global error
+/// near rtol of the speed (measured 0.8-1.8 rtol here), and 10 rtol is the bound.
 #[test]
 fn a_tiny_cap_slides_without_chattering() {
     let kk = PairDamping::Restitution {
@@ -444,7 +449,7 @@ fn a_tiny_cap_slides_without_chattering() {
         at_speed: 1e-3,
     };
     for mu in [0.0056, 0.002] {
-        for (rtol, bound) in [(1e-4, 1e-5), (1e-6, 1e-7)] {
+        for rtol in [1e-4, 1e-6, 1e-8] {
             let (worst, out) = against_pair(
                 rtol,
                 (resin(), resin()),
@@ -462,8 +467,13 @@ fn a_tiny_cap_slides_without_chattering() {
                 out.stats.events
             );
             assert!(
-                worst < bound,
+                worst < 10.0 * rtol,
                 "mu {mu}, rtol {rtol:e}: {worst:e} of the speed"
+            );
+            assert!(
+                out.stats.steps + out.stats.rejected <= 300,
+                "mu {mu}, rtol {rtol:e}: {:?}",
+                out.stats
             );
         }
     }

@@ -75,7 +75,7 @@ pub(crate) const NEGLIGIBLE_MU: f64 = 1e-20;
 /// the cap (a heavily damped contact at 1e-10 of its contact time a step). At 2 Chung and
 /// Ooi's Test 4 takes half the steps (87 instead of 183 at rtol 1e-8, 30 degrees) with the
 /// same error against rtol 1e-13 (4.5e-7 of Psi_2 at rtol 1e-10 before and after).
-const ALIGN_TURNS: f64 = 2.0;
+pub(crate) const ALIGN_TURNS: f64 = 2.0;
 /// Relative margin of |S| over mu F_n before a sticking step counts as having slid.
 const CAP_MARGIN: f64 = 1e-10;
 
