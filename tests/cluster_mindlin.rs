@@ -438,9 +438,10 @@ fn cluster_scenes_refuse_mindlin_without_materials() {
 ///
 /// On that cap the spring's direction relaxes towards -u at k_t |u| / (mu f), far faster
 /// than the contact moves; stepped as such it held the steps to 4,350-36,758 a run; stepped
-/// as Coulomb's friction once that turn is faster than a step, 9-83 steps. The answer
-/// against the pair kernel at rtol 1e-12: an explicit run at rtol keeps its global error
-/// near rtol of the speed (measured 0.8-1.8 rtol here), and 10 rtol is the bound.
+/// as Coulomb's friction once that turn is faster than a step, 10-138 (with the rejected).
+/// The answer against the pair kernel at rtol 1e-12: an explicit run at rtol keeps its
+/// global error near rtol of the speed (measured 0.75 to 5.1 rtol here), and 10 rtol is
+/// the bound.
 #[test]
 fn a_tiny_cap_slides_without_chattering() {
     let kk = PairDamping::Restitution {
@@ -449,7 +450,7 @@ fn a_tiny_cap_slides_without_chattering() {
         at_speed: 1e-3,
     };
     for mu in [0.0056, 0.002] {
-        for rtol in [1e-4, 1e-6, 1e-8] {
+        for rtol in [1e-4, 1e-6, 1e-8, 1e-10] {
             let (worst, out) = against_pair(
                 rtol,
                 (resin(), resin()),
