@@ -1486,6 +1486,13 @@ impl Run<'_> {
     /// order in the step; followed, 7.5e-10 rad/s at 1e-8.) Returns whether the state or
     /// any contact's flag changed (the derivative at the step's start is then stale).
     fn align(&mut self, f0: &Forces, h: f64) -> bool {
+        if !self
+            .active
+            .iter()
+            .any(|c| c.mode == Mode::SpringSlide || c.aligned)
+        {
+            return false;
+        }
         let sys = self.system(false);
         let base = PER_BALL * self.nb() + PER_CONTACT;
         let mut turned = Vec::new();
