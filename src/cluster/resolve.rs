@@ -1542,7 +1542,7 @@ impl Run<'_> {
             .active
             .iter()
             .enumerate()
-            .filter(|(_, c)| c.aligned)
+            .filter(|(_, c)| c.aligned && c.mode.spring())
             .map(|(k, c)| {
                 let sl = sys.slip(&self.y, c);
                 let o = base + pc * k;
