@@ -393,8 +393,9 @@ struct Active {
     /// Mindlin's 8 G* sqrt(R*) of the pair (N/m^1.5; 0 under the rigid rule).
     k_t0: f64,
     mode: Mode,
-    /// A sliding spring turned onto its stick rate's direction at the step's start, keeping
-    /// that direction through the step (`Run::align`).
+    /// A sliding spring stepped as Coulomb's friction through the step: its force, rates
+    /// and turn read with the spring along -u, the slip's opposite, at every stage
+    /// (`Run::align`).
     aligned: bool,
     /// Direction of sliding used when the slip is below [`SLIP_FLOOR`], and the direction
     /// friction keeps while a step is located: the slip's at the start of the step.
