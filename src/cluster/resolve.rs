@@ -414,6 +414,31 @@ struct Active {
     stick_time: Option<f64>,
 }
 
+/// Index in the state of the spring S (two components) of contact `k`, with `nb` bodies
+/// and `pc` components per contact.
+fn spring_index(nb: usize, pc: usize, k: usize) -> usize {
+    PER_BALL * nb + pc * k + PER_CONTACT
+}
+
+/// The components (m/s) of the tangential vector `v` in contact `c`'s tangent basis.
+fn in_basis(c: &Active, v: &Vector3<f64>) -> [f64; 2] {
+    [c.t[0].dot(v), c.t[1].dot(v)]
+}
+
+/// Of a sliding spring `s` (N) with stick rate `stick` (N/s) and cap rate `cap_rate`
+/// (N/s): where its stick rate turns back inside the cap, S'_stick . e - (mu f)' (positive
+/// while it slides on; 0 for a spring of no force), and the scale of those rates,
+/// |S'_stick . e| + |(mu f)'|.
+fn spring_turn_of(s: [f64; 2], stick: [f64; 2], cap_rate: f64) -> (f64, f64) {
+    let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
+    if n > 0.0 {
+        let along = (stick[0] * s[0] + stick[1] * s[1]) / n;
+        (along - cap_rate, along.abs() + cap_rate.abs())
+    } else {
+        (0.0, cap_rate.abs())
+    }
+}
+
 /// A spring's force `s` (N, tangent basis) turned against the slip `u` (m/s) at its
 /// length: -|s| u / |u|; `s` itself when the slip is zero.
 fn against_slip(s: [f64; 2], u: [f64; 2]) -> [f64; 2] {
@@ -538,7 +563,7 @@ impl System<'_> {
                 Mode::SpringStick | Mode::SpringSlide => {
                     let a = capped(self.spring(y, k), self.spring_mu * f.max(0.0));
                     let a = if c.aligned {
-                        against_slip(a, [c.t[0].dot(&s), c.t[1].dot(&s)])
+                        against_slip(a, in_basis(c, &s))
                     } else {
                         a
                     };
@@ -572,7 +597,7 @@ impl System<'_> {
 
     /// The spring S (N) of contact `k` in its tangent basis.
     fn spring(&self, y: &[f64], k: usize) -> [f64; 2] {
-        let o = PER_BALL * self.nb() + self.pc * k + PER_CONTACT;
+        let o = spring_index(self.nb(), self.pc, k);
         [y[o], y[o + 1]]
     }
 
@@ -587,8 +612,7 @@ impl System<'_> {
         let c = &self.active[k];
         let (d, w) = self.compression(y, c);
         let f = c.law.force(d, w);
-        let sl = self.slip(y, c);
-        let u = [c.t[0].dot(&sl), c.t[1].dot(&sl)];
+        let u = in_basis(c, &self.slip(y, c));
         // An aligned spring acts along -u (`Run::align`): its rates, and the events and
         // modes read from them, are those of that spring.
         let sv = if c.aligned {
@@ -1495,7 +1519,6 @@ impl Run<'_> {
             return false;
         }
         let sys = self.system(false);
-        let base = PER_BALL * self.nb() + PER_CONTACT;
         let mut turned = Vec::new();
         let mut flags = Vec::with_capacity(self.active.len());
         for (k, c) in self.active.iter().enumerate() {
@@ -1509,10 +1532,9 @@ impl Run<'_> {
                     && rn * h > ALIGN_TURNS * s
                     && rn.is_finite()
                 {
-                    let sl = sys.slip(&self.y, c);
-                    let u = [c.t[0].dot(&sl), c.t[1].dot(&sl)];
+                    let u = in_basis(c, &sys.slip(&self.y, c));
                     if u[0] != 0.0 || u[1] != 0.0 {
-                        turned.push((base + sys.pc * k, against_slip(sv, u)));
+                        turned.push((spring_index(self.nb(), sys.pc, k), against_slip(sv, u)));
                         aligned = true;
                     }
                 }
@@ -1536,8 +1558,7 @@ impl Run<'_> {
     /// ([`Run::align`]): the step's last stage applied it so, and the next step or mode
     /// decision reads the spring.
     fn settle_aligned(&mut self) {
-        let base = PER_BALL * self.nb() + PER_CONTACT;
-        let pc = self.pc();
+        let (nb, pc) = (self.nb(), self.pc());
         let sys = self.system(false);
         let turned: Vec<(usize, [f64; 2])> = self
             .active
@@ -1545,15 +1566,9 @@ impl Run<'_> {
             .enumerate()
             .filter(|(_, c)| c.aligned && c.mode.spring())
             .map(|(k, c)| {
-                let sl = sys.slip(&self.y, c);
-                let o = base + pc * k;
-                (
-                    o,
-                    against_slip(
-                        [self.y[o], self.y[o + 1]],
-                        [c.t[0].dot(&sl), c.t[1].dot(&sl)],
-                    ),
-                )
+                let o = spring_index(nb, pc, k);
+                let u = in_basis(c, &sys.slip(&self.y, c));
+                (o, against_slip([self.y[o], self.y[o + 1]], u))
             })
             .collect();
         for (o, v) in turned {
@@ -1656,18 +1671,11 @@ impl Run<'_> {
         }
     }
 
-    /// Of the sliding spring `k` at state `y` with forces `fs`: where its stick rate turns
-    /// back inside the cap, S'_stick . e - (mu f)' (positive while it slides on; 0 for a
-    /// spring of no force), and the scale of those rates, |S'_stick . e| + |(mu f)'|.
+    /// Of the sliding spring `k` at state `y` with forces `fs`: its turn
+    /// ([`spring_turn_of`]).
     fn spring_turn(&self, sys: &System<'_>, y: &[f64], fs: &Forces, k: usize) -> (f64, f64) {
         let (s, _, stick, cap_rate) = sys.spring_rates(y, &fs.acc, k);
-        let n = (s[0] * s[0] + s[1] * s[1]).sqrt();
-        if n > 0.0 {
-            let along = (stick[0] * s[0] + stick[1] * s[1]) / n;
-            (along - cap_rate, along.abs() + cap_rate.abs())
-        } else {
-            (0.0, cap_rate.abs())
-        }
+        spring_turn_of(s, stick, cap_rate)
     }
 
     /// The events crossed between `y0` and `y1`, whose forces (under `sys`) are `f0` and
@@ -2357,7 +2365,7 @@ impl Run<'_> {
             if n > 0.0 && (n > cap || c.mode == Mode::SpringSlide) {
                 let q = cap / n;
                 if q != 1.0 {
-                    let o = PER_BALL * nb + pc * k + PER_CONTACT;
+                    let o = spring_index(nb, pc, k);
                     self.y[o] *= q;
                     self.y[o + 1] *= q;
                     changed = true;
@@ -2378,11 +2386,11 @@ impl Run<'_> {
                     // the rounding's sign, one slid on through the next step, whose start in
                     // the band does not locate the turn (four Mindlin balls at 8.2 m/s, rtol
                     // 1e-10: 3.2e-6 s of sliding that stuck, 2e-4 m/s off).
-                    let along = (stick[0] * s[0] + stick[1] * s[1]) / n;
+                    let (turn, scale) = spring_turn_of(s, stick, cap_rate);
                     let slides = cap > 0.0
                         && n > 0.0
                         && n >= cap * (1.0 - SPRING_CAP_BAND)
-                        && along - cap_rate > (along.abs() + cap_rate.abs()) * SPRING_CAP_BAND;
+                        && turn > scale * SPRING_CAP_BAND;
                     (slides, if slides { cap / n } else { 1.0 })
                 })
             })
@@ -2391,7 +2399,7 @@ impl Run<'_> {
         for (k, m) in modes.into_iter().enumerate() {
             let Some((slides, q)) = m else { continue };
             if q != 1.0 {
-                let o = PER_BALL * nb + pc * k + PER_CONTACT;
+                let o = spring_index(nb, pc, k);
                 self.y[o] *= q;
                 self.y[o + 1] *= q;
                 changed = true;
