@@ -2526,16 +2526,12 @@ impl Run<'_> {
         let cloth = self.nballs();
         let on_cloth = self.cluster.cloth.is_some();
         let now = self.t;
-        let spent: Vec<bool> = self.active.iter().map(|c| self.spent(&sys, c)).collect();
-        let mut all_quiet = self
-            .active
-            .iter()
-            .zip(&state)
-            .zip(&spent)
-            .all(|((c, q), &s)| {
-                (q.0 && !(on_cloth && c.start == now)) || c.j == cloth || (!on_cloth && s)
-            });
-        if all_quiet && spent.contains(&true) {
+        let mut all_quiet = self.active.iter().zip(&state).all(|(c, q)| {
+            (q.0 && !(on_cloth && c.start == now))
+                || c.j == cloth
+                || (!on_cloth && self.spent(&sys, c))
+        });
+        if all_quiet && !on_cloth && !self.active.is_empty() {
             all_quiet = self.bounce_spent();
         }
         for k in (0..self.active.len()).rev() {
@@ -2566,10 +2562,13 @@ impl Run<'_> {
             return false;
         }
         let (d, w) = sys.compression(&self.y, c);
+        let spent = self.settings.rtol * self.v_ref / self.nballs() as f64;
+        if w > spent {
+            return false;
+        }
         let (mi, mj) = (self.bodies[c.i].m, self.bodies[c.j].m);
         let w = w.max(0.0);
         let left = w * w + 2.0 * c.law.elastic_energy(d) * (mi + mj) / (mi * mj);
-        let spent = self.settings.rtol * self.v_ref / self.nballs() as f64;
         left <= spent * spent
     }
 
@@ -2587,7 +2586,7 @@ impl Run<'_> {
         let nb = self.nb();
         let (base, pc) = (PER_BALL * nb, self.pc());
         let mut y = self.y.clone();
-        for _ in 0..BOUNCE_SWEEPS * self.nballs() {
+        for sweep in 0..BOUNCE_SWEEPS * self.nballs() {
             let mut bounced = false;
             for (k, c) in self.active.iter().enumerate() {
                 let (i, j, n) = (c.i, c.j, c.n);
@@ -2605,8 +2604,10 @@ impl Run<'_> {
                 bounced = true;
             }
             if !bounced {
-                self.y = y;
-                self.changes += 1;
+                if sweep > 0 {
+                    self.y = y;
+                    self.changes += 1;
+                }
                 return true;
             }
         }
