@@ -147,9 +147,13 @@ const SPRING_CAP_BAND: f64 = 1e-9;
 /// Why a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StopReason {
-    /// No contact is compressed and no pair will touch again: the result is final.
+    /// No contact is compressed and no pair will touch again: the result is final. Between
+    /// free balls, contacts that can give no more than rtol of the reference speed over the
+    /// number of balls end there (those still closing bounced off first;
+    /// docs/cluster.md, "Spent contacts").
     Separated,
-    /// [`CLUSTER_MAX_STEPS`] steps were taken; the state is where the run stopped.
+    /// [`CLUSTER_MAX_STEPS`] steps (and free flights) were taken; the state is where the
+    /// run stopped.
     WorkBound,
     /// The step control asked for a step below 1e-15 elastic contact times.
     StepTooSmall,
