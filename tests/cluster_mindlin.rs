@@ -479,3 +479,70 @@ fn a_tiny_cap_slides_without_chattering() {
         }
     }
 }
+
+/// Four resin balls (r = 22.86 mm, 87 g) in a touching line under Hunt-Crossley damping (c
+/// = 0.0604 s/m) and Mindlin's spring at mu 0.0277, the cue ball struck at (7.17, -2.16)
+/// m/s into the second, which moves sideways at 0.63 m/s spinning at 245 rad/s about the
+/// line (a fuzz input). At rtol 1e-3 the third contact's spring, at its onset on a cap of
+/// 4.2e-12 N growing at 3.84e-6 N/s against a stick rate of 4.30e-6 N/s, reached the cap
+/// 1e-10 s into each step and stuck again after it: 22,510 steps. A crossing of the cap
+/// within the tolerance of the spring's scale is not located now (22 steps). Expected: the
+/// physics' own balances (momentum kept, no energy made, Coulomb's bound on every contact).
+#[test]
+fn a_spring_riding_its_growing_cap_is_not_located_at_every_step() {
+    let r = 0.02286;
+    let ball = Ball::new(0.08704, r, 0.4).unwrap();
+    let at = |i: f64, v: Vector3<f64>, w: Vector3<f64>| ClusterBall {
+        ball,
+        position: Vector3::new(2.0 * r * i, 0.0, 0.0),
+        velocity: v,
+        spin: w,
+    };
+    let balls = vec![
+        at(
+            0.0,
+            Vector3::new(7.173072629162104, -2.157396527623879, 0.0),
+            Vector3::zeros(),
+        ),
+        at(
+            1.0,
+            Vector3::new(0.0, 0.6310879105042853, 0.0),
+            Vector3::new(244.7718387328157, 0.0, 0.0),
+        ),
+        at(2.0, Vector3::zeros(), Vector3::zeros()),
+        at(3.0, Vector3::zeros(), Vector3::zeros()),
+    ];
+    let mu = 0.02768166089965398;
+    let law = ClusterLaw::Materials(
+        vec![resin(); 4],
+        PairDamping::Coefficient(Damping::HuntCrossley, 0.06039002734413232),
+    );
+    let cluster = Cluster::new(balls.clone(), law, mu)
+        .unwrap()
+        .with_tangential(ClusterTangential::Mindlin)
+        .unwrap();
+    for rtol in [1e-3, 1e-4] {
+        let out = resolve_cluster(&cluster, &settings(rtol)).unwrap();
+        assert_eq!(out.stop, StopReason::Separated);
+        assert!(out.stats.steps <= 500, "rtol {rtol:e}: {:?}", out.stats);
+        let (p_in, p_out) = momentum(&balls, &out);
+        assert!(
+            (p_out - p_in).norm() <= 1e-12 * ball.mass() * 8.0,
+            "rtol {rtol:e}"
+        );
+        let e_in = kinetic(&balls, balls.iter().map(|b| (&b.velocity, &b.spin)));
+        let e_out = kinetic(&balls, out.balls.iter().map(|b| (&b.velocity, &b.spin)));
+        assert!(
+            e_out <= e_in * (1.0 + rtol),
+            "rtol {rtol:e}: {e_in} -> {e_out}"
+        );
+        for c in &out.contacts {
+            let cap = mu * c.normal_impulse;
+            assert!(
+                c.friction_impulse.norm() <= cap * (1.0 + 1e-9),
+                "rtol {rtol:e}: {} > {cap}",
+                c.friction_impulse.norm()
+            );
+        }
+    }
+}
