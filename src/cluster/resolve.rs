@@ -2588,10 +2588,15 @@ impl Run<'_> {
         if w > spent {
             return false;
         }
-        let (mi, mj) = (self.bodies[c.i].m, self.bodies[c.j].m);
         let w = w.max(0.0);
-        let left = w * w + 2.0 * c.law.elastic_energy(d) * (mi + mj) / (mi * mj);
+        let left = w * w + 2.0 * c.law.elastic_energy(d) / self.reduced_mass(c.i, c.j);
         left <= spent * spent
+    }
+
+    /// The reduced mass (kg) of balls `i` and `j`, m_i m_j / (m_i + m_j).
+    fn reduced_mass(&self, i: usize, j: usize) -> f64 {
+        let (mi, mj) = (self.bodies[i].m, self.bodies[j].m);
+        mi * mj / (mi + mj)
     }
 
     /// Before spent contacts end, each still closing (at most the spent speed,
@@ -2617,7 +2622,7 @@ impl Run<'_> {
                     continue;
                 }
                 let (mi, mj) = (self.bodies[i].m, self.bodies[j].m);
-                let p = 2.0 * w * mi * mj / (mi + mj);
+                let p = 2.0 * w * self.reduced_mass(i, j);
                 for a in 0..3 {
                     y[3 * (nb + i) + a] -= p / mi * n[a];
                     y[3 * (nb + j) + a] += p / mj * n[a];
@@ -2717,8 +2722,7 @@ impl Run<'_> {
         for c in self.active.iter().filter(|c| c.j != cloth) {
             let (d, _) = sys.compression(&self.y, c);
             if d > 0.0 {
-                let (mi, mj) = (self.bodies[c.i].m, self.bodies[c.j].m);
-                rate = rate.max(1.5 * c.law.stiffness() * d.sqrt() * (mi + mj) / (mi * mj));
+                rate = rate.max(1.5 * c.law.stiffness() * d.sqrt() / self.reduced_mass(c.i, c.j));
             }
         }
         OSCILLATION_STEP / rate.sqrt()
