@@ -552,6 +552,7 @@ proptest! {
             .incoming(case.incoming())
             .build();
         let base = solve(&c, &case.profile(), &case.settings(), None).unwrap();
+        let base_slips = c.s0 > 0.0;
         let mut scaled = case.clone();
         scaled.m *= a;
         scaled.r *= l;
@@ -566,6 +567,12 @@ proptest! {
             .impulse(scaled.rule())
             .incoming(scaled.incoming())
             .build();
+        // A slip below the smallest normal double is no slip (docs/model.md, "No slip at
+        // all"): a slip of 1e-300 of the speed can be normal in one unit system and
+        // subnormal in the other (9.5e-308 m/s against 5.6e-309 m/s), and then the two are
+        // different collisions: the first slides until its force begins (a table with a
+        // zero-force start: 0.84 tau) and the second sticks from t = 0.
+        prop_assume!(base_slips == (c.s0 > 0.0));
         let o = solve(&c, &scaled.profile(), &scaled.settings(), None).unwrap();
         let (v0, v1) = (case.v, scaled.v);
         let (w0, w1) = (case.v / case.r, scaled.v / scaled.r);
