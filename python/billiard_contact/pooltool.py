@@ -591,7 +591,10 @@ class ClusterResolver(Resolver):
     ``cluster_options`` are ``Cluster``'s keywords (docs/python.md): by default resin balls
     (``youngs_modulus=5.4e9``, ``poisson_ratio=0.34``), Hunt-Crossley damping calibrated to
     the mean of the balls' ``e_b`` at ``at_speed=1.0`` m/s, and mu the mean of their
-    ``u_b``. Every ball of the cluster leaves with the library's velocity and spin
+    ``u_b``; ``"rtol"`` among them is the tolerance of ``Cluster.resolve`` (default 1e-8;
+    pooltool's balls roll, so its clusters are three-dimensional, resolved to about 1e-4 of
+    the cue ball's speed at 1e-8 and 1e-5 at 1e-10). Every ball of the cluster leaves with
+    the library's velocity and spin
     (``sliding``; in a 2D engine without vertical velocity) and keeps its position, as the
     two-ball model does; only the event's two balls are in the event's record (pooltool's
     events name two agents).
@@ -643,6 +646,7 @@ class ClusterResolver(Resolver):
                 "mu": _mean([p.u_b for p in params]),
             }
             kw.update(self.cluster_options)
+            kw.pop("rtol", None)  # resolve's, not Cluster's
             alpha = kw.pop("alpha", 0.4)
             if kw.get("restitution") == 1.0 and "coefficient" not in self.cluster_options:
                 kw.pop("restitution")
@@ -657,7 +661,9 @@ class ClusterResolver(Resolver):
         balls = [shot.balls[k] for k in members]
         rvw = np.array([np.asarray(b.state.rvw, float) for b in balls])
         try:
-            out = self._model(balls).resolve(rvw[:, 0], rvw[:, 1], rvw[:, 2])
+            out = self._model(balls).resolve(
+                rvw[:, 0], rvw[:, 1], rvw[:, 2], rtol=self.cluster_options.get("rtol")
+            )
         except ValueError:
             return False  # overlapping balls: the pair alone, as pooltool would
         for b, r, v, w in zip(balls, rvw[:, 0], out["velocities"], out["spins"]):

@@ -76,6 +76,31 @@ def test_a_frozen_row_is_resolved_at_once_as_the_library_resolves_it():
     assert all(shot.balls[k].state.s == const.sliding for k in ("b0", "b1", "b2"))
 
 
+def test_rtol_in_cluster_options_is_the_resolve_tolerance():
+    """cluster_options={"rtol": ...} is not a Cluster keyword: the plug-in passes it to
+    Cluster.resolve, so its result is the library's at that tolerance, bit for bit, and
+    differs from the default tolerance's (a rolling cue ball: a three-dimensional cluster)."""
+    R = pt.Ball.create("x").params.R
+    xs = [0.3, 0.3 + 2 * R, 0.3 + 4 * R + 1e-7]
+    results = {}
+    for rtol in (None, 1e-10):
+        shot = system(xs)
+        shot.balls["b0"].state.rvw[2] = [0.0, 2.0 / R, 0.0]  # rolling along +x
+        before = np.array([shot.balls[k].state.rvw for k in ("b0", "b1", "b2")])
+        e = engine(cluster_options={} if rtol is None else {"rtol": rtol})
+        e.resolver.resolve(shot, ball_ball_collision(shot.balls["b0"], shot.balls["b1"], 0.0))
+        after = np.array([shot.balls[k].state.rvw for k in ("b0", "b1", "b2")])
+        p = shot.balls["b0"].params
+        direct = bc.Cluster(balls=[bc.Ball(p.m, p.R, 0.4)] * 3, mu=p.u_b,
+                            youngs_modulus=5.4e9, poisson_ratio=0.34,
+                            damping="hunt-crossley", restitution=p.e_b,
+                            at_speed=1.0).resolve(before[:, 0], before[:, 1], before[:, 2],
+                                                  rtol=rtol)
+        np.testing.assert_array_equal(after[:, 2], direct["spins"])
+        results[rtol] = after
+    assert not np.array_equal(results[None][:, 2], results[1e-10][:, 2])
+
+
 def test_a_pair_touching_no_other_ball_goes_to_the_pair_model():
     R = pt.Ball.create("x").params.R
     far = 0.3 + 4 * R + 10 * CLUSTER_TOUCH_GAP
