@@ -36,6 +36,22 @@ pub fn kuwabara_kono_line_rk4(
     v: &[f64],
     h: f64,
 ) -> Vec<f64> {
+    kuwabara_kono_line_rk4_until(m, r, k, gamma, x, v, h, 0.0)
+}
+
+/// [`kuwabara_kono_line_rk4`], ending also when no pair presses and every approaching pair
+/// closes at `end_below` (m/s) or slower.
+#[allow(clippy::too_many_arguments)]
+pub fn kuwabara_kono_line_rk4_until(
+    m: &[f64],
+    r: &[f64],
+    k: &[f64],
+    gamma: &[f64],
+    x: &[f64],
+    v: &[f64],
+    h: f64,
+    end_below: f64,
+) -> Vec<f64> {
     let n = m.len();
     let overlap = |y: &[f64], i: usize| r[i] + r[i + 1] - (y[i + 1] - y[i]);
     let rate = |y: &[f64], dy: &mut [f64]| {
@@ -67,7 +83,8 @@ pub fn kuwabara_kono_line_rk4(
                 .filter(|&i| y[n + i] > y[n + i + 1])
                 .map(|i| -overlap(&y, i) / (y[n + i] - y[n + i + 1]))
                 .fold(f64::INFINITY, f64::min);
-            if next.is_infinite() {
+            let fast = (0..n - 1).any(|i| y[n + i] - y[n + i + 1] > end_below);
+            if next.is_infinite() || !fast {
                 return y[n..].to_vec();
             }
             for i in 0..n {
