@@ -1511,11 +1511,10 @@ impl Run<'_> {
         c.law.separation(d, self.v_ref)
     }
 
-    /// The largest relaxation rate lambda (1/s) of a hovering contact's direction at the
-    /// start of a step of size `h` (forces `f0`), if any ([`HOVER_STEP`]).
     /// Stops each hovering contact (its slip steady within a factor 2 over the step `h`, as
     /// [`Run::hovering`] reads it) whose slip is within rtol of the reference speed: it
-    /// sticks, that slip its offset. Left sliding, such a slip can sit just above the
+    /// sticks (without the stick rule, its friction goes on along its direction), that
+    /// slip its offset. Left sliding, such a slip can sit just above the
     /// floor without crossing zero, its direction relaxing at 4e15 /s: the 16-ball break
     /// with the cue ball 1e-12 m/s off the plane held a contact at 9.1e-13 m/s under 1,559 N,
     /// its steps at 4.7e-15 s, to the work bound at rtol 1e-11 and 1e-12 (it now separates
@@ -1539,17 +1538,25 @@ impl Run<'_> {
                 stopped.push((k, s));
             }
         }
+        let (t, cloth, stick) = (self.t, self.nballs(), self.settings.stick);
         for &(k, s) in &stopped {
             self.changes += 1;
-            let t = self.t;
             let c = &mut self.active[k];
-            c.mode = Mode::Stuck;
+            // As a located stop: without the stick rule friction goes on along the
+            // direction it slid in (the cloth's contacts keep the rule).
+            c.mode = if stick || c.j == cloth {
+                Mode::Stuck
+            } else {
+                Mode::Continued
+            };
             c.offset = s;
             c.stick_time = Some(t - c.start);
         }
         !stopped.is_empty()
     }
 
+    /// The largest relaxation rate lambda (1/s) of a hovering contact's direction at the
+    /// start of a step of size `h` (forces `f0`), if any ([`HOVER_STEP`]).
     fn hovering(&self, f0: &Forces, h: f64) -> Option<f64> {
         let mut worst: Option<f64> = None;
         for (c, &(f, _, s, _, _)) in self.active.iter().zip(&f0.contact) {
