@@ -255,6 +255,17 @@ fn cloth_refuses_bad_input() {
         field(on.with_tangential(ClusterTangential::Mindlin)),
         CLUSTER_TANGENTIAL_FIELD
     );
+    // The bed's damping within the two-ball law's bounds (gamma <= 1e12 tau_0, tau_0 the
+    // ball's elastic contact time on the bed at the cluster's speed: here 1 m/s on slate,
+    // tau_0 about 1e-4 s): 6.7e20 s ran five balls to the work bound (a Python fuzz input).
+    let damped = |gamma: f64| {
+        base()
+            .with_cloth(slate(0.2))
+            .unwrap()
+            .with_cloth_damping(PairDamping::Coefficient(Damping::KuwabaraKono, gamma))
+    };
+    assert_eq!(field(damped(6.7e20)), "cluster.cloth.coefficient");
+    assert!(damped(2e-5).is_ok());
 }
 
 /// The first touch: free balls fly to it as `first_touch_time` predicts (gap / v); on the
