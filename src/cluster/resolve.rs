@@ -519,6 +519,14 @@ impl Forces {
     }
 }
 
+/// Whether a slip `s` (m/s) moving at the rate `rate` (m/s^2) keeps its size within a
+/// factor 1 / [`HOVER_KEEP`] over a step of `h` (s), the whole vector: how a hovering slip
+/// is told ([`Run::hovering`], [`Run::stop_hovering`]).
+fn keeps_its_size(s: Vector3<f64>, rate: Vector3<f64>, h: f64) -> bool {
+    let (now, next) = (s.norm(), (s + rate * h).norm());
+    next >= HOVER_KEEP * now && next * HOVER_KEEP <= now
+}
+
 /// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
 fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
     let r = acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
@@ -1283,11 +1291,24 @@ impl Run<'_> {
             spring_mu: if mu < NEGLIGIBLE_MU { 0.0 } else { mu },
             pc: self.pc(),
             v_ref: self.v_ref,
-            f_floor: (PRESS_FLOOR * self.m_min * self.v_ref / self.tau0).max(self.round_force),
+            f_floor: self.f_floor(),
             frozen,
             reversed: Cell::new(false),
             evaluations: Cell::new(0),
         }
+    }
+
+    /// The normal force (N) under which a contact does not press for the stick rule:
+    /// [`PRESS_FLOOR`] of the impact's force scale, or the force of the positions' rounding.
+    fn f_floor(&self) -> f64 {
+        (PRESS_FLOOR * self.m_min * self.v_ref / self.tau0).max(self.round_force)
+    }
+
+    /// The normal speed (m/s) a spent contact can still give at most ([`Run::spent`]), and
+    /// the closing speed below which a free run's flight ends ([`Run::fly`]): rtol of the
+    /// reference speed over the number of balls.
+    fn spent_speed(&self) -> f64 {
+        self.settings.rtol * self.v_ref / self.nballs() as f64
     }
 
     /// The error scale (N) of a spring's force: it is at most mu f, so mu times the impact's
@@ -1522,19 +1543,14 @@ impl Run<'_> {
     /// as any stuck contact is. Returns whether any contact stopped.
     fn stop_hovering(&mut self, f0: &Forces, h: f64) -> bool {
         let tol = self.settings.rtol * self.v_ref;
-        let f_floor = self.system(false).f_floor;
+        let f_floor = self.f_floor();
         let mut stopped = Vec::new();
         for (k, (c, &(f, _, s, _, _))) in self.active.iter().zip(&f0.contact).enumerate() {
             if c.mode != Mode::Sliding || f <= f_floor || c.mu <= 0.0 {
                 continue;
             }
             let sr = s - c.offset;
-            let sn = sr.norm();
-            if sn > tol {
-                continue;
-            }
-            let next = (sr + slip_rate(&f0.acc, c) * h).norm();
-            if next >= HOVER_KEEP * sn && next * HOVER_KEEP <= sn {
+            if sr.norm() <= tol && keeps_its_size(sr, slip_rate(&f0.acc, c), h) {
                 stopped.push((k, s));
             }
         }
@@ -1575,9 +1591,7 @@ impl Run<'_> {
             // direction can be steady while it grows along another (a contact released
             // with its slip's rounding out of the plane, 1e-14 m/s, took steps of 4e-16 s
             // to the work bound while its slip in the plane grew).
-            let next = (sr + slip_rate(&f0.acc, c) * h).norm();
-            if next >= HOVER_KEEP * sn && next * HOVER_KEEP <= sn && rate * self.tau0 >= HOVER_RATE
-            {
+            if keeps_its_size(sr, slip_rate(&f0.acc, c), h) && rate * self.tau0 >= HOVER_RATE {
                 worst = Some(worst.map_or(rate, |w| w.max(rate)));
             }
         }
@@ -2668,7 +2682,7 @@ impl Run<'_> {
             return false;
         }
         let (d, w) = sys.compression(&self.y, c);
-        let spent = self.settings.rtol * self.v_ref / self.nballs() as f64;
+        let spent = self.spent_speed();
         if w > spent {
             return false;
         }
@@ -2842,10 +2856,7 @@ impl Run<'_> {
     fn fly(&mut self) -> bool {
         let nb = self.nb();
         let (floor, slow) = if self.first_touch.is_some() {
-            (
-                self.grazing().max(self.round_speed),
-                self.settings.rtol * self.v_ref / self.nballs() as f64,
-            )
+            (self.grazing().max(self.round_speed), self.spent_speed())
         } else {
             (self.grazing(), 0.0)
         };

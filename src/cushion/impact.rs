@@ -18,7 +18,7 @@ use crate::base::error::Error;
 use crate::base::method::Method;
 use crate::base::settings::{SolverSettings, Stats};
 use crate::base::validate::finite_output;
-use crate::model::params::{check_stepped_alpha, energy_in, Ball};
+use crate::model::params::{check_stepped_alpha, energy_in, kinetic_energy, Ball};
 use nalgebra::Vector3;
 
 /// Events are located in P_I to this fraction of the impulse scale (1 + e) m v_n(0) /
@@ -407,7 +407,7 @@ fn energy_made(
     w: Vector3<f64>,
     out: &CushionOutcome,
 ) -> Option<String> {
-    let brought = 0.5 * ball.mass() * v.norm_squared() + 0.5 * ball.inertia() * w.norm_squared();
+    let brought = kinetic_energy(ball, &v, &w);
     (cushion.rule() == CushionRestitution::Stronge && out.energy_lost < -RK4_ENERGY_SLACK * brought)
         .then(|| {
             format!(
