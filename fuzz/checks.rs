@@ -1118,10 +1118,10 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
     }
     // A free cluster ends when no pair will touch: two balls in free flight from the outcome
     // come no closer than their radii' sum (within the touch tolerance), unless they close
-    // within the velocities' rounding (1e-12 of the largest speed) or, every such pair,
-    // no faster than the tolerance resolves a velocity: rtol of the reference speed (the
-    // largest relative speed of two balls, spins' contact-point speeds included) over the
-    // number of balls, what a spent contact can still give. Contacts that end spent bounce
+    // within the velocities' rounding (1e-12 of the largest speed) or no faster than the
+    // tolerance resolves a velocity: rtol of the reference speed (the largest relative
+    // speed of two balls, spins' contact-point speeds included) over the number of balls,
+    // what a spent contact can still give. Contacts that end spent bounce
     // off first if still closing; left closing at up to that speed, the next flight closed
     // them at once, and a spent pair flown past was closed again deep in overlap 2,400 s of
     // flights later, its records' heat -2.2e-6 J against 6e-8 J put in. Flown to, a pair
@@ -1142,31 +1142,19 @@ fn check_cluster_outcome(cluster: &Cluster, settings: &ClusterSettings, out: &Cl
             }
         }
         let slow = settings.rtol * v_ref / n as f64;
-        // Per pair: its closing speed and the closest approach of the free flight, at t =
-        // -p.u / |u|^2, short of touching (> 0 when they would overlap).
-        let flight = |i: usize, j: usize| {
-            let (a, b) = (&out.balls[i], &out.balls[j]);
-            let d = balls[i].ball.radius() + balls[j].ball.radius();
-            let (p, u) = (b.position - a.position, b.velocity - a.velocity);
-            let closing = -p.dot(&u) / p.norm();
-            let closest = (p - u * (p.dot(&u) / u.norm_squared())).norm();
-            (closing, closest, d)
-        };
-        let touches = |(closing, closest, d): (f64, f64, f64)| {
-            closing > 1e-12 * v_max && closest < d * (1.0 - 1e-9)
-        };
-        let all_slow = (0..n).all(|i| {
-            (i + 1..n).all(|j| {
-                let f = flight(i, j);
-                !touches(f) || f.0 <= slow
-            })
-        });
+        // No pair may still touch, closing (beyond the velocities' rounding and faster than
+        // `slow`) to a closest approach of the free flight, at t = -p.u / |u|^2, short of
+        // touching.
         for i in 0..n {
             for j in i + 1..n {
-                let (closing, closest, d) = flight(i, j);
-                if closing <= 1e-12 * v_max || all_slow {
+                let (a, b) = (&out.balls[i], &out.balls[j]);
+                let d = balls[i].ball.radius() + balls[j].ball.radius();
+                let (p, u) = (b.position - a.position, b.velocity - a.velocity);
+                let closing = -p.dot(&u) / p.norm();
+                if closing <= (1e-12 * v_max).max(slow) {
                     continue;
                 }
+                let closest = (p - u * (p.dot(&u) / u.norm_squared())).norm();
                 assert!(
                     closest >= d * (1.0 - 1e-9),
                     "{what}: balls {i} and {j} still close at {closing:e} m/s, to {:e} m \

@@ -1,9 +1,7 @@
 //! The cluster kernel (docs/cluster.md): two balls against the two-ball law, conservation,
 //! gaps against pairwise solves, Newton's cradle, a frozen combination.
 
-use crate::common::hertz_chain::{
-    hertz_chain_rk4, kuwabara_kono_line_rk4, kuwabara_kono_line_rk4_until,
-};
+use crate::common::hertz_chain::{hertz_chain_rk4, kuwabara_kono_line_rk4};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
 
@@ -1109,7 +1107,7 @@ fn a_kuwabara_kono_train_ends_spent_at_loose_tolerances() {
     let k: Vec<f64> = (0..7).map(|i| hertz(i, i + 1)).collect();
     let mut v = vec![0.0; 8];
     v[0] = v0;
-    let reference = kuwabara_kono_line_rk4(&m, &r, &k, &[gamma; 7], &x, &v, 1e-5);
+    let reference = kuwabara_kono_line_rk4(&m, &r, &k, &[gamma; 7], &x, &v, 1e-5, 0.0);
     let balls: Vec<ClusterBall> = (0..8)
         .map(|i| ClusterBall {
             ball: Ball::new(m[i], r[i], 0.4).unwrap(),
@@ -1217,7 +1215,7 @@ fn a_line_that_ends_with_a_pair_closing_within_the_tolerance_ends() {
     v[0] = 0.01;
     // Its end: no pair closing faster than rtol v_ref / n at the tightest tolerance below.
     let reference =
-        kuwabara_kono_line_rk4_until(&m, &r, &[k; 4], &[0.0; 4], &x, &v, 1e-6, 1e-10 * 30.0 / 5.0);
+        kuwabara_kono_line_rk4(&m, &r, &[k; 4], &[0.0; 4], &x, &v, 1e-6, 1e-10 * 30.0 / 5.0);
     let drift = Vector3::new(-1.0, -1.0, -1.0);
     let balls: Vec<ClusterBall> = (0..5)
         .map(|i| ClusterBall {

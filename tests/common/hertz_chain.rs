@@ -17,6 +17,7 @@ pub fn hertz_chain_rk4(k: f64, m: f64, v0: &[f64], h: f64) -> Vec<f64> {
         &vec![0.0; n],
         v0,
         h,
+        0.0,
     )
 }
 
@@ -26,23 +27,9 @@ pub fn hertz_chain_rk4(k: f64, m: f64, v0: &[f64], h: f64) -> Vec<f64> {
 /// d'), clipped at 0 (no pull) and nothing while apart. Integrated by classical RK4 at the
 /// fixed step `h` (s) while some pair presses; while none does, the balls fly freely to the
 /// next touch (a jump, solved in closed form). Returns the velocities once no pair presses
-/// and none approaches.
-pub fn kuwabara_kono_line_rk4(
-    m: &[f64],
-    r: &[f64],
-    k: &[f64],
-    gamma: &[f64],
-    x: &[f64],
-    v: &[f64],
-    h: f64,
-) -> Vec<f64> {
-    kuwabara_kono_line_rk4_until(m, r, k, gamma, x, v, h, 0.0)
-}
-
-/// [`kuwabara_kono_line_rk4`], ending also when no pair presses and every approaching pair
-/// closes at `end_below` (m/s) or slower.
+/// and none approaches faster than `end_below` (m/s; 0: none approaches at all).
 #[allow(clippy::too_many_arguments)]
-pub fn kuwabara_kono_line_rk4_until(
+pub fn kuwabara_kono_line_rk4(
     m: &[f64],
     r: &[f64],
     k: &[f64],
