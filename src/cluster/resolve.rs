@@ -50,18 +50,16 @@ const EVENT_TRIALS: usize = 100;
 /// needed friction comes out of a linear solve accurate to about 1e-12.
 const RELEASE_SLACK: f64 = 1e-9;
 
-/// Most fixed-point iterations of the directions of contacts released together.
-const RELEASE_ITERATIONS: usize = 30;
+/// Most sweeps over the contacts released together for their sliding directions.
+const RELEASE_SWEEPS: usize = 30;
 
-/// Change of a released contact's sliding direction (a unit vector) at which its fixed-point
-/// iteration stops: well below the step control's tolerances.
+/// Change of a released contact's sliding direction (a unit vector) at which the sweeps
+/// stop: well below the step control's tolerances.
 const RELEASE_DIRECTION_TOL: f64 = 1e-12;
 
-/// Slip rate (relative to mu f over the lighter ball's mass) under which a released
-/// contact keeps -F / |F| as its direction: a contact released where its needed friction
-/// just reaches mu f (a located release) starts with a slip rate of zero, whose direction
-/// is rounding; its slip then grows along the excess -F / |F|.
-const RELEASE_RATE_FLOOR: f64 = 1e-6;
+/// Bisection steps of [`slide_direction`]'s secular equation, each halving a bracket of
+/// lambda: 200 reach any double's rounding from any bracket.
+const SECULAR_STEPS: usize = 200;
 
 /// Normal impulse (relative to the lighter ball's momentum at the reference speed) under
 /// which a contact is not recorded: the touching balls of a rack at rest press on each other
@@ -525,6 +523,47 @@ impl Forces {
 fn keeps_its_size(s: Vector3<f64>, rate: Vector3<f64>, h: f64) -> bool {
     let (now, next) = (s.norm(), (s + rate * h).norm());
     next >= HOVER_KEEP * now && next * HOVER_KEEP <= now
+}
+
+/// The direction e (a unit vector of the tangent plane) along which a contact released from
+/// sticking slides, given its slip's rate a - Q e under its friction along e (Q e: what its
+/// own friction -mu f e takes off the rate; a: the rest): the slip must grow along e,
+/// a - Q e = lambda e with lambda >= 0, so e = (lambda I + Q)^(-1) a with |e| = 1, the
+/// secular equation of lambda. With Q positive definite (the contact's compliance to its
+/// own friction, times mu f) |e(lambda)| falls with lambda, and the root is unique when
+/// |Q^(-1) a| >= 1, the friction needed to stick, -Q^(-1) a in units of mu f, at or past
+/// the bound. Below it (a release located where the need reaches mu f, read at a state
+/// just before: the rate's direction there is rounding) lambda = 0: e = Q^(-1) a / |Q^(-1)
+/// a|, the excess's direction -F / |F|. `None` when Q is singular or a is zero (the
+/// contact keeps its direction) or the root is not bracketed (Q far from definite).
+fn slide_direction(q: Matrix2<f64>, a: Vector2<f64>) -> Option<Vector2<f64>> {
+    let at = |lambda: f64| (q + Matrix2::identity() * lambda).lu().solve(&a);
+    let x0 = at(0.0)?;
+    let n0 = x0.norm();
+    if !(n0 > 0.0 && n0.is_finite()) {
+        return None;
+    }
+    if n0 <= 1.0 {
+        return Some(x0 / n0);
+    }
+    // |e(lambda)| <= |a| / (lambda - |Q|) past |Q|: 1 at lambda = |a| + |Q| at the most.
+    let (mut lo, mut hi) = (0.0, a.norm() + q.norm());
+    if at(hi)?.norm() > 1.0 {
+        return None;
+    }
+    for _ in 0..SECULAR_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if at(mid)?.norm() > 1.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let x = at(hi)?;
+    Some(x / x.norm())
 }
 
 /// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
@@ -2582,38 +2621,89 @@ impl Run<'_> {
     }
 
     /// The sliding directions of contacts just released from sticking: each slides along its
-    /// slip's rate, s_t' = lambda e with lambda > 0, the friction -mu f e of every released
-    /// contact included (found by fixed-point iteration from e = -F / |F|, F the friction
-    /// the contact needed to stick). For one contact whose balls are free otherwise, -F / |F|
-    /// is already this direction; coupled through shared balls, it need not be.
+    /// slip's rate, s_t' = lambda e with lambda >= 0, the friction -mu f e of every released
+    /// contact included (docs/cluster.md#releases). The released slips' rates are affine in
+    /// their directions (the stuck contacts answer through the stick solve, which is
+    /// linear): s_k' = a_k + sum_j B_kj e_j in the tangent bases, read off 2m + 1 force
+    /// evaluations for m contacts. Each contact's direction given the others' is the root
+    /// of a secular equation ([`slide_direction`]), swept over the contacts until they
+    /// stand; if they do not, each keeps -F / |F|, F the friction it needed to stick. For
+    /// one contact whose balls are free otherwise, -F / |F| is already this direction;
+    /// coupled through shared balls, it need not be. (A fixed-point iteration e <- s_t' /
+    /// |s_t'| diverged at a located release, where lambda = 0: the rate of a contact
+    /// released at its bound is zero under -F / |F| and flips under -e, and after 30
+    /// iterations the rolling break's contact (2, 4) slid along (0.25, 0.43, -0.87) instead
+    /// of (0.5, 0.87, 0): 1.7e-3 m/s off at rtol 1e-8.)
     fn release_directions(&mut self, released: &[usize]) {
-        for _ in 0..RELEASE_ITERATIONS {
-            let sys = self.system(false);
-            let fs = sys.forces(&self.y);
-            self.stats.evaluations += 1;
-            let mut moved: f64 = 0.0;
-            let dirs: Vec<Option<Vector3<f64>>> = released
-                .iter()
-                .map(|&k| {
-                    let c = &self.active[k];
-                    let r = slip_rate(&fs.acc, c);
-                    let rn = r.norm();
-                    // The rate friction alone gives the slip: mu f over the lighter ball.
-                    let a = c.mu * fs.contact[k].0 / self.m_min;
-                    (rn > RELEASE_RATE_FLOOR * a).then(|| r / rn)
-                })
-                .collect();
-            for (&k, d) in released.iter().zip(dirs) {
-                if let Some(d) = d {
-                    let c = &mut self.active[k];
-                    moved = moved.max((d - c.seed).norm());
-                    c.seed = d;
+        let m = released.len();
+        let seeds: Vec<Vector3<f64>> = released.iter().map(|&k| self.active[k].seed).collect();
+        for &k in released {
+            self.active[k].seed = Vector3::zeros();
+        }
+        let a = self.released_rates(released);
+        // b[k][j]: the response of s_k' to e_j, column v for e_j = t_v of contact j.
+        let mut b = vec![vec![Matrix2::zeros(); m]; m];
+        for (j, &kj) in released.iter().enumerate() {
+            for v in 0..2 {
+                self.active[kj].seed = self.active[kj].t[v];
+                let r = self.released_rates(released);
+                for k in 0..m {
+                    b[k][j].set_column(v, &(r[k] - a[k]));
                 }
+                self.active[kj].seed = Vector3::zeros();
+            }
+        }
+        let mut e: Vec<Vector2<f64>> = released
+            .iter()
+            .zip(&seeds)
+            .map(|(&k, s)| {
+                let x = Vector2::from(in_basis(&self.active[k], s));
+                x / x.norm().max(f64::MIN_POSITIVE)
+            })
+            .collect();
+        let mut settled = false;
+        for _ in 0..RELEASE_SWEEPS {
+            let mut moved: f64 = 0.0;
+            for k in 0..m {
+                let mut rest = a[k];
+                for (j, ej) in e.iter().enumerate() {
+                    if j != k {
+                        rest += b[k][j] * ej;
+                    }
+                }
+                let Some(x) = slide_direction(-b[k][k], rest) else {
+                    continue;
+                };
+                moved = moved.max((x - e[k]).norm());
+                e[k] = x;
             }
             if moved <= RELEASE_DIRECTION_TOL {
+                settled = true;
                 break;
             }
         }
+        for ((&k, s), x) in released.iter().zip(seeds).zip(e) {
+            let c = &mut self.active[k];
+            c.seed = if settled {
+                c.t[0] * x[0] + c.t[1] * x[1]
+            } else {
+                s
+            };
+        }
+    }
+
+    /// The slip rates (m/s^2, in each contact's tangent basis) of the contacts `released`
+    /// at the current state, their friction along their seeds.
+    fn released_rates(&mut self, released: &[usize]) -> Vec<Vector2<f64>> {
+        let fs = self.system(false).forces(&self.y);
+        self.stats.evaluations += 1;
+        released
+            .iter()
+            .map(|&k| {
+                let c = &self.active[k];
+                Vector2::from(in_basis(c, &slip_rate(&fs.acc, c)))
+            })
+            .collect()
     }
 
     /// Drops the contacts that carry no force and do not close (or, unloaded, have moved
@@ -2893,5 +2983,87 @@ impl Run<'_> {
             }
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Q = q I: the slip's rate a - q e is along e only for e = a / |a|, and then lambda =
+    /// |a| - q, which is >= 0 when |a| >= q (the need |a| / q in units of mu f at or past
+    /// 1); below, the excess's direction a / |a| all the same.
+    #[test]
+    fn an_isotropic_contact_slides_along_its_excess() {
+        let a = Vector2::new(3.0, -4.0);
+        for q in [0.5, 5.0, 20.0] {
+            let e = slide_direction(Matrix2::identity() * q, a).unwrap();
+            assert!((e - a / 5.0).norm() < 1e-14, "{q}: {e}");
+        }
+    }
+
+    /// The sliding direction against a scan of the unit circle (independent of the secular
+    /// equation): e(phi) = (cos phi, sin phi) is a solution where the rate a - Q e is
+    /// parallel to e, cross(e, a - Q e) = 0, with a - Q e . e >= 0; the scan brackets the
+    /// sign changes of the cross product on 20,000 angles and bisects each. Q positive
+    /// definite and anisotropic (a contact whose balls are held by other stuck contacts
+    /// answers its own friction more in one direction), a past the bound: one root.
+    #[test]
+    fn a_coupled_contact_slides_where_its_rate_is_along_its_direction() {
+        let q = Matrix2::new(4.0, 1.5, 1.5, 1.0);
+        for a in [
+            Vector2::new(6.0, 1.0),
+            Vector2::new(-2.0, 7.0),
+            Vector2::new(0.3, -9.0),
+        ] {
+            assert!(q.lu().solve(&a).unwrap().norm() > 1.0);
+            let cross = |phi: f64| {
+                let e = Vector2::new(phi.cos(), phi.sin());
+                let r = a - q * e;
+                (e.x * r.y - e.y * r.x, r.dot(&e))
+            };
+            let n = 20_000;
+            let mut roots = Vec::new();
+            for i in 0..n {
+                let (mut lo, mut hi) = (
+                    i as f64 * std::f64::consts::TAU / n as f64,
+                    (i + 1) as f64 * std::f64::consts::TAU / n as f64,
+                );
+                if cross(lo).0.signum() == cross(hi).0.signum() {
+                    continue;
+                }
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if cross(mid).0.signum() == cross(lo).0.signum() {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                if cross(lo).1 >= 0.0 {
+                    roots.push(Vector2::new(lo.cos(), lo.sin()));
+                }
+            }
+            assert_eq!(roots.len(), 1, "{a}: {roots:?}");
+            let e = slide_direction(q, a).unwrap();
+            assert!((e - roots[0]).norm() < 1e-9, "{a}: {e} vs {}", roots[0]);
+            let lambda = (a - q * e).dot(&e);
+            assert!(lambda > 0.0 && (a - q * e - e * lambda).norm() < 1e-9 * a.norm());
+        }
+    }
+
+    /// Exactly at the bound (a = Q e0 for a unit e0: the need is mu f along -e0) the rate
+    /// under e0 is zero, lambda = 0, and the contact slides along e0 (where e <- rate / |rate|
+    /// has no direction to follow); just short of it, along the excess's direction Q^(-1) a.
+    #[test]
+    fn a_contact_released_at_its_bound_slides_along_its_need() {
+        let q = Matrix2::new(4.0, 1.5, 1.5, 1.0);
+        let e0 = Vector2::new(0.6, 0.8);
+        for scale in [1.0, 1.0 - 1e-9, 0.5] {
+            let e = slide_direction(q, q * e0 * scale).unwrap();
+            assert!((e - e0).norm() < 1e-12, "{scale}: {e}");
+        }
+        assert!(slide_direction(q, Vector2::zeros()).is_none());
+        assert!(slide_direction(Matrix2::zeros(), e0).is_none());
     }
 }
