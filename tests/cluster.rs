@@ -319,12 +319,8 @@ fn a_break_off_the_plane_by_a_rounding_gives_the_plane_s_outcome() {
         let out = resolve_cluster(&cl, &tight(rtol)).unwrap();
         assert_eq!(out.stop, StopReason::Separated, "{rtol:e}: {:?}", out.stats);
         assert!(out.stats.steps < 50_000, "{rtol:e}: {:?}", out.stats);
-        for (a, b) in out.balls.iter().zip(&planar.balls) {
-            let d = (a.velocity - b.velocity)
-                .norm()
-                .max(R * (a.spin - b.spin).norm());
-            assert!(d < within * 8.0, "{rtol:e}: {a:?} vs {b:?}");
-        }
+        let d = break_difference(&out, &planar);
+        assert!(d < within, "{rtol:e}: {d:e}");
     }
 }
 
@@ -587,6 +583,21 @@ fn break16_balls() -> Vec<ClusterBall> {
     )
 }
 
+/// How far apart two outcomes of a break are: the largest difference of a ball's velocity or
+/// r times its spin, over the cue ball's 8 m/s.
+fn break_difference(a: &ClusterOutcome, b: &ClusterOutcome) -> f64 {
+    a.balls
+        .iter()
+        .zip(&b.balls)
+        .map(|(x, y)| {
+            (x.velocity - y.velocity)
+                .norm()
+                .max(R * (x.spin - y.spin).norm())
+        })
+        .fold(0.0, f64::max)
+        / 8.0
+}
+
 /// The 16-ball break: a cue ball at (8, 0.16, 0) m/s with 100 rad/s of side spin into a
 /// tight rack of 15 (five rows), mu = 0.06 at every contact, resolved at `rtol`.
 fn break16(rtol: f64) -> (Vec<ClusterBall>, ClusterOutcome) {
@@ -682,19 +693,10 @@ fn three_dimensional_breaks_converge() {
             .iter()
             .map(|&r| resolve_cluster(&cl, &tight(r)).unwrap())
             .collect();
-        let diff = |a: &ClusterOutcome, b: &ClusterOutcome| -> f64 {
-            a.balls
-                .iter()
-                .zip(&b.balls)
-                .map(|(x, y)| {
-                    (x.velocity - y.velocity)
-                        .norm()
-                        .max(R * (x.spin - y.spin).norm())
-                })
-                .fold(0.0, f64::max)
-                / 8.0
-        };
-        let d: Vec<f64> = runs[..3].iter().map(|o| diff(o, &runs[3])).collect();
+        let d: Vec<f64> = runs[..3]
+            .iter()
+            .map(|o| break_difference(o, &runs[3]))
+            .collect();
         eprintln!(
             "{name} break against rtol 1e-11: {d:?} at 1e-7, 1e-8, 1e-10; steps {:?}",
             runs.iter().map(|o| o.stats.steps).collect::<Vec<_>>()
@@ -719,18 +721,6 @@ fn cluster_break_16_balls_converges() {
     for o in &runs {
         assert_eq!(o.stop, StopReason::Separated);
     }
-    let diff = |a: &ClusterOutcome, b: &ClusterOutcome| -> f64 {
-        a.balls
-            .iter()
-            .zip(&b.balls)
-            .map(|(x, y)| {
-                (x.velocity - y.velocity)
-                    .norm()
-                    .max(R * (x.spin - y.spin).norm())
-            })
-            .fold(0.0, f64::max)
-            / 8.0
-    };
     // The kinetic energy lost less the heat: zero in the model, an integration error that
     // falls with the tolerance.
     let balance: Vec<f64> = runs
@@ -750,9 +740,9 @@ fn cluster_break_16_balls_converges() {
             ((e(&vin) - e(&vout) - heat) / e(&vin)).abs()
         })
         .collect();
-    let d8 = diff(&runs[0], &runs[2]);
-    let d10 = diff(&runs[1], &runs[2]);
-    let d8_10 = diff(&runs[0], &runs[1]);
+    let d8 = break_difference(&runs[0], &runs[2]);
+    let d10 = break_difference(&runs[1], &runs[2]);
+    let d8_10 = break_difference(&runs[0], &runs[1]);
     eprintln!(
         "break 16 convergence: |1e-8 - 1e-12| {d8:.2e}  |1e-10 - 1e-12| {d10:.2e}  |1e-8 - 1e-10| {d8_10:.2e}; contacts {} {} {}",
         runs[0].contacts.len(),
