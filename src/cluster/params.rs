@@ -1,11 +1,10 @@
 //! The inputs of a cluster of touching balls (docs/cluster.md): the balls with their lab
 //! state, the contact law of each pair, the friction, validated together.
 
-use crate::base::beta::beta;
 use crate::base::error::Error;
 use crate::integrator::law::damping_within_bound;
 use crate::model::contact_law::{ContactLaw, Damping};
-use crate::model::material::{hertz_stiffness, sphere_plane_stiffness, Material};
+use crate::model::material::{elastic_impact, hertz_stiffness, sphere_plane_stiffness, Material};
 use crate::model::params::Ball;
 use crate::tangential::impact::shear_compliance;
 use nalgebra::Vector3;
@@ -253,16 +252,13 @@ impl Cluster {
         // Every pair's Hertz compression at the fastest speed in the cluster (the speed plus
         // r |w| of its fastest ball) must keep its digits beside the positions' rounding: a stiffness of 1e30 (E ~ 1e30 Pa) gives
         // 1e-12 m at 1 m/s and answers off by 2.5e-6, 1e60 ran to the work bound.
-        let speed = balls
-            .iter()
-            .map(|b| b.velocity.norm() + b.ball.radius() * b.spin.norm())
-            .fold(0.0, f64::max);
+        let speed = fastest_speed(&balls);
         for i in 0..n {
             for j in i + 1..n {
                 let (a, b) = (&balls[i].ball, &balls[j].ball);
                 let k = laws[pair_index(n, i, j)].stiffness();
                 let m = a.mass() * b.mass() / (a.mass() + b.mass());
-                let delta = (5.0 * m * speed * speed / (4.0 * k)).powf(0.4);
+                let (delta, tau0) = elastic_impact(k, m, speed);
                 let d = a.radius() + b.radius();
                 let refused = |expected: String| {
                     Error::invalid(
@@ -295,7 +291,6 @@ impl Cluster {
                 // The two-ball law's bounds on the damping (docs/contact-law.md) at the
                 // pair's elastic contact time at this speed, (4/5) B(2/5, 1/2) delta / v: a
                 // Kuwabara-Kono coefficient of 3.5e306 s ran past a minute (found by fuzzing).
-                let tau0 = 0.8 * beta(0.4, 0.5) * delta / speed;
                 damping_within_bound(&laws[pair_index(n, i, j)], speed, tau0)?;
             }
         }
@@ -478,14 +473,9 @@ impl Cluster {
         // each ball's impact on the bed at the cluster's fastest speed: a Kuwabara-Kono
         // coefficient of 6.7e20 s on the bed ran five balls to the work bound (found by
         // fuzzing the Python package).
-        let speed = self
-            .balls
-            .iter()
-            .map(|b| b.velocity.norm() + b.ball.radius() * b.spin.norm())
-            .fold(0.0, f64::max);
+        let speed = fastest_speed(&self.balls);
         for (law, b) in laws.iter().zip(&self.balls) {
-            let delta = (5.0 * b.ball.mass() * speed * speed / (4.0 * law.stiffness())).powf(0.4);
-            let tau0 = 0.8 * beta(0.4, 0.5) * delta / speed;
+            let tau0 = elastic_impact(law.stiffness(), b.ball.mass(), speed).1;
             damping_within_bound(law, speed, tau0)
                 .map_err(|e| e.moved("contact.law.", "cluster.cloth."))?;
         }
@@ -628,6 +618,15 @@ pub(crate) fn first_touch(p: Vector3<f64>, u: Vector3<f64>, d: f64, floor: f64) 
     }
     // The smaller root, written without cancellation: c / (-b + sqrt(disc)).
     Some(c / (-b + disc.sqrt()))
+}
+
+/// The fastest speed in the cluster: the largest over its balls of the speed plus r |w|, at
+/// which every pair's compression and every ball's impact on the bed are judged.
+fn fastest_speed(balls: &[ClusterBall]) -> f64 {
+    balls
+        .iter()
+        .map(|b| b.velocity.norm() + b.ball.radius() * b.spin.norm())
+        .fold(0.0, f64::max)
 }
 
 /// The law of every pair.
