@@ -14,9 +14,10 @@
 use super::params::{
     first_touch, pair_index, Cluster, ClusterTangential, CLUSTER_GRAZING, CLUSTER_TOUCH_TOLERANCE,
 };
+use super::rosenbrock;
 use crate::base::error::Error;
 use crate::base::root::{illinois_update, Bound, Side};
-use crate::cushion::tableau::{DOPRI5_A, DOPRI5_CONTROL, DOPRI5_E};
+use crate::cushion::tableau::{StepControl, DOPRI5_A, DOPRI5_CONTROL, DOPRI5_E};
 use crate::model::contact_law::ContactLaw;
 use crate::model::contact_law::Damping;
 use crate::model::material::elastic_impact;
@@ -133,25 +134,45 @@ const CLOTH_HORIZON: f64 = 100.0;
 /// [`StopReason::StepTooSmall`].
 const MIN_STEP: f64 = 1e-15;
 
-/// A sliding contact hovers when Coulomb's direction, which relaxes at lambda = mu f G /
-/// |s| (G the slip's rate under a unit tangential force), is stiff: lambda tau0 at least
-/// [`HOVER_RATE`] (far faster than the contacts themselves move), and the slip keeps its
-/// size over the step within a factor [`HOVER_KEEP`], at its rate at the step's start (a
-/// slip running down to a stop, located as an event, or growing from a release, whose
-/// direction settles as it grows, is not hovering). A hovering contact's step is held to
-/// [`HOVER_STEP`] / lambda, inside the explicit step's stability: at its edge (lambda h
-/// about 3.3 for Dormand-Prince on the real axis) the direction chatters from step to step,
-/// the error estimate lets it pass, and the friction's mean direction is off. Measured on a 7-ball rack (docs/cluster.md): unheld,
-/// the cue ball's outgoing v_x converged to -0.47388152 m/s in 2.9e6 steps at rtol 1e-12;
-/// held at 2 / lambda, to -0.47387948 m/s in 3.1e4 steps, the value a linearly implicit
-/// step (RODAS) and holds at 0.5 to 2.5 / lambda give; at 3 / lambda the chatter returns.
-const HOVER_STEP: f64 = 2.0;
+/// A sliding contact's direction relaxes at lambda = mu f G / |s| (G the slip's rate under a
+/// unit tangential force, its isotropic compliance): stiff where the slip is small. Once a
+/// step h of a contact whose slip keeps at least [`HOVER_KEEP`] of its size over it (at its
+/// rate at the step's start: a slip running down to a stop is located as an event instead)
+/// reaches h lambda = [`STIFF_SLIP`], the explicit step is at the edge of its stability
+/// (about 3.3 for Dormand-Prince on the real axis), where the direction chatters from step
+/// to step and the error estimate lets it pass (a 7-ball rack's cue ball converged to
+/// -0.47388152 m/s in 2.9e6 steps at rtol 1e-12, the value being -0.47387948). Such a step
+/// is ROS34PW2's, linearly implicit in those directions ([`System::step`]), unless that
+/// method's last step proposed less than STIFF_SLIP / lambda: in mildly stiff stretches the
+/// explicit step, of order 5 against 3, goes further (for [`STIFF_RETRY`] steps, then
+/// ROS34PW2 is tried again; docs/cluster.md, "Stiff slips").
+const STIFF_SLIP: f64 = 3.0;
 
-/// See [`HOVER_STEP`].
-const HOVER_RATE: f64 = 1e3;
-
-/// See [`HOVER_STEP`].
+/// A slip that keeps this fraction of its size over a step may be stiff ([`STIFF_SLIP`]);
+/// kept within this factor both ways, and within rtol of the reference speed, it stops
+/// ([`Run::stop_hovering`]).
 const HOVER_KEEP: f64 = 0.5;
+
+/// Explicit steps past [`STIFF_SLIP`] / lambda taken, after ROS34PW2 last proposed a step
+/// shorter than that, before ROS34PW2 is tried again.
+const STIFF_RETRY: usize = 10;
+
+/// The step control of ROS34PW2 (error of order 3): safety 0.9, ratios in [0.2, 6].
+const STIFF_CONTROL: StepControl = StepControl {
+    safety: 0.9,
+    fac_min: 0.2,
+    fac_max: 6.0,
+    exponent: 1.0 / 3.0,
+};
+
+/// The step control after a step of either kind.
+fn control(stiff: bool) -> StepControl {
+    if stiff {
+        STIFF_CONTROL
+    } else {
+        DOPRI5_CONTROL
+    }
+}
 
 /// Components of the state per ball: position, velocity, spin.
 const PER_BALL: usize = 9;
@@ -373,7 +394,8 @@ pub enum ClusterSampling<'a> {
     /// every accepted step, before the contacts that open at its end leave the set.
     Steps,
     /// At these times (s from the start of the run, ascending): inside a step from its
-    /// continuous extension (order 4), at a step's end its state, in a free flight the
+    /// continuous extension (order 4; the cubic Hermite interpolant, order 3, in a step
+    /// linearly implicit in stiff slips), at a step's end its state, in a free flight the
     /// flight's state.
     Times(&'a [f64]),
 }
@@ -525,7 +547,7 @@ impl Forces {
 
 /// Whether a slip `s` (m/s) moving at the rate `rate` (m/s^2) keeps its size within a
 /// factor 1 / [`HOVER_KEEP`] over a step of `h` (s), the whole vector: how a hovering slip
-/// is told ([`Run::hovering`], [`Run::stop_hovering`]).
+/// is told ([`Run::stop_hovering`]).
 fn keeps_its_size(s: Vector3<f64>, rate: Vector3<f64>, h: f64) -> bool {
     let (now, next) = (s.norm(), (s + rate * h).norm());
     next >= HOVER_KEEP * now && next * HOVER_KEEP <= now
@@ -572,6 +594,29 @@ fn slide_direction(q: Matrix2<f64>, a: Vector2<f64>) -> Option<Vector2<f64>> {
     Some(x / x.norm())
 }
 
+/// The relaxation rate lambda = mu f G / |s| (1/s) of sliding contact `c`'s direction, G its
+/// isotropic compliance, under the normal force `f` (N) with the slip `sr` (m/s, from its
+/// offset) moving at `rate` (m/s^2), if it counts for a step of `h` (s): pressed, its slip
+/// above `floor` (m/s) and keeping at least [`HOVER_KEEP`] of its size over the step
+/// ([`STIFF_SLIP`]).
+fn direction_stiffness(
+    bodies: &[Body],
+    c: &Active,
+    f: f64,
+    sr: Vector3<f64>,
+    rate: Vector3<f64>,
+    h: f64,
+    floor: f64,
+) -> Option<f64> {
+    let sn = sr.norm();
+    if c.mu <= 0.0 || f <= 0.0 || sn <= floor || (sr + rate * h).norm() < HOVER_KEEP * sn {
+        return None;
+    }
+    let (bi, bj) = (&bodies[c.i], &bodies[c.j]);
+    let g = 1.0 / bi.m + 1.0 / bj.m + c.ri * c.ri / bi.inertia + c.rj * c.rj / bj.inertia;
+    Some(c.mu * f * g / sn)
+}
+
 /// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
 fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
     let r = acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
@@ -603,6 +648,8 @@ struct System<'a> {
     /// Per contact of the set: set when a stage saw its slip reversed against its seed (a
     /// contact past the end of the slice is not marked).
     flips: &'a [Cell<bool>],
+    /// Whether a step may be ROS34PW2's ([`System::step`]).
+    implicit: bool,
     evaluations: Cell<u64>,
 }
 
@@ -905,10 +952,135 @@ impl System<'_> {
         fs
     }
 
-    /// One Dormand-Prince 5(4) step of size `h` from `y` (derivative `k0` there): the new
-    /// state and its error norm, the root mean square of the local error over
-    /// rtol (scale_i + |y_i|), positions on their scale alone.
+    /// The sliding contacts whose direction is stiff for a step of `h` (s) from `y` (the
+    /// derivative `k0` there) when the step may be ROS34PW2's: h lambda at least
+    /// [`STIFF_SLIP`] ([`System::slip_stiffness`]). Each with J's column of the slip across
+    /// it ([`StiffSlip`]).
+    fn stiff_slips(&self, y: &[f64], k0: &[f64], h: f64) -> Vec<StiffSlip> {
+        if !self.implicit {
+            return Vec::new();
+        }
+        let slips: Vec<(usize, Vector3<f64>, f64)> = self
+            .slip_stiffness(y, k0, h)
+            .into_iter()
+            .filter(|s| h * s.3 >= STIFF_SLIP)
+            .map(|s| (s.0, s.1, s.2))
+            .collect();
+        if slips.is_empty() {
+            return Vec::new();
+        }
+        // The stuck contacts answer a change of friction as the stick solve does: one
+        // factorization for every column.
+        let stuck: Vec<usize> = (0..self.active.len())
+            .filter(|&k| {
+                let c = &self.active[k];
+                c.mode == Mode::Stuck && {
+                    let (d, w) = self.compression(y, c);
+                    c.law.force(d, w) > self.f_floor
+                }
+            })
+            .collect();
+        let nb = self.nb();
+        let lu = (!stuck.is_empty()).then(|| {
+            let m = 2 * stuck.len();
+            let mut a = DMatrix::<f64>::zeros(m, m);
+            let mut b = DVector::<f64>::zeros(m);
+            self.stick_system(&stuck, &vec![[Vector3::zeros(); 2]; nb], &mut a, &mut b);
+            a.lu()
+        });
+        slips
+            .into_iter()
+            .map(|(k, p, rate)| {
+                let c = &self.active[k];
+                let mut acc = vec![[Vector3::zeros(); 2]; nb];
+                self.push(&mut acc, c, -p * rate);
+                let mut impulses = vec![(k, -p * rate)];
+                if let Some(lu) = &lu {
+                    let b = DVector::from_iterator(
+                        2 * stuck.len(),
+                        stuck.iter().flat_map(|&ci| {
+                            let sc = &self.active[ci];
+                            let r = slip_rate(&acc, sc);
+                            [-sc.t[0].dot(&r), -sc.t[1].dot(&r)]
+                        }),
+                    );
+                    if let Some(x) = lu.solve(&b) {
+                        for (q, &ci) in stuck.iter().enumerate() {
+                            let sc = &self.active[ci];
+                            let fr = sc.t[0] * x[2 * q] + sc.t[1] * x[2 * q + 1];
+                            self.push(&mut acc, sc, fr);
+                            impulses.push((ci, fr));
+                        }
+                    }
+                }
+                StiffSlip {
+                    k,
+                    p,
+                    u: acc,
+                    impulses,
+                }
+            })
+            .collect()
+    }
+
+    /// Of each sliding contact whose slip keeps at least half its size over a step of `h`
+    /// at its rate in `k0`: its index, the unit vector across its slip, mu f / |s| (1/s /
+    /// (m/s) of friction per slip) and its direction's relaxation rate lambda = mu f G / |s|
+    /// (1/s), G its isotropic compliance.
+    fn slip_stiffness(
+        &self,
+        y: &[f64],
+        k0: &[f64],
+        h: f64,
+    ) -> Vec<(usize, Vector3<f64>, f64, f64)> {
+        let floor = SLIP_FLOOR * self.v_ref;
+        let mut out = Vec::new();
+        for (k, c) in self.active.iter().enumerate() {
+            if c.mode != Mode::Sliding
+                || (self.frozen && self.held.get(k).copied().unwrap_or(false))
+            {
+                continue;
+            }
+            let (d, w) = self.compression(y, c);
+            let f = c.law.force(d, w);
+            let sr = self.slip(y, c) - c.offset;
+            if let Some(lambda) =
+                direction_stiffness(self.bodies, c, f, sr, self.slip(k0, c), h, floor)
+            {
+                let across = c.n.cross(&sr);
+                let an = across.norm();
+                if an > 0.0 {
+                    out.push((k, across / an, c.mu * f / sr.norm(), lambda));
+                }
+            }
+        }
+        out
+    }
+
+    /// The slip across a stiff contact's direction, p . s_t, of the velocities and spins in
+    /// `x` (a state, or a stage's increment).
+    fn across(&self, x: &[f64], s: &StiffSlip) -> f64 {
+        let c = &self.active[s.k];
+        let np = c.n.cross(&s.p);
+        s.p.dot(&(self.vel(x, c.i) - self.vel(x, c.j)))
+            + np.dot(&(self.spin(x, c.i) * c.ri + self.spin(x, c.j) * c.rj))
+    }
+
+    /// One step of size `h` from `y` (derivative `k0` there): the new state and its error
+    /// norm, the root mean square of the local error over rtol (scale_i + |y_i|), positions
+    /// on their scale alone. Dormand-Prince 5(4), or ROS34PW2 (order 3, linearly implicit in
+    /// the stiff slips' directions) when a sliding contact's direction is stiff for `h`
+    /// ([`System::stiff_slips`]; docs/cluster.md, "Stiff slips").
     fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> StepOut {
+        let slips = self.stiff_slips(y, k0, h);
+        if !slips.is_empty() {
+            return self.stiff_step(y, k0, h, scale, rtol, slips);
+        }
+        self.dopri5_step(y, k0, h, scale, rtol)
+    }
+
+    /// One Dormand-Prince 5(4) step ([`System::step`]).
+    fn dopri5_step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> StepOut {
         let n = y.len();
         let mut k = vec![vec![0.0; n]; 7];
         k[0].copy_from_slice(k0);
@@ -927,23 +1099,165 @@ impl System<'_> {
         }
         let end = end.expect("six stages");
         // Row 7 of a is the 5th-order solution: the last stage was evaluated at it.
+        let err = self.error_norm(
+            y,
+            &ys,
+            |i| {
+                h * k
+                    .iter()
+                    .zip(DOPRI5_E)
+                    .map(|(ks, es)| es * ks[i])
+                    .sum::<f64>()
+            },
+            scale,
+            rtol,
+        );
+        StepOut {
+            y: ys,
+            err,
+            k,
+            end,
+            stiff: false,
+        }
+    }
+
+    /// The error norm of a step from `y0` to `y1` whose local error in component i is
+    /// `e(i)`: the root mean square of e_i / (rtol (scale_i + max(|y0_i|, |y1_i|))),
+    /// positions on their scale alone.
+    fn error_norm(
+        &self,
+        y0: &[f64],
+        y1: &[f64],
+        e: impl Fn(usize) -> f64,
+        scale: &[f64],
+        rtol: f64,
+    ) -> f64 {
         let npos = 3 * self.nb();
         let mut sum = 0.0;
-        for i in 0..n {
-            let e: f64 = k.iter().zip(DOPRI5_E).map(|(ks, es)| es * ks[i]).sum();
+        for i in 0..y0.len() {
             let mag = if i < npos {
                 0.0
             } else {
-                y[i].abs().max(ys[i].abs())
+                y0[i].abs().max(y1[i].abs())
             };
-            let q = h * e / (rtol * (scale[i] + mag));
+            let q = e(i) / (rtol * (scale[i] + mag));
             sum += q * q;
         }
+        (sum / y0.len() as f64).sqrt()
+    }
+
+    /// One ROS34PW2 step ([`System::step`]) with J the stiff slips' part of the Jacobian:
+    /// friction -mu f s / |s| turns with the slip across it at -mu f / |s| per m/s, each
+    /// such column a rank-one term u v^T (v^T y the slip across, p . s_t), so that I - h
+    /// gamma J is solved through the small matrix I - h gamma V^T U (Woodbury).
+    fn stiff_step(
+        &self,
+        y: &[f64],
+        k0: &[f64],
+        h: f64,
+        scale: &[f64],
+        rtol: f64,
+        slips: Vec<StiffSlip>,
+    ) -> StepOut {
+        let m = slips.len();
+        let nb = self.nb();
+        // V^T U: the slip across contact c of column d's accelerations.
+        let mut small = DMatrix::<f64>::identity(m, m);
+        for (c, sc) in slips.iter().enumerate() {
+            let ac = &self.active[sc.k];
+            for (d, sd) in slips.iter().enumerate() {
+                small[(c, d)] -= h * rosenbrock::GAMMA * sc.p.dot(&slip_rate(&sd.u, ac));
+            }
+        }
+        let mut lin = StiffLinear {
+            sys: self,
+            slips,
+            lu: small.lu(),
+            h,
+            nb,
+        };
+        let (y1, e) = rosenbrock::step(&mut lin, y, k0, h);
+        let mut k1 = vec![0.0; y.len()];
+        let end = self.derivative(&y1, &mut k1);
+        let err = self.error_norm(y, &y1, |i| e[i], scale, rtol);
         StepOut {
-            y: ys,
-            err: (sum / n as f64).sqrt(),
-            k,
+            y: y1,
+            err,
+            k: vec![k0.to_vec(), k1],
             end,
+            stiff: true,
+        }
+    }
+}
+
+/// A sliding contact whose direction is stiff over the step ([`System::stiff_slips`]).
+struct StiffSlip {
+    /// The contact (index in the set).
+    k: usize,
+    /// The unit vector of the tangent plane across its slip at the step's start.
+    p: Vector3<f64>,
+    /// J's column for the slip across, per body: the accelerations (m/s^2, rad/s^2) of the
+    /// friction's change per m/s of it, -mu f / |s| along p, the stuck contacts answering.
+    u: Vec<[Vector3<f64>; 2]>,
+    /// The same column's rows of the contacts' friction impulses: the friction's change
+    /// (N per m/s) at this contact and at each stuck contact that answers it. Without them
+    /// the step would move the velocities without the impulses that moved them, and a ball
+    /// on the cloth would gain momentum no impulse accounts for.
+    impulses: Vec<(usize, Vector3<f64>)>,
+}
+
+/// The stiff slips' linearisation over one ROS34PW2 step.
+struct StiffLinear<'s, 'a> {
+    sys: &'s System<'a>,
+    slips: Vec<StiffSlip>,
+    /// LU of I - h gamma V^T U.
+    lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    h: f64,
+    nb: usize,
+}
+
+impl StiffLinear<'_, '_> {
+    /// out += scale U z, z per stiff slip.
+    fn add_columns(&self, z: &[f64], scale: f64, out: &mut [f64]) {
+        let nb = self.nb;
+        for (s, &zs) in self.slips.iter().zip(z) {
+            if zs == 0.0 {
+                continue;
+            }
+            for (b, a) in s.u.iter().enumerate() {
+                for k in 0..3 {
+                    out[3 * nb + 3 * b + k] += scale * zs * a[0][k];
+                    out[6 * nb + 3 * b + k] += scale * zs * a[1][k];
+                }
+            }
+            for &(c, fr) in &s.impulses {
+                let o = PER_BALL * nb + self.sys.pc * c;
+                for k in 0..3 {
+                    out[o + 1 + k] += scale * zs * fr[k];
+                }
+            }
+        }
+    }
+}
+
+impl rosenbrock::Linearised for StiffLinear<'_, '_> {
+    fn rhs(&mut self, y: &[f64], out: &mut [f64]) {
+        self.sys.derivative(y, out);
+    }
+    fn add_jacobian_times(&self, x: &[f64], scale: f64, out: &mut [f64]) {
+        let z: Vec<f64> = self.slips.iter().map(|s| self.sys.across(x, s)).collect();
+        self.add_columns(&z, scale, out);
+    }
+    fn solve(&self, x: &mut [f64]) {
+        // x + h gamma U (I - h gamma V^T U)^(-1) V^T x.
+        let z = DVector::from_iterator(
+            self.slips.len(),
+            self.slips.iter().map(|s| self.sys.across(x, s)),
+        );
+        match self.lu.solve(&z) {
+            Some(w) => self.add_columns(w.as_slice(), self.h * rosenbrock::GAMMA, x),
+            // Singular: the step's error is not finite, and it is rejected.
+            None => x.fill(f64::NAN),
         }
     }
 }
@@ -957,6 +1271,10 @@ struct StepOut {
     err: f64,
     k: Vec<Vec<f64>>,
     end: Forces,
+    /// A ROS34PW2 step: `k` holds the derivatives at its two ends only, its continuous
+    /// extension is the cubic Hermite interpolant (order 3, as the step), and its step
+    /// control [`STIFF_CONTROL`].
+    stiff: bool,
 }
 
 /// Coefficients of the continuous extension of Dormand-Prince 5(4) (order 4), on stages
@@ -974,7 +1292,8 @@ const DOPRI5_DENSE: [f64; 7] = [
 
 /// The continuous extension of one step from `y0` (size `h`): per component, the
 /// coefficients of y(theta) = y0 + theta (dy + theta1 (bspl + theta (r4 + theta1 r5))),
-/// theta = x / h, theta1 = 1 - theta.
+/// theta = x / h, theta1 = 1 - theta. With r5 = 0 it is the cubic Hermite interpolant of
+/// the step's ends and their derivatives (a ROS34PW2 step's).
 struct Dense {
     h: f64,
     c: Vec<[f64; 5]>,
@@ -986,7 +1305,10 @@ impl Dense {
             .map(|i| {
                 let dy = s.y[i] - y0[i];
                 let bspl = h * s.k[0][i] - dy;
-                let r4 = dy - h * s.k[6][i] - bspl;
+                let r4 = dy - h * s.k[s.k.len() - 1][i] - bspl;
+                if s.stiff {
+                    return [y0[i], dy, bspl, r4, 0.0];
+                }
                 let r5: f64 = h * s
                     .k
                     .iter()
@@ -1216,6 +1538,8 @@ fn run_cluster(
         centre,
         held: Vec::new(),
         flips: Vec::new(),
+        implicit: false,
+        stiff_next: None,
         trace: trace.map(|t| Tracer {
             sampling: t.sampling,
             sink: t.sink,
@@ -1298,6 +1622,11 @@ struct Run<'a> {
     held: Vec<bool>,
     /// Per contact of the set, whether a stage of the step saw its slip reversed.
     flips: Vec<Cell<bool>>,
+    /// Whether the step may be ROS34PW2's (`System::step`).
+    implicit: bool,
+    /// ROS34PW2's proposal (s) after its last step, and the explicit steps taken since
+    /// because it was short ([`STIFF_SLIP`], [`STIFF_RETRY`]).
+    stiff_next: Option<(usize, f64)>,
     /// Where the trace rows go, if anywhere.
     trace: Option<Tracer<'a>>,
 }
@@ -1353,6 +1682,7 @@ impl Run<'_> {
             frozen,
             held: &self.held,
             flips: &self.flips,
+            implicit: self.implicit,
             evaluations: Cell::new(0),
         }
     }
@@ -1599,8 +1929,8 @@ impl Run<'_> {
         c.law.separation(d, self.v_ref)
     }
 
-    /// Stops each hovering contact (its slip steady within a factor 2 over the step `h`, as
-    /// [`Run::hovering`] reads it) whose slip is within rtol of the reference speed: it
+    /// Stops each hovering contact (its slip steady within a factor 2 over the step `h`,
+    /// [`keeps_its_size`], and pressed) whose slip is within rtol of the reference speed: it
     /// sticks (without the stick rule, its friction goes on along its direction), that
     /// slip its offset. Left sliding, such a slip can sit just above the
     /// floor without crossing zero, its direction relaxing at 4e15 /s: the 16-ball break
@@ -1636,33 +1966,6 @@ impl Run<'_> {
             c.stick_time = Some(t - c.start);
         }
         !stopped.is_empty()
-    }
-
-    /// The largest relaxation rate lambda (1/s) of a hovering contact's direction at the
-    /// start of a step of size `h` (forces `f0`), if any ([`HOVER_STEP`]).
-    fn hovering(&self, f0: &Forces, h: f64) -> Option<f64> {
-        let mut worst: Option<f64> = None;
-        for (c, &(f, _, s, _, _)) in self.active.iter().zip(&f0.contact) {
-            if c.mode != Mode::Sliding || f <= 0.0 || c.mu <= 0.0 {
-                continue;
-            }
-            let sr = s - c.offset;
-            let sn = sr.norm();
-            if sn <= SLIP_FLOOR * self.v_ref {
-                continue;
-            }
-            let (bi, bj) = (&self.bodies[c.i], &self.bodies[c.j]);
-            let g = 1.0 / bi.m + 1.0 / bj.m + c.ri * c.ri / bi.inertia + c.rj * c.rj / bj.inertia;
-            let rate = c.mu * f * g / sn;
-            // The slip a step ahead at its rate now, the whole vector: a slip along one
-            // direction can be steady while it grows along another (a contact released
-            // with its slip's rounding out of the plane, 1e-14 m/s, took steps of 4e-16 s
-            // to the work bound while its slip in the plane grew).
-            if keeps_its_size(sr, slip_rate(&f0.acc, c), h) && rate * self.tau0 >= HOVER_RATE {
-                worst = Some(worst.map_or(rate, |w| w.max(rate)));
-            }
-        }
-        worst
     }
 
     /// Steps as Coulomb's friction each sliding spring whose direction relaxes within half
@@ -2285,12 +2588,34 @@ impl Run<'_> {
                 f0 = self.system(false).derivative(&self.y, &mut d0);
                 self.stats.evaluations += 1;
             }
-            if let Some(rate) = self.hovering(&f0, h) {
-                h = h.min(HOVER_STEP / rate);
-            }
             if self.align(&f0, h) {
                 f0 = self.system(false).derivative(&self.y, &mut d0);
                 self.stats.evaluations += 1;
+            }
+            let floor = SLIP_FLOOR * self.v_ref;
+            let stiffest = self
+                .active
+                .iter()
+                .zip(&f0.contact)
+                .filter(|(c, _)| c.mode == Mode::Sliding)
+                .filter_map(|(c, &(f, _, s, _, _))| {
+                    let rate = slip_rate(&f0.acc, c);
+                    direction_stiffness(self.bodies, c, f, s - c.offset, rate, h, floor)
+                })
+                .fold(None, |m: Option<f64>, l| Some(m.map_or(l, |m| m.max(l))));
+            // The stiffest sliding direction over this step, and the method it takes
+            // ([`STIFF_SLIP`]).
+            self.implicit = false;
+            if let Some(lambda) = stiffest {
+                let h_s = STIFF_SLIP / lambda;
+                if h > h_s {
+                    match self.stiff_next {
+                        Some((n, hw)) if n < STIFF_RETRY && hw < h_s => {
+                            self.stiff_next = Some((n + 1, hw));
+                        }
+                        _ => self.implicit = true,
+                    }
+                }
             }
             self.trace_start();
             // Each sliding contact's direction at the start of the step.
@@ -2323,10 +2648,17 @@ impl Run<'_> {
                 // whose slip reversed held along its direction at the step's start (as two
                 // balls do), so that its stop is a clean crossing; a contact that reverses in
                 // the redone step is held too, and the step redone again. Taken when it
-                // crosses a stop or another event within the tolerance; otherwise the
-                // reversal was one a stage saw but the step does not end in (or a slip at the
-                // floor's rounding whose friction is nothing), and the step is judged as it
-                // came. The other sliding contacts follow their slips: held as well, a slip
+                // crosses a stop or another event within the tolerance, or when the free step
+                // fails the tolerance and each held contact ends the step along its held
+                // direction or within the stop's residue of rest (`held_fits`): a contact
+                // released at its bound whose slip first ran back, 4e-9 m/s against its
+                // direction, before its growing need carried it forward; stepped free, the
+                // flip was chased down to steps of 1e-8 s and one was taken whose error
+                // estimate (of first order there) let a kick of 3.8e-5 m/s through, the
+                // 16-ball break 1.3e-6 of the cue speed off at rtol 1e-8 instead of 9e-8.
+                // Otherwise the reversal was one a stage saw but the step does not end in (or
+                // a slip at the floor's rounding whose friction is nothing), and the step is
+                // judged as it came. The other sliding contacts follow their slips: held as well, a slip
                 // that turns inside a long located step was held off its direction (the
                 // rolling break at rtol 1e-7: 1.3e-5 s through a stop elsewhere turned
                 // contact (4, 7)'s slip by 60 degrees, 3.9e-3 m/s off).
@@ -2354,6 +2686,10 @@ impl Run<'_> {
                         let ev = self.crossings(&fsys, (&self.y, &ff), (&fout.y, &fout.end));
                         if !ev.is_empty() {
                             (out, frozen, events) = (fout, true, ev);
+                        } else if (out.err > 1.0 || !out.err.is_finite())
+                            && self.held_fits(&fsys, &fout.y, h)
+                        {
+                            (out, frozen) = (fout, true);
                         }
                     } else if out.err <= 1.0 {
                         // The frozen step fails the tolerance where the free one passed: too
@@ -2365,9 +2701,15 @@ impl Run<'_> {
             }
             self.stats.evaluations += evals;
             let err = out.err;
+            if out.stiff {
+                self.stiff_next = Some((
+                    0,
+                    STIFF_CONTROL.next(h, if err.is_finite() { err } else { 1e10 }),
+                ));
+            }
             if err > 1.0 || !err.is_finite() {
                 self.stats.rejected += 1;
-                h = DOPRI5_CONTROL.next(h, if err.is_finite() { err } else { 1e10 });
+                h = control(out.stiff).next(h, if err.is_finite() { err } else { 1e10 });
                 k0 = Some((self.changes, d0, f0));
                 continue;
             }
@@ -2401,8 +2743,8 @@ impl Run<'_> {
                 let t0 = self.t;
                 self.stats.steps += 1;
                 self.t += h;
-                let hn = DOPRI5_CONTROL.next(h, err);
-                let last = out.k.swap_remove(6);
+                let hn = control(out.stiff).next(h, err);
+                let last = out.k.pop().expect("the derivative at the step's end");
                 self.y = out.y;
                 self.settle_aligned();
                 self.trace_step(t0, dense.as_ref(), frozen);
@@ -2432,7 +2774,7 @@ impl Run<'_> {
                 // took the balls from 38 J to 4.2e7 J; found by fuzzing). Rejected, shorter.
                 self.stats.evaluations += sys.evaluations.get();
                 self.stats.rejected += 1;
-                h = DOPRI5_CONTROL.next(at, if sa.err.is_finite() { sa.err } else { 1e10 });
+                h = control(sa.stiff).next(at, if sa.err.is_finite() { sa.err } else { 1e10 });
                 k0 = Some((self.changes, d0, f0));
                 continue;
             }
@@ -2461,21 +2803,7 @@ impl Run<'_> {
             // ball's mass), and the step is halved as for a turned stop (the draw break at
             // rtol 1e-10 and 1e-11 was 1.5e-6 and 7e-7 m/s off the 1e-12 one; 2.5e-7 and
             // 2.3e-8 now).
-            let astray = frozen
-                && self.active.iter().zip(&self.held).any(|(c, &held)| {
-                    if !held || c.mode != Mode::Sliding || c.mu == 0.0 {
-                        return false;
-                    }
-                    let r = sys.slip(&ya, c) - c.offset;
-                    let rn = r.norm();
-                    if rn <= SLIP_FLOOR * self.v_ref || r.dot(&c.seed) <= 0.0 {
-                        return false;
-                    }
-                    let (d, w) = sys.compression(&ya, c);
-                    let f = c.law.force(d, w).max(0.0);
-                    let off = c.mu * f * at * (r / rn - c.seed).norm() / (2.0 * self.m_min);
-                    off > FROZEN_TURN * self.settings.rtol * self.v_ref
-                });
+            let astray = frozen && self.held_astray(&sys, &ya, at);
             let evals = sys.evaluations.get();
             self.stats.evaluations += evals;
             if (turned || astray) && at > TURN_MIN_STEP * self.tau0 {
@@ -2558,6 +2886,41 @@ impl Run<'_> {
             }
             h = h.max(FIRST_STEP * self.tau0);
         }
+    }
+
+    /// Whether a frozen step of `h` (s) to `y1` held a contact's friction astray: a held
+    /// contact whose slip turned within the step leaves about mu f h |e_end - e_start| / 2
+    /// of friction impulse along the wrong direction; more than [`FROZEN_TURN`] rtol v_ref
+    /// of velocity (over the lightest ball's mass) is astray.
+    fn held_astray(&self, sys: &System<'_>, y1: &[f64], h: f64) -> bool {
+        self.active.iter().zip(&self.held).any(|(c, &held)| {
+            if !held || c.mode != Mode::Sliding || c.mu == 0.0 {
+                return false;
+            }
+            let r = sys.slip(y1, c) - c.offset;
+            let rn = r.norm();
+            if rn <= SLIP_FLOOR * self.v_ref || r.dot(&c.seed) <= 0.0 {
+                return false;
+            }
+            let (d, w) = sys.compression(y1, c);
+            let f = c.law.force(d, w).max(0.0);
+            let off = c.mu * f * h * (r / rn - c.seed).norm() / (2.0 * self.m_min);
+            off > FROZEN_TURN * self.settings.rtol * self.v_ref
+        })
+    }
+
+    /// Whether every contact a frozen step held ends it sliding along the direction it was
+    /// held in, or within [`STOP_RESIDUE`] rtol v_ref of rest: the held friction was the
+    /// contact's own to the tolerance, and the step needs no event to be taken.
+    fn held_fits(&self, sys: &System<'_>, y1: &[f64], h: f64) -> bool {
+        let tol = STOP_RESIDUE * self.settings.rtol * self.v_ref;
+        self.active.iter().zip(&self.held).all(|(c, &held)| {
+            if !held || c.mode != Mode::Sliding {
+                return true;
+            }
+            let r = sys.slip(y1, c) - c.offset;
+            r.dot(&c.seed) >= -tol
+        }) && !self.held_astray(sys, y1, h)
     }
 
     /// After a step: marks the loaded contacts and releases the stuck ones whose friction
