@@ -593,7 +593,7 @@ class ClusterResolver(Resolver):
     the mean of the balls' ``e_b`` at ``at_speed=1.0`` m/s, and mu the mean of their
     ``u_b``; ``"rtol"`` among them is the tolerance of ``Cluster.resolve`` (default 1e-8;
     pooltool's balls roll, so its clusters are three-dimensional: a rolling break was
-    resolved to about 2e-6 of the cue ball's speed at 1e-8 and 2e-7 at 1e-9). Every ball of
+    resolved to about 6e-7 of the cue ball's speed at 1e-8 and 5e-8 at 1e-9). Every ball of
     the cluster leaves with the library's velocity and spin
     (``sliding``; in a 2D engine without vertical velocity) and keeps its position, as the
     two-ball model does; only the event's two balls are in the event's record (pooltool's
