@@ -145,7 +145,9 @@ const MIN_STEP: f64 = 1e-15;
 /// is ROS34PW2's, linearly implicit in those directions ([`System::step`]), unless that
 /// method's last step proposed less than STIFF_SLIP / lambda: in mildly stiff stretches the
 /// explicit step, of order 5 against 3, goes further (for [`STIFF_RETRY`] steps, then
-/// ROS34PW2 is tried again; docs/cluster.md, "Stiff slips").
+/// ROS34PW2 is tried again; docs/cluster.md, "Stiff slips"). A heavily damped normal force
+/// is stiff the same way, damping the closing rate at its own lambda
+/// ([`damping_stiffness`]), and takes the same step.
 const STIFF_SLIP: f64 = 3.0;
 
 /// A slip that keeps this fraction of its size over a step may be stiff ([`STIFF_SLIP`]);
@@ -617,6 +619,24 @@ fn direction_stiffness(
     Some(c.mu * f * g / sn)
 }
 
+/// The rate d f / d delta' (N s/m) of contact `c`'s damped normal force at compression `d`
+/// (m) where the force `f` (N) presses, and the rate lambda = (d f / d delta') (1/m_i +
+/// 1/m_j) (1/s) at which it damps the closing rate: the normal force's own stiffness under
+/// heavy damping ([`STIFF_SLIP`]). `None` for an elastic law or a contact not pressing.
+fn damping_stiffness(bodies: &[Body], c: &Active, d: f64, f: f64) -> Option<(f64, f64)> {
+    if d <= 0.0 || f <= 0.0 {
+        return None;
+    }
+    let (k, g) = (c.law.stiffness(), c.law.coefficient());
+    let rate = match c.law.damping() {
+        Damping::None => return None,
+        Damping::HuntCrossley => k * d * d.sqrt() * g,
+        Damping::KuwabaraKono => k * d.sqrt() * g,
+    };
+    let lambda = rate * (1.0 / bodies[c.i].m + 1.0 / bodies[c.j].m);
+    (lambda > 0.0).then_some((rate, lambda))
+}
+
 /// The tangential slip rate s_t' (m/s^2) of contact `c` under the accelerations `acc`.
 fn slip_rate(acc: &[[Vector3<f64>; 2]], c: &Active) -> Vector3<f64> {
     let r = acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
@@ -952,24 +972,53 @@ impl System<'_> {
         fs
     }
 
-    /// The sliding contacts whose direction is stiff for a step of `h` (s) from `y` (the
-    /// derivative `k0` there) when the step may be ROS34PW2's: h lambda at least
-    /// [`STIFF_SLIP`] ([`System::slip_stiffness`]). Each with J's column of the slip across
-    /// it ([`StiffSlip`]).
-    fn stiff_slips(&self, y: &[f64], k0: &[f64], h: f64) -> Vec<StiffSlip> {
+    /// The stiff columns of the Jacobian for a step of `h` (s) from `y` (the derivative `k0`
+    /// there) when the step may be ROS34PW2's: each sliding contact whose direction is stiff
+    /// (h lambda at least [`STIFF_SLIP`], [`System::slip_stiffness`]) and each contact whose
+    /// damped normal force is ([`damping_stiffness`]).
+    fn stiff_columns(&self, y: &[f64], k0: &[f64], h: f64) -> Vec<StiffColumn> {
         if !self.implicit {
             return Vec::new();
         }
-        let slips: Vec<(usize, Vector3<f64>, f64)> = self
+        let floor = SLIP_FLOOR * self.v_ref;
+        // Each column's contact, axis, and the force (N per unit of the axis's variable) it
+        // puts on ball i: (normal force, friction).
+        let mut wanted: Vec<(usize, StiffAxis, f64, Vector3<f64>)> = self
             .slip_stiffness(y, k0, h)
             .into_iter()
             .filter(|s| h * s.3 >= STIFF_SLIP)
-            .map(|s| (s.0, s.1, s.2))
+            .map(|s| (s.0, StiffAxis::Across(s.1), 0.0, -s.1 * s.2))
             .collect();
-        if slips.is_empty() {
+        for (k, c) in self.active.iter().enumerate() {
+            let (d, w) = self.compression(y, c);
+            let f = c.law.force(d, w);
+            let Some((rate, lambda)) = damping_stiffness(self.bodies, c, d, f) else {
+                continue;
+            };
+            if h * lambda < STIFF_SLIP {
+                continue;
+            }
+            // Coulomb's friction scales with the normal force along its direction.
+            let held = self.frozen && self.held.get(k).copied().unwrap_or(false);
+            let along = match c.mode {
+                Mode::Sliding if c.mu > 0.0 => {
+                    let sr = self.slip(y, c) - c.offset;
+                    let sn = sr.norm();
+                    if held || sn <= floor {
+                        c.seed
+                    } else {
+                        sr / sn
+                    }
+                }
+                Mode::Continued if c.mu > 0.0 => c.seed,
+                _ => Vector3::zeros(),
+            };
+            wanted.push((k, StiffAxis::Closing, rate, -along * (c.mu * rate)));
+        }
+        if wanted.is_empty() {
             return Vec::new();
         }
-        // The stuck contacts answer a change of friction as the stick solve does: one
+        // The stuck contacts answer a change of force as the stick solve does: one
         // factorization for every column.
         let stuck: Vec<usize> = (0..self.active.len())
             .filter(|&k| {
@@ -988,13 +1037,32 @@ impl System<'_> {
             self.stick_system(&stuck, &vec![[Vector3::zeros(); 2]; nb], &mut a, &mut b);
             a.lu()
         });
-        slips
+        wanted
             .into_iter()
-            .map(|(k, p, rate)| {
+            .map(|(k, axis, normal, friction)| {
                 let c = &self.active[k];
                 let mut acc = vec![[Vector3::zeros(); 2]; nb];
-                self.push(&mut acc, c, -p * rate);
-                let mut impulses = vec![(k, -p * rate)];
+                self.push(&mut acc, c, friction - c.n * normal);
+                // The heat's rate, f delta' - F . s (the damping's part of f on the cloth),
+                // moves with the normal force and the closing rate, and with the friction.
+                let heat = |ci: usize, normal: f64, fr: Vector3<f64>| {
+                    let sc = &self.active[ci];
+                    let mut q = -fr.dot(&self.slip(y, sc));
+                    if let StiffAxis::Closing = axis {
+                        if ci == k {
+                            let (d, w) = self.compression(y, sc);
+                            let f = sc.law.force(d, w);
+                            let damped = if sc.j == self.nballs {
+                                f - sc.law.force(d, 0.0)
+                            } else {
+                                f
+                            };
+                            q += damped + w * normal;
+                        }
+                    }
+                    q
+                };
+                let mut impulses = vec![(k, normal, friction, heat(k, normal, friction))];
                 if let Some(lu) = &lu {
                     let b = DVector::from_iterator(
                         2 * stuck.len(),
@@ -1009,13 +1077,13 @@ impl System<'_> {
                             let sc = &self.active[ci];
                             let fr = sc.t[0] * x[2 * q] + sc.t[1] * x[2 * q + 1];
                             self.push(&mut acc, sc, fr);
-                            impulses.push((ci, fr));
+                            impulses.push((ci, 0.0, fr, heat(ci, 0.0, fr)));
                         }
                     }
                 }
-                StiffSlip {
+                StiffColumn {
                     k,
-                    p,
+                    axis,
                     u: acc,
                     impulses,
                 }
@@ -1057,24 +1125,41 @@ impl System<'_> {
         out
     }
 
-    /// The slip across a stiff contact's direction, p . s_t, of the velocities and spins in
-    /// `x` (a state, or a stage's increment).
-    fn across(&self, x: &[f64], s: &StiffSlip) -> f64 {
+    /// A stiff column's variable of the velocities and spins in `x` (a state, or a stage's
+    /// increment): the slip across its contact's direction, p . s_t, or its closing rate
+    /// delta' = n . (v_i - v_j).
+    fn read(&self, x: &[f64], s: &StiffColumn) -> f64 {
         let c = &self.active[s.k];
-        let np = c.n.cross(&s.p);
-        s.p.dot(&(self.vel(x, c.i) - self.vel(x, c.j)))
-            + np.dot(&(self.spin(x, c.i) * c.ri + self.spin(x, c.j) * c.rj))
+        match s.axis {
+            StiffAxis::Across(p) => {
+                p.dot(&(self.vel(x, c.i) - self.vel(x, c.j)))
+                    + c.n
+                        .cross(&p)
+                        .dot(&(self.spin(x, c.i) * c.ri + self.spin(x, c.j) * c.rj))
+            }
+            StiffAxis::Closing => c.n.dot(&(self.vel(x, c.i) - self.vel(x, c.j))),
+        }
+    }
+
+    /// A stiff column's variable's rate under the accelerations `acc`.
+    fn read_rate(&self, acc: &[[Vector3<f64>; 2]], s: &StiffColumn) -> f64 {
+        let c = &self.active[s.k];
+        match s.axis {
+            StiffAxis::Across(p) => p.dot(&slip_rate(acc, c)),
+            StiffAxis::Closing => c.n.dot(&(acc[c.i][0] - acc[c.j][0])),
+        }
     }
 
     /// One step of size `h` from `y` (derivative `k0` there): the new state and its error
     /// norm, the root mean square of the local error over rtol (scale_i + |y_i|), positions
     /// on their scale alone. Dormand-Prince 5(4), or ROS34PW2 (order 3, linearly implicit in
-    /// the stiff slips' directions) when a sliding contact's direction is stiff for `h`
-    /// ([`System::stiff_slips`]; docs/cluster.md, "Stiff slips").
+    /// the stiff slips' directions and damped closing rates) when a sliding contact's
+    /// direction or a damped normal force is stiff for `h` ([`System::stiff_columns`];
+    /// docs/cluster.md, "Stiff slips").
     fn step(&self, y: &[f64], k0: &[f64], h: f64, scale: &[f64], rtol: f64) -> StepOut {
-        let slips = self.stiff_slips(y, k0, h);
-        if !slips.is_empty() {
-            return self.stiff_step(y, k0, h, scale, rtol, slips);
+        let columns = self.stiff_columns(y, k0, h);
+        if !columns.is_empty() {
+            return self.stiff_step(y, k0, h, scale, rtol, columns);
         }
         self.dopri5_step(y, k0, h, scale, rtol)
     }
@@ -1157,21 +1242,20 @@ impl System<'_> {
         h: f64,
         scale: &[f64],
         rtol: f64,
-        slips: Vec<StiffSlip>,
+        columns: Vec<StiffColumn>,
     ) -> StepOut {
-        let m = slips.len();
+        let m = columns.len();
         let nb = self.nb();
-        // V^T U: the slip across contact c of column d's accelerations.
+        // V^T U: column c's variable's rate under column d's accelerations.
         let mut small = DMatrix::<f64>::identity(m, m);
-        for (c, sc) in slips.iter().enumerate() {
-            let ac = &self.active[sc.k];
-            for (d, sd) in slips.iter().enumerate() {
-                small[(c, d)] -= h * rosenbrock::GAMMA * sc.p.dot(&slip_rate(&sd.u, ac));
+        for (c, sc) in columns.iter().enumerate() {
+            for (d, sd) in columns.iter().enumerate() {
+                small[(c, d)] -= h * rosenbrock::GAMMA * self.read_rate(&sd.u, sc);
             }
         }
         let mut lin = StiffLinear {
             sys: self,
-            slips,
+            columns,
             lu: small.lu(),
             h,
             nb,
@@ -1190,26 +1274,36 @@ impl System<'_> {
     }
 }
 
-/// A sliding contact whose direction is stiff over the step ([`System::stiff_slips`]).
-struct StiffSlip {
-    /// The contact (index in the set).
-    k: usize,
-    /// The unit vector of the tangent plane across its slip at the step's start.
-    p: Vector3<f64>,
-    /// J's column for the slip across, per body: the accelerations (m/s^2, rad/s^2) of the
-    /// friction's change per m/s of it, -mu f / |s| along p, the stuck contacts answering.
-    u: Vec<[Vector3<f64>; 2]>,
-    /// The same column's rows of the contacts' friction impulses: the friction's change
-    /// (N per m/s) at this contact and at each stuck contact that answers it. Without them
-    /// the step would move the velocities without the impulses that moved them, and a ball
-    /// on the cloth would gain momentum no impulse accounts for.
-    impulses: Vec<(usize, Vector3<f64>)>,
+/// What a stiff column's variable is ([`System::read`]).
+#[derive(Debug, Clone, Copy)]
+enum StiffAxis {
+    /// The slip across a sliding contact's direction, along this unit vector of its tangent
+    /// plane: its friction -mu f s / |s| turns with it at -mu f / |s| per m/s.
+    Across(Vector3<f64>),
+    /// The closing rate of a contact whose damped normal force is stiff.
+    Closing,
 }
 
-/// The stiff slips' linearisation over one ROS34PW2 step.
+/// A stiff column of the Jacobian over one step ([`System::stiff_columns`]).
+struct StiffColumn {
+    /// The contact (index in the set).
+    k: usize,
+    axis: StiffAxis,
+    /// The column per body: the accelerations (m/s^2, rad/s^2) of the contact's forces'
+    /// change per unit of the axis's variable, the stuck contacts answering.
+    u: Vec<[Vector3<f64>; 2]>,
+    /// The same column's rows of the contacts' impulses: per contact, the change (per unit
+    /// of the variable) of its normal force (N) and friction (N), at this contact and at
+    /// each stuck contact that answers it. Without them the step would move the velocities
+    /// without the impulses that moved them, and a ball on the cloth would gain momentum no
+    /// impulse accounts for.
+    impulses: Vec<(usize, f64, Vector3<f64>, f64)>,
+}
+
+/// The stiff columns' linearisation over one ROS34PW2 step.
 struct StiffLinear<'s, 'a> {
     sys: &'s System<'a>,
-    slips: Vec<StiffSlip>,
+    columns: Vec<StiffColumn>,
     /// LU of I - h gamma V^T U.
     lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
     h: f64,
@@ -1217,10 +1311,10 @@ struct StiffLinear<'s, 'a> {
 }
 
 impl StiffLinear<'_, '_> {
-    /// out += scale U z, z per stiff slip.
+    /// out += scale U z, z per stiff column.
     fn add_columns(&self, z: &[f64], scale: f64, out: &mut [f64]) {
         let nb = self.nb;
-        for (s, &zs) in self.slips.iter().zip(z) {
+        for (s, &zs) in self.columns.iter().zip(z) {
             if zs == 0.0 {
                 continue;
             }
@@ -1230,8 +1324,10 @@ impl StiffLinear<'_, '_> {
                     out[6 * nb + 3 * b + k] += scale * zs * a[1][k];
                 }
             }
-            for &(c, fr) in &s.impulses {
+            for &(c, normal, fr, heat) in &s.impulses {
                 let o = PER_BALL * nb + self.sys.pc * c;
+                out[o] += scale * zs * normal;
+                out[o + 4] += scale * zs * heat;
                 for k in 0..3 {
                     out[o + 1 + k] += scale * zs * fr[k];
                 }
@@ -1245,14 +1341,14 @@ impl rosenbrock::Linearised for StiffLinear<'_, '_> {
         self.sys.derivative(y, out);
     }
     fn add_jacobian_times(&self, x: &[f64], scale: f64, out: &mut [f64]) {
-        let z: Vec<f64> = self.slips.iter().map(|s| self.sys.across(x, s)).collect();
+        let z: Vec<f64> = self.columns.iter().map(|s| self.sys.read(x, s)).collect();
         self.add_columns(&z, scale, out);
     }
     fn solve(&self, x: &mut [f64]) {
         // x + h gamma U (I - h gamma V^T U)^(-1) V^T x.
         let z = DVector::from_iterator(
-            self.slips.len(),
-            self.slips.iter().map(|s| self.sys.across(x, s)),
+            self.columns.len(),
+            self.columns.iter().map(|s| self.sys.read(x, s)),
         );
         match self.lu.solve(&z) {
             Some(w) => self.add_columns(w.as_slice(), self.h * rosenbrock::GAMMA, x),
@@ -2597,14 +2693,22 @@ impl Run<'_> {
                 .active
                 .iter()
                 .zip(&f0.contact)
-                .filter(|(c, _)| c.mode == Mode::Sliding)
-                .filter_map(|(c, &(f, _, s, _, _))| {
-                    let rate = slip_rate(&f0.acc, c);
-                    direction_stiffness(self.bodies, c, f, s - c.offset, rate, h, floor)
+                .filter_map(|(c, &(f, _, s, _, d))| {
+                    let normal = damping_stiffness(self.bodies, c, d, f).map(|x| x.1);
+                    let slip = (c.mode == Mode::Sliding)
+                        .then(|| {
+                            let rate = slip_rate(&f0.acc, c);
+                            direction_stiffness(self.bodies, c, f, s - c.offset, rate, h, floor)
+                        })
+                        .flatten();
+                    match (normal, slip) {
+                        (Some(a), Some(b)) => Some(a.max(b)),
+                        (a, b) => a.or(b),
+                    }
                 })
                 .fold(None, |m: Option<f64>, l| Some(m.map_or(l, |m| m.max(l))));
-            // The stiffest sliding direction over this step, and the method it takes
-            // ([`STIFF_SLIP`]).
+            // The stiffest sliding direction or damped normal force over this step, and the
+            // method it takes ([`STIFF_SLIP`]).
             self.implicit = false;
             if let Some(lambda) = stiffest {
                 let h_s = STIFF_SLIP / lambda;
