@@ -1358,10 +1358,10 @@ impl rosenbrock::Linearised for StiffLinear<'_, '_> {
     }
 }
 
-/// One Dormand-Prince step: the new state, its error norm, the seven stage derivatives
-/// (the last one at the new state) and the forces at the new state (those of the last
-/// stage: the events, the loading check and the check after the step read them instead of
-/// evaluating them again).
+/// One step: the new state, its error norm, the stage derivatives (Dormand-Prince's seven,
+/// the last one at the new state; a ROS34PW2 step's, `stiff`, the two at its ends) and the
+/// forces at the new state (those of the last stage: the events, the loading check and the
+/// check after the step read them instead of evaluating them again).
 struct StepOut {
     y: Vec<f64>,
     err: f64,
