@@ -701,6 +701,29 @@ impl System<'_> {
         s - c.n * s.dot(&c.n)
     }
 
+    /// Whether a frozen step holds contact `k`'s friction along its seed.
+    fn holds(&self, k: usize) -> bool {
+        self.frozen && self.held.get(k).copied().unwrap_or(false)
+    }
+
+    /// The unit vector contact `k` (`c`, its slip `sr` from its offset) slides along, its
+    /// friction -mu f times it: a sliding contact's slip direction, or its seed while held or
+    /// below the floor; without the stick rule, after its stop, its seed; zero otherwise.
+    fn friction_direction(&self, k: usize, c: &Active, sr: Vector3<f64>) -> Vector3<f64> {
+        match c.mode {
+            Mode::Sliding => {
+                let sn = sr.norm();
+                if self.holds(k) || sn <= SLIP_FLOOR * self.v_ref {
+                    c.seed
+                } else {
+                    sr / sn
+                }
+            }
+            Mode::Continued => c.seed,
+            _ => Vector3::zeros(),
+        }
+    }
+
     /// Every force of state `y`.
     fn forces(&self, y: &[f64]) -> Forces {
         self.evaluations.set(self.evaluations.get() + 1);
@@ -711,7 +734,6 @@ impl System<'_> {
         let mut contact = Vec::with_capacity(self.active.len());
         // Filled by the stick solve only (no allocation in a step without one).
         let mut need = Vec::new();
-        let floor = SLIP_FLOOR * self.v_ref;
         for (k, c) in self.active.iter().enumerate() {
             let (d, w) = self.compression(y, c);
             let f = c.law.force(d, w);
@@ -727,24 +749,18 @@ impl System<'_> {
                     };
                     c.t[0] * a[0] + c.t[1] * a[1]
                 }
-                Mode::Sliding if f > 0.0 && c.mu > 0.0 => {
-                    let sn = sr.norm();
-                    let held = self.frozen && self.held.get(k).copied().unwrap_or(false);
-                    let dir = if held || sn <= floor {
-                        c.seed
-                    } else {
-                        // A slip above the floor against the step's direction has gone
-                        // through zero: its friction flipped inside the step.
-                        if sr.dot(&c.seed) <= 0.0 {
-                            if let Some(flip) = self.flips.get(k) {
-                                flip.set(true);
-                            }
+                Mode::Sliding | Mode::Continued if f > 0.0 && c.mu > 0.0 => {
+                    let dir = self.friction_direction(k, c, sr);
+                    // A slip above the floor (a direction read off the slip, not the seed)
+                    // against the step's direction has gone through zero: its friction
+                    // flipped inside the step.
+                    if dir != c.seed && sr.dot(&c.seed) <= 0.0 {
+                        if let Some(flip) = self.flips.get(k) {
+                            flip.set(true);
                         }
-                        sr / sn
-                    };
+                    }
                     -dir * (c.mu * f)
                 }
-                Mode::Continued if f > 0.0 && c.mu > 0.0 => -c.seed * (c.mu * f),
                 _ => Vector3::zeros(),
             };
             self.push(&mut acc, c, -c.n * f + friction);
@@ -885,6 +901,32 @@ impl System<'_> {
         A: std::ops::IndexMut<(usize, usize), Output = f64>,
         B: std::ops::IndexMut<usize, Output = f64>,
     {
+        self.stick_rhs(stuck, acc, b);
+        self.stick_matrix(stuck, a);
+    }
+
+    /// `b` of the stick solve ([`System::stick_system`]): minus the slips' rates of the
+    /// contacts `stuck` under the accelerations `acc`, in their tangent bases.
+    fn stick_rhs<B>(&self, stuck: &[usize], acc: &[[Vector3<f64>; 2]], b: &mut B)
+    where
+        B: std::ops::IndexMut<usize, Output = f64>,
+    {
+        for (p, &ci) in stuck.iter().enumerate() {
+            let c = &self.active[ci];
+            let rate =
+                acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
+            for u in 0..2 {
+                b[2 * p + u] = -c.t[u].dot(&rate);
+            }
+        }
+    }
+
+    /// `a` of the stick solve ([`System::stick_system`]): the stuck slips' rates under unit
+    /// tangential forces at the contacts `stuck`, added to `a`.
+    fn stick_matrix<A>(&self, stuck: &[usize], a: &mut A)
+    where
+        A: std::ops::IndexMut<(usize, usize), Output = f64>,
+    {
         // Role of a ball in a contact: the sign of its velocity in the slip and its lever.
         let role = |c: &Active, ball: usize| -> Option<(f64, f64)> {
             if ball == c.i {
@@ -897,11 +939,6 @@ impl System<'_> {
         };
         for (p, &ci) in stuck.iter().enumerate() {
             let c = &self.active[ci];
-            let rate =
-                acc[c.i][0] - acc[c.j][0] + (acc[c.i][1] * c.ri + acc[c.j][1] * c.rj).cross(&c.n);
-            for u in 0..2 {
-                b[2 * p + u] = -c.t[u].dot(&rate);
-            }
             for (q, &di) in stuck.iter().enumerate() {
                 let d = &self.active[di];
                 for ball in [d.i, d.j] {
@@ -974,104 +1011,95 @@ impl System<'_> {
 
     /// The stiff columns of the Jacobian for a step of `h` (s) from `y` (the derivative `k0`
     /// there) when the step may be ROS34PW2's: each sliding contact whose direction is stiff
-    /// (h lambda at least [`STIFF_SLIP`], [`System::slip_stiffness`]) and each contact whose
-    /// damped normal force is ([`damping_stiffness`]).
+    /// (h lambda at least [`STIFF_SLIP`], [`direction_stiffness`]; the column's variable the
+    /// slip across it, along p = n x s / |n x s|) and each contact whose damped normal force
+    /// is ([`damping_stiffness`]).
     fn stiff_columns(&self, y: &[f64], k0: &[f64], h: f64) -> Vec<StiffColumn> {
         if !self.implicit {
             return Vec::new();
         }
         let floor = SLIP_FLOOR * self.v_ref;
+        // Per contact of the set: compression, closing rate, normal force.
+        let normal: Vec<(f64, f64, f64)> = self
+            .active
+            .iter()
+            .map(|c| {
+                let (d, w) = self.compression(y, c);
+                (d, w, c.law.force(d, w))
+            })
+            .collect();
         // Each column's contact, axis, and the force (N per unit of the axis's variable) it
         // puts on ball i: (normal force, friction).
-        let mut wanted: Vec<(usize, StiffAxis, f64, Vector3<f64>)> = self
-            .slip_stiffness(y, k0, h)
-            .into_iter()
-            .filter(|s| h * s.3 >= STIFF_SLIP)
-            .map(|s| (s.0, StiffAxis::Across(s.1), 0.0, -s.1 * s.2))
-            .collect();
-        for (k, c) in self.active.iter().enumerate() {
-            let (d, w) = self.compression(y, c);
-            let f = c.law.force(d, w);
-            let Some((rate, lambda)) = damping_stiffness(self.bodies, c, d, f) else {
-                continue;
-            };
-            if h * lambda < STIFF_SLIP {
-                continue;
-            }
-            // Coulomb's friction scales with the normal force along its direction.
-            let held = self.frozen && self.held.get(k).copied().unwrap_or(false);
-            let along = match c.mode {
-                Mode::Sliding if c.mu > 0.0 => {
-                    let sr = self.slip(y, c) - c.offset;
-                    let sn = sr.norm();
-                    if held || sn <= floor {
-                        c.seed
-                    } else {
-                        sr / sn
-                    }
+        let mut wanted: Vec<(usize, StiffAxis, f64, Vector3<f64>)> = Vec::new();
+        let mut closing = Vec::new();
+        for (k, (c, &(d, _, f))) in self.active.iter().zip(&normal).enumerate() {
+            let sr = self.slip(y, c) - c.offset;
+            if c.mode == Mode::Sliding && !self.holds(k) {
+                let rate = self.slip(k0, c);
+                let stiff = direction_stiffness(self.bodies, c, f, sr, rate, h, floor);
+                let across = c.n.cross(&sr);
+                let an = across.norm();
+                if stiff.is_some_and(|lambda| h * lambda >= STIFF_SLIP) && an > 0.0 {
+                    let p = across / an;
+                    wanted.push((k, StiffAxis::Across(p), 0.0, -p * (c.mu * f / sr.norm())));
                 }
-                Mode::Continued if c.mu > 0.0 => c.seed,
-                _ => Vector3::zeros(),
-            };
-            wanted.push((k, StiffAxis::Closing, rate, -along * (c.mu * rate)));
+            }
+            if let Some((rate, lambda)) = damping_stiffness(self.bodies, c, d, f) {
+                if h * lambda >= STIFF_SLIP {
+                    // Coulomb's friction scales with the normal force along its direction.
+                    let along = if c.mu > 0.0 {
+                        self.friction_direction(k, c, sr)
+                    } else {
+                        Vector3::zeros()
+                    };
+                    closing.push((k, StiffAxis::Closing, rate, -along * (c.mu * rate)));
+                }
+            }
         }
+        wanted.append(&mut closing);
         if wanted.is_empty() {
             return Vec::new();
         }
         // The stuck contacts answer a change of force as the stick solve does: one
         // factorization for every column.
         let stuck: Vec<usize> = (0..self.active.len())
-            .filter(|&k| {
-                let c = &self.active[k];
-                c.mode == Mode::Stuck && {
-                    let (d, w) = self.compression(y, c);
-                    c.law.force(d, w) > self.f_floor
-                }
-            })
+            .filter(|&k| self.active[k].mode == Mode::Stuck && normal[k].2 > self.f_floor)
             .collect();
         let nb = self.nb();
         let lu = (!stuck.is_empty()).then(|| {
             let m = 2 * stuck.len();
             let mut a = DMatrix::<f64>::zeros(m, m);
-            let mut b = DVector::<f64>::zeros(m);
-            self.stick_system(&stuck, &vec![[Vector3::zeros(); 2]; nb], &mut a, &mut b);
+            self.stick_matrix(&stuck, &mut a);
             a.lu()
         });
         wanted
             .into_iter()
-            .map(|(k, axis, normal, friction)| {
+            .map(|(k, axis, dn, friction)| {
                 let c = &self.active[k];
                 let mut acc = vec![[Vector3::zeros(); 2]; nb];
-                self.push(&mut acc, c, friction - c.n * normal);
+                self.push(&mut acc, c, friction - c.n * dn);
                 // The heat's rate, f delta' - F . s (the damping's part of f on the cloth),
                 // moves with the normal force and the closing rate, and with the friction.
-                let heat = |ci: usize, normal: f64, fr: Vector3<f64>| {
+                let heat = |ci: usize, dn: f64, fr: Vector3<f64>| {
                     let sc = &self.active[ci];
                     let mut q = -fr.dot(&self.slip(y, sc));
                     if let StiffAxis::Closing = axis {
                         if ci == k {
-                            let (d, w) = self.compression(y, sc);
-                            let f = sc.law.force(d, w);
+                            let (d, w, f) = normal[ci];
                             let damped = if sc.j == self.nballs {
                                 f - sc.law.force(d, 0.0)
                             } else {
                                 f
                             };
-                            q += damped + w * normal;
+                            q += damped + w * dn;
                         }
                     }
                     q
                 };
-                let mut impulses = vec![(k, normal, friction, heat(k, normal, friction))];
+                let mut impulses = vec![(k, dn, friction, heat(k, dn, friction))];
                 if let Some(lu) = &lu {
-                    let b = DVector::from_iterator(
-                        2 * stuck.len(),
-                        stuck.iter().flat_map(|&ci| {
-                            let sc = &self.active[ci];
-                            let r = slip_rate(&acc, sc);
-                            [-sc.t[0].dot(&r), -sc.t[1].dot(&r)]
-                        }),
-                    );
+                    let mut b = DVector::<f64>::zeros(2 * stuck.len());
+                    self.stick_rhs(&stuck, &acc, &mut b);
                     if let Some(x) = lu.solve(&b) {
                         for (q, &ci) in stuck.iter().enumerate() {
                             let sc = &self.active[ci];
@@ -1091,43 +1119,11 @@ impl System<'_> {
             .collect()
     }
 
-    /// Of each sliding contact whose slip keeps at least half its size over a step of `h`
-    /// at its rate in `k0`: its index, the unit vector across its slip, mu f / |s| (1/s /
-    /// (m/s) of friction per slip) and its direction's relaxation rate lambda = mu f G / |s|
-    /// (1/s), G its isotropic compliance.
-    fn slip_stiffness(
-        &self,
-        y: &[f64],
-        k0: &[f64],
-        h: f64,
-    ) -> Vec<(usize, Vector3<f64>, f64, f64)> {
-        let floor = SLIP_FLOOR * self.v_ref;
-        let mut out = Vec::new();
-        for (k, c) in self.active.iter().enumerate() {
-            if c.mode != Mode::Sliding
-                || (self.frozen && self.held.get(k).copied().unwrap_or(false))
-            {
-                continue;
-            }
-            let (d, w) = self.compression(y, c);
-            let f = c.law.force(d, w);
-            let sr = self.slip(y, c) - c.offset;
-            if let Some(lambda) =
-                direction_stiffness(self.bodies, c, f, sr, self.slip(k0, c), h, floor)
-            {
-                let across = c.n.cross(&sr);
-                let an = across.norm();
-                if an > 0.0 {
-                    out.push((k, across / an, c.mu * f / sr.norm(), lambda));
-                }
-            }
-        }
-        out
-    }
-
     /// A stiff column's variable of the velocities and spins in `x` (a state, or a stage's
     /// increment): the slip across its contact's direction, p . s_t, or its closing rate
-    /// delta' = n . (v_i - v_j).
+    /// delta' = n . (v_i - v_j). (p . s_t written out with p . n = 0: read through
+    /// [`System::slip`], the projection's rounding moves the rolling break's evaluations
+    /// from 5,401 to 5,409.)
     fn read(&self, x: &[f64], s: &StiffColumn) -> f64 {
         let c = &self.active[s.k];
         match s.axis {
@@ -1231,10 +1227,10 @@ impl System<'_> {
         (sum / y0.len() as f64).sqrt()
     }
 
-    /// One ROS34PW2 step ([`System::step`]) with J the stiff slips' part of the Jacobian:
-    /// friction -mu f s / |s| turns with the slip across it at -mu f / |s| per m/s, each
-    /// such column a rank-one term u v^T (v^T y the slip across, p . s_t), so that I - h
-    /// gamma J is solved through the small matrix I - h gamma V^T U (Woodbury).
+    /// One ROS34PW2 step ([`System::step`]) with J the stiff columns' part of the Jacobian
+    /// ([`System::stiff_columns`]), each a rank-one term u v^T (v^T y the column's variable,
+    /// [`System::read`]), so that I - h gamma J is solved through the small matrix I - h
+    /// gamma V^T U (Woodbury).
     fn stiff_step(
         &self,
         y: &[f64],
@@ -1245,7 +1241,6 @@ impl System<'_> {
         columns: Vec<StiffColumn>,
     ) -> StepOut {
         let m = columns.len();
-        let nb = self.nb();
         // V^T U: column c's variable's rate under column d's accelerations.
         let mut small = DMatrix::<f64>::identity(m, m);
         for (c, sc) in columns.iter().enumerate() {
@@ -1258,7 +1253,6 @@ impl System<'_> {
             columns,
             lu: small.lu(),
             h,
-            nb,
         };
         let (y1, e) = rosenbrock::step(&mut lin, y, k0, h);
         let mut k1 = vec![0.0; y.len()];
@@ -1307,13 +1301,12 @@ struct StiffLinear<'s, 'a> {
     /// LU of I - h gamma V^T U.
     lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
     h: f64,
-    nb: usize,
 }
 
 impl StiffLinear<'_, '_> {
     /// out += scale U z, z per stiff column.
     fn add_columns(&self, z: &[f64], scale: f64, out: &mut [f64]) {
-        let nb = self.nb;
+        let nb = self.sys.nb();
         for (s, &zs) in self.columns.iter().zip(z) {
             if zs == 0.0 {
                 continue;
@@ -2693,7 +2686,7 @@ impl Run<'_> {
                 .active
                 .iter()
                 .zip(&f0.contact)
-                .filter_map(|(c, &(f, _, s, _, d))| {
+                .flat_map(|(c, &(f, _, s, _, d))| {
                     let normal = damping_stiffness(self.bodies, c, d, f).map(|x| x.1);
                     let slip = (c.mode == Mode::Sliding)
                         .then(|| {
@@ -2701,12 +2694,9 @@ impl Run<'_> {
                             direction_stiffness(self.bodies, c, f, s - c.offset, rate, h, floor)
                         })
                         .flatten();
-                    match (normal, slip) {
-                        (Some(a), Some(b)) => Some(a.max(b)),
-                        (a, b) => a.or(b),
-                    }
+                    normal.into_iter().chain(slip)
                 })
-                .fold(None, |m: Option<f64>, l| Some(m.map_or(l, |m| m.max(l))));
+                .reduce(f64::max);
             // The stiffest sliding direction or damped normal force over this step, and the
             // method it takes ([`STIFF_SLIP`]).
             self.implicit = false;
@@ -2805,15 +2795,15 @@ impl Run<'_> {
             }
             self.stats.evaluations += evals;
             let err = out.err;
+            // The method's next step, accepted or not (a step whose error is not finite
+            // counts as one far past the tolerance).
+            let proposal = control(out.stiff).next(h, if err.is_finite() { err } else { 1e10 });
             if out.stiff {
-                self.stiff_next = Some((
-                    0,
-                    STIFF_CONTROL.next(h, if err.is_finite() { err } else { 1e10 }),
-                ));
+                self.stiff_next = Some((0, proposal));
             }
             if err > 1.0 || !err.is_finite() {
                 self.stats.rejected += 1;
-                h = control(out.stiff).next(h, if err.is_finite() { err } else { 1e10 });
+                h = proposal;
                 k0 = Some((self.changes, d0, f0));
                 continue;
             }
@@ -2847,7 +2837,7 @@ impl Run<'_> {
                 let t0 = self.t;
                 self.stats.steps += 1;
                 self.t += h;
-                let hn = control(out.stiff).next(h, err);
+                let hn = proposal;
                 let last = out.k.pop().expect("the derivative at the step's end");
                 self.y = out.y;
                 self.settle_aligned();
