@@ -24,8 +24,8 @@ use crate::model::material::elastic_impact;
 use crate::tangential::impact::{
     capped, mindlin_stiffness, spring_slide_rate, spring_stick_rate, ALIGN_TURNS, NEGLIGIBLE_MU,
 };
-use nalgebra::{DMatrix, DVector, Matrix2, Vector2, Vector3};
-use std::cell::Cell;
+use nalgebra::{DMatrix, DVector, Dyn, Matrix2, Vector2, Vector3, LU};
+use std::cell::{Cell, RefCell};
 
 /// Default relative tolerance of the step control.
 pub const CLUSTER_DEFAULT_RTOL: f64 = 1e-8;
@@ -475,6 +475,21 @@ struct Active {
     /// Time of the closing (s).
     start: f64,
     stick_time: Option<f64>,
+    /// Serial number of the closing, unique in the run ([`StickLu`]).
+    id: u64,
+}
+
+/// The stick solve's last factorization for two or more stuck contacts. Its matrix depends
+/// only on which contacts are stuck (their normals and tangent bases are frozen at the
+/// closing, the balls' masses and inertias fixed), so it is built and factorized again only
+/// when that set changes: in the 16-ball break, building and factorizing it at every
+/// evaluation took a tenth of the run.
+#[derive(Default)]
+struct StickLu {
+    /// The stuck contacts' ids ([`Active::id`]), in the set's order.
+    ids: Vec<u64>,
+    /// The LU of their matrix ([`System::stick_matrix`]).
+    lu: Option<LU<f64, Dyn, Dyn>>,
 }
 
 /// Index in the state of the spring S (two components) of contact `k`, with `nb` bodies
@@ -670,6 +685,8 @@ struct System<'a> {
     flips: &'a [Cell<bool>],
     /// Whether a step may be ROS34PW2's ([`System::step`]).
     implicit: bool,
+    /// The stick solve's last factorization, shared by the run's systems.
+    stick_lu: &'a RefCell<StickLu>,
     evaluations: Cell<u64>,
 }
 
@@ -864,14 +881,12 @@ impl System<'_> {
             x1 = x;
             x1.as_slice()
         } else {
-            let k = stuck.len();
-            let mut a = DMatrix::<f64>::zeros(2 * k, 2 * k);
-            let mut b = DVector::<f64>::zeros(2 * k);
-            self.stick_system(&stuck, acc, &mut a, &mut b);
-            let Some(x) = a.lu().solve(&b) else {
+            let mut b = DVector::<f64>::zeros(2 * stuck.len());
+            self.stick_rhs(&stuck, acc, &mut b);
+            if !self.stick_solve(&stuck, &mut b) {
                 return;
-            };
-            xn = x;
+            }
+            xn = b;
             xn.as_slice()
         };
         for (p, &ci) in stuck.iter().enumerate() {
@@ -903,6 +918,30 @@ impl System<'_> {
     {
         self.stick_rhs(stuck, acc, b);
         self.stick_matrix(stuck, a);
+    }
+
+    /// Solves the stick solve's system for the contacts `stuck` (two or more) in place: `b`
+    /// its right-hand side ([`System::stick_rhs`]) becomes the tangential forces. The LU of
+    /// the matrix is kept for the next solve of the same contacts ([`StickLu`]). False if
+    /// the matrix is singular.
+    fn stick_solve(&self, stuck: &[usize], b: &mut DVector<f64>) -> bool {
+        let mut cache = self.stick_lu.borrow_mut();
+        let same = cache.ids.len() == stuck.len()
+            && cache.lu.is_some()
+            && cache
+                .ids
+                .iter()
+                .zip(stuck)
+                .all(|(&id, &k)| id == self.active[k].id);
+        if !same {
+            let m = 2 * stuck.len();
+            let mut a = DMatrix::<f64>::zeros(m, m);
+            self.stick_matrix(stuck, &mut a);
+            cache.ids.clear();
+            cache.ids.extend(stuck.iter().map(|&k| self.active[k].id));
+            cache.lu = Some(a.lu());
+        }
+        cache.lu.as_ref().is_some_and(|lu| lu.solve_mut(b))
     }
 
     /// `b` of the stick solve ([`System::stick_system`]): minus the slips' rates of the
@@ -1066,12 +1105,6 @@ impl System<'_> {
             .filter(|&k| self.active[k].mode == Mode::Stuck && normal[k].2 > self.f_floor)
             .collect();
         let nb = self.nb();
-        let lu = (!stuck.is_empty()).then(|| {
-            let m = 2 * stuck.len();
-            let mut a = DMatrix::<f64>::zeros(m, m);
-            self.stick_matrix(&stuck, &mut a);
-            a.lu()
-        });
         wanted
             .into_iter()
             .map(|(k, axis, dn, friction)| {
@@ -1097,10 +1130,10 @@ impl System<'_> {
                     q
                 };
                 let mut impulses = vec![(k, dn, friction, heat(k, dn, friction))];
-                if let Some(lu) = &lu {
-                    let mut b = DVector::<f64>::zeros(2 * stuck.len());
-                    self.stick_rhs(&stuck, &acc, &mut b);
-                    if let Some(x) = lu.solve(&b) {
+                if !stuck.is_empty() {
+                    let mut x = DVector::<f64>::zeros(2 * stuck.len());
+                    self.stick_rhs(&stuck, &acc, &mut x);
+                    if self.stick_solve(&stuck, &mut x) {
                         for (q, &ci) in stuck.iter().enumerate() {
                             let sc = &self.active[ci];
                             let fr = sc.t[0] * x[2 * q] + sc.t[1] * x[2 * q + 1];
@@ -1628,6 +1661,8 @@ fn run_cluster(
         held: Vec::new(),
         flips: Vec::new(),
         implicit: false,
+        stick_lu: RefCell::new(StickLu::default()),
+        closings: 0,
         stiff_next: None,
         trace: trace.map(|t| Tracer {
             sampling: t.sampling,
@@ -1713,6 +1748,10 @@ struct Run<'a> {
     flips: Vec<Cell<bool>>,
     /// Whether the step may be ROS34PW2's (`System::step`).
     implicit: bool,
+    /// The stick solve's last factorization ([`StickLu`]).
+    stick_lu: RefCell<StickLu>,
+    /// Closings so far: the next contact's [`Active::id`].
+    closings: u64,
     /// ROS34PW2's proposal (s) after its last step, and the explicit steps taken since
     /// because it was short ([`STIFF_SLIP`], [`STIFF_RETRY`]).
     stiff_next: Option<(usize, f64)>,
@@ -1772,6 +1811,7 @@ impl Run<'_> {
             held: &self.held,
             flips: &self.flips,
             implicit: self.implicit,
+            stick_lu: &self.stick_lu,
             evaluations: Cell::new(0),
         }
     }
@@ -1901,7 +1941,9 @@ impl Run<'_> {
             loaded: false,
             start: self.t,
             stick_time: None,
+            id: self.closings,
         };
+        self.closings += 1;
         let nb = self.nb();
         self.paired[c.i * nb + c.j] = true;
         self.active.push(c);
