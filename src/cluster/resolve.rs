@@ -1204,8 +1204,9 @@ impl System<'_> {
             ys.copy_from_slice(y);
             for (kj, &aj) in k[..s].iter().zip(&DOPRI5_A[s - 1][..s]) {
                 if aj != 0.0 {
-                    for i in 0..n {
-                        ys[i] += h * aj * kj[i];
+                    let ha = h * aj;
+                    for (yi, ki) in ys.iter_mut().zip(kj) {
+                        *yi += ha * ki;
                     }
                 }
             }
@@ -1213,19 +1214,17 @@ impl System<'_> {
         }
         let end = end.expect("six stages");
         // Row 7 of a is the 5th-order solution: the last stage was evaluated at it.
-        let err = self.error_norm(
-            y,
-            &ys,
-            |i| {
-                h * k
-                    .iter()
-                    .zip(DOPRI5_E)
-                    .map(|(ks, es)| es * ks[i])
-                    .sum::<f64>()
-            },
-            scale,
-            rtol,
-        );
+        // The local error, h sum_s e_s k_s, summed stage by stage.
+        let mut e = vec![0.0; n];
+        for (ks, es) in k.iter().zip(DOPRI5_E) {
+            for (ei, ki) in e.iter_mut().zip(ks) {
+                *ei += es * ki;
+            }
+        }
+        for ei in &mut e {
+            *ei *= h;
+        }
+        let err = self.error_norm(y, &ys, &e, scale, rtol);
         StepOut {
             y: ys,
             err,
@@ -1236,25 +1235,15 @@ impl System<'_> {
     }
 
     /// The error norm of a step from `y0` to `y1` whose local error in component i is
-    /// `e(i)`: the root mean square of e_i / (rtol (scale_i + max(|y0_i|, |y1_i|))),
+    /// `e[i]`: the root mean square of e_i / (rtol (scale_i + max(|y0_i|, |y1_i|))),
     /// positions on their scale alone.
-    fn error_norm(
-        &self,
-        y0: &[f64],
-        y1: &[f64],
-        e: impl Fn(usize) -> f64,
-        scale: &[f64],
-        rtol: f64,
-    ) -> f64 {
+    fn error_norm(&self, y0: &[f64], y1: &[f64], e: &[f64], scale: &[f64], rtol: f64) -> f64 {
         let npos = 3 * self.nb();
         let mut sum = 0.0;
-        for i in 0..y0.len() {
-            let mag = if i < npos {
-                0.0
-            } else {
-                y0[i].abs().max(y1[i].abs())
-            };
-            let q = e(i) / (rtol * (scale[i] + mag));
+        let parts = y0.iter().zip(y1).zip(e).zip(scale);
+        for (i, (((a, b), ei), si)) in parts.enumerate() {
+            let mag = if i < npos { 0.0 } else { a.abs().max(b.abs()) };
+            let q = ei / (rtol * (si + mag));
             sum += q * q;
         }
         (sum / y0.len() as f64).sqrt()
@@ -1290,7 +1279,7 @@ impl System<'_> {
         let (y1, e) = rosenbrock::step(&mut lin, y, k0, h);
         let mut k1 = vec![0.0; y.len()];
         let end = self.derivative(&y1, &mut k1);
-        let err = self.error_norm(y, &y1, |i| e[i], scale, rtol);
+        let err = self.error_norm(y, &y1, &e, scale, rtol);
         StepOut {
             y: y1,
             err,

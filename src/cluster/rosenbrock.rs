@@ -77,8 +77,8 @@ pub(super) fn step<P: Linearised>(
             ys.copy_from_slice(y0);
             for (kj, &a) in k[..s].iter().zip(&ALPHA[s][..s]) {
                 if a != 0.0 {
-                    for i in 0..n {
-                        ys[i] += a * kj[i];
+                    for (yi, ki) in ys.iter_mut().zip(kj) {
+                        *yi += a * ki;
                     }
                 }
             }
@@ -87,8 +87,8 @@ pub(super) fn step<P: Linearised>(
         // h f + h J sum_j gamma_ij k_j, then solved with W = I - h gamma J.
         g.fill(0.0);
         for (kj, &c) in k[..s].iter().zip(&GAMMA_OFF[s][..s]) {
-            for i in 0..n {
-                g[i] += c * kj[i];
+            for (gi, ki) in g.iter_mut().zip(kj) {
+                *gi += c * ki;
             }
         }
         let mut r: Vec<f64> = f.iter().map(|v| h * v).collect();
@@ -101,9 +101,10 @@ pub(super) fn step<P: Linearised>(
     let mut y1 = y0.to_vec();
     let mut err = vec![0.0; n];
     for (s, ks) in k.iter().enumerate() {
-        for i in 0..n {
-            y1[i] += B[s] * ks[i];
-            err[i] += (B[s] - B_HAT[s]) * ks[i];
+        let d = B[s] - B_HAT[s];
+        for ((yi, ei), ki) in y1.iter_mut().zip(&mut err).zip(ks) {
+            *yi += B[s] * ki;
+            *ei += d * ki;
         }
     }
     (y1, err)
