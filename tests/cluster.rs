@@ -2,7 +2,7 @@
 //! gaps against pairwise solves, Newton's cradle, a ten-ball chain against published values,
 //! a frozen combination.
 
-use crate::common::hertz_chain::{hertz_chain_rk4, kuwabara_kono_line_rk4};
+use crate::common::hertz_chain::{hertz_chain_rk4, kuwabara_kono_line_rk4, SICONOS_CHAIN_10};
 use billiard_contact::nalgebra::Vector3;
 use billiard_contact::*;
 
@@ -493,45 +493,24 @@ fn cluster_newtons_cradle_is_not_ideal() {
     }
 }
 
-/// Published values: a chain of ten equal steel balls (r = 10 mm, density 7780 kg/m^3, E =
-/// 203 GPa, nu = 0.3), the first striking the other nine, touching and at rest, head on at 1
-/// m/s; elastic Hertz contacts, k = sqrt(r / 2) (2 / 3) E / (1 - nu^2), no friction, no
-/// gravity. This is the chain of the Siconos platform's example
-/// `examples/Mechanics/ChainOfBalls/MonodisperseChainOfBalls-LZBModel.cpp` (INRIA; github.com/
-/// siconos/siconos), solved there by the multiple-impact model of Liu, Zhao and Brogliato
-/// ("Frictionless multiple impacts in multibody systems", Proc. R. Soc. A 464 (2008)
-/// 3193-3211 and 465 (2009) 1-23) with restitution 1. That model steps the impulse, not
-/// time: each contact's impulse grows with the primary contact's in the ratio of their
-/// forces written through their potential energies, (k_j / k_i)^(2/5) (E_j / E_i)^(3/5),
-/// which for Hertz's force is exact, so with restitution 1 it is the same dynamics as here.
-/// It is stepped at a fixed 1e-6 N s (about 33,000 steps for this impact). The values
-/// below (m/s, v0 = 1 m/s) are the row just after the impact in the example's reference
-/// output `MonodisperseChainOfBalls-LZBModel.ref`, the file the example checks itself against.
+/// Published values: the chain of ten steel balls of `SICONOS_CHAIN_10` (tests/common/
+/// hertz_chain.rs, with its provenance: Siconos's chain-of-balls example, Liu, Zhao and
+/// Brogliato's multiple-impact model, restitution 1), the first striking the other nine,
+/// touching and at rest, head on at 1 m/s; elastic Hertz contacts, no friction.
 ///
 /// That integration is first order in its impulse step: its kinetic energy ends 2.6e-5 of
-/// the start's above it (the sum of the squares below is 1.0000263), and its velocities
-/// differ from the chain integrated here by RK4 (`hertz_chain_rk4`; at h and h / 2, 7.4e-12
-/// m/s apart) by 2.6e-5 (the striker) to 4.7e-4 m/s (ball 9), measured. So the kernel is
-/// held to the RK4 chain at 1e-8 m/s, and to the published values at 6e-4 m/s, their own
-/// accuracy. Balls 1 and 2 leave before the pulse comes back from the far end: the same
-/// values as the 5-ball cradle's (`cluster_newtons_cradle_is_not_ideal`).
+/// the start's above it, and its velocities differ from the chain integrated here by RK4
+/// (`hertz_chain_rk4`; at h and h / 2, 7.4e-12 m/s apart) by 2.6e-5 (the striker) to 4.7e-4
+/// m/s (ball 9), measured. So the kernel is held to the RK4 chain at 1e-8 m/s, and to the
+/// published values at 6e-4 m/s, their own accuracy. Balls 1 and 2 leave before the pulse
+/// comes back from the far end: the same values as the 5-ball cradle's
+/// (`cluster_newtons_cradle_is_not_ideal`).
 #[test]
 fn a_ten_ball_chain_reaches_the_published_multiple_impact_values() {
-    const SICONOS: [f64; 10] = [
-        -7.105929287758861e-02,
-        -3.0186240457886e-2, // as printed: -3.018624045788600e-02
-        -1.574960308766378e-02,
-        -8.808055289868551e-03,
-        -5.062343781337067e-03,
-        -2.93663194584919e-3, // as printed: -2.936631945849190e-03
-        -1.701856524055756e-03,
-        2.624517363818925e-03,
-        1.469233855937676e-01,
-        9.859561210066624e-01,
-    ];
     let (r, e, nu) = (0.01, 203.0e9, 0.3);
     // (Siconos writes pi as 3.14159265: the mass cancels out of the answer.)
     let m = 4.0 / 3.0 * std::f64::consts::PI * r * r * r * 7780.0;
+    // Siconos's stiffness, sqrt(R*) (2 / 3) E / (1 - nu^2): Hertz's (4/3) E* sqrt(R*).
     let k = (r / 2.0_f64).sqrt() * (2.0 / 3.0) * e / (1.0 - nu * nu);
     let mut v0 = [0.0; 10];
     v0[0] = 1.0;
@@ -567,8 +546,8 @@ fn a_ten_ball_chain_reaches_the_published_multiple_impact_values() {
             b + 1,
             reference[b],
             (got - reference[b]).abs(),
-            SICONOS[b],
-            (got - SICONOS[b]).abs()
+            SICONOS_CHAIN_10[b],
+            (got - SICONOS_CHAIN_10[b]).abs()
         );
         assert!(
             (got - reference[b]).abs() < 1e-8,
@@ -577,10 +556,10 @@ fn a_ten_ball_chain_reaches_the_published_multiple_impact_values() {
             reference[b]
         );
         assert!(
-            (got - SICONOS[b]).abs() < 6e-4,
+            (got - SICONOS_CHAIN_10[b]).abs() < 6e-4,
             "ball {}: {got} vs the published {}",
             b + 1,
-            SICONOS[b]
+            SICONOS_CHAIN_10[b]
         );
     }
 }
