@@ -542,6 +542,7 @@ struct Body {
 type ContactForce = (f64, Vector3<f64>, Vector3<f64>, f64, f64);
 
 /// The forces of one state.
+#[derive(Default)]
 struct Forces {
     /// Per ball: acceleration (m/s^2), angular acceleration (rad/s^2).
     acc: Vec<[Vector3<f64>; 2]>,
@@ -551,6 +552,8 @@ struct Forces {
     /// Per contact, once a stuck contact needs more than mu f (empty otherwise,
     /// [`Forces::need`]): the friction (N) it needs.
     need: Vec<Vector3<f64>>,
+    /// The stuck contacts the stick solve took (kept for the vector's reuse).
+    stuck: Vec<usize>,
 }
 
 impl Forces {
@@ -743,14 +746,29 @@ impl System<'_> {
 
     /// Every force of state `y`.
     fn forces(&self, y: &[f64]) -> Forces {
+        let mut fs = Forces::default();
+        self.forces_into(y, &mut fs);
+        fs
+    }
+
+    /// Every force of state `y`, into `fs` (its vectors reused: a step's inner stages
+    /// share one, and their allocations were a fifth of a two-ball run's instructions).
+    fn forces_into(&self, y: &[f64], fs: &mut Forces) {
         self.evaluations.set(self.evaluations.get() + 1);
-        let mut acc = vec![[Vector3::zeros(); 2]; self.nb()];
+        let Forces {
+            acc,
+            contact,
+            need,
+            stuck,
+        } = fs;
+        acc.clear();
+        acc.resize(self.nb(), [Vector3::zeros(); 2]);
         for a in &mut acc[..self.nballs] {
             a[0].z -= self.gravity;
         }
-        let mut contact = Vec::with_capacity(self.active.len());
+        contact.clear();
         // Filled by the stick solve only (no allocation in a step without one).
-        let mut need = Vec::new();
+        need.clear();
         for (k, c) in self.active.iter().enumerate() {
             let (d, w) = self.compression(y, c);
             let f = c.law.force(d, w);
@@ -780,13 +798,12 @@ impl System<'_> {
                 }
                 _ => Vector3::zeros(),
             };
-            self.push(&mut acc, c, -c.n * f + friction);
+            self.push(acc, c, -c.n * f + friction);
             contact.push((f, friction, s, w, d));
         }
         if self.active.iter().any(|c| c.mode == Mode::Stuck) {
-            self.stuck(&mut acc, &mut contact, &mut need);
+            self.stuck(acc, contact, need, stuck);
         }
-        Forces { acc, contact, need }
     }
 
     /// The spring S (N) of contact `k` in its tangent basis.
@@ -861,10 +878,14 @@ impl System<'_> {
         acc: &mut [[Vector3<f64>; 2]],
         contact: &mut [ContactForce],
         need: &mut Vec<Vector3<f64>>,
+        stuck: &mut Vec<usize>,
     ) {
-        let stuck: Vec<usize> = (0..self.active.len())
-            .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > self.f_floor)
-            .collect();
+        stuck.clear();
+        stuck.extend(
+            (0..self.active.len())
+                .filter(|&k| self.active[k].mode == Mode::Stuck && contact[k].0 > self.f_floor),
+        );
+        let stuck = &stuck[..];
         if stuck.is_empty() {
             return;
         }
@@ -874,7 +895,7 @@ impl System<'_> {
         let (x1, xn);
         let x: &[f64] = if stuck.len() == 1 {
             let (mut a, mut b) = (Matrix2::zeros(), Vector2::zeros());
-            self.stick_system(&stuck, acc, &mut a, &mut b);
+            self.stick_system(stuck, acc, &mut a, &mut b);
             let Some(x) = a.lu().solve(&b) else {
                 return;
             };
@@ -882,8 +903,8 @@ impl System<'_> {
             x1.as_slice()
         } else {
             let mut b = DVector::<f64>::zeros(2 * stuck.len());
-            self.stick_rhs(&stuck, acc, &mut b);
-            if !self.stick_solve(&stuck, &mut b) {
+            self.stick_rhs(stuck, acc, &mut b);
+            if !self.stick_solve(stuck, &mut b) {
                 return;
             }
             xn = b;
@@ -1001,8 +1022,16 @@ impl System<'_> {
 
     /// dy/dt at `y`, and the forces it came from.
     fn derivative(&self, y: &[f64], dy: &mut [f64]) -> Forces {
+        let mut fs = Forces::default();
+        self.derivative_into(y, dy, &mut fs);
+        fs
+    }
+
+    /// dy/dt at `y`, the forces it came from into `fs` ([`System::forces_into`]).
+    fn derivative_into(&self, y: &[f64], dy: &mut [f64], fs: &mut Forces) {
         let nb = self.nb();
-        let fs = self.forces(y);
+        self.forces_into(y, fs);
+        let fs = &*fs;
         dy[..3 * nb].copy_from_slice(&y[3 * nb..6 * nb]);
         for (b, a) in fs.acc.iter().enumerate() {
             for k in 0..3 {
@@ -1053,7 +1082,6 @@ impl System<'_> {
                 dy[o + PER_CONTACT + 1] = rate[1];
             }
         }
-        fs
     }
 
     /// The stiff columns of the Jacobian for a step of `h` (s) from `y` (the derivative `k0`
@@ -1207,7 +1235,8 @@ impl System<'_> {
         let mut k = vec![vec![0.0; n]; 7];
         k[0].copy_from_slice(k0);
         let mut ys = vec![0.0; n];
-        let mut end = None;
+        // One set of forces for the stages: the last stage's is the step's end.
+        let mut end = Forces::default();
         for s in 1..7 {
             ys.copy_from_slice(y);
             for (kj, &aj) in k[..s].iter().zip(&DOPRI5_A[s - 1][..s]) {
@@ -1218,9 +1247,8 @@ impl System<'_> {
                     }
                 }
             }
-            end = Some(self.derivative(&ys, &mut k[s]));
+            self.derivative_into(&ys, &mut k[s], &mut end);
         }
-        let end = end.expect("six stages");
         // Row 7 of a is the 5th-order solution: the last stage was evaluated at it.
         // The local error, h sum_s e_s k_s, summed stage by stage.
         let mut e = vec![0.0; n];
@@ -1283,6 +1311,7 @@ impl System<'_> {
             columns,
             lu: small.lu(),
             h,
+            scratch: Forces::default(),
         };
         let (y1, e) = rosenbrock::step(&mut lin, y, k0, h);
         let mut k1 = vec![0.0; y.len()];
@@ -1331,6 +1360,8 @@ struct StiffLinear<'s, 'a> {
     /// LU of I - h gamma V^T U.
     lu: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
     h: f64,
+    /// The stages' forces (not kept).
+    scratch: Forces,
 }
 
 impl StiffLinear<'_, '_> {
@@ -1361,7 +1392,7 @@ impl StiffLinear<'_, '_> {
 
 impl rosenbrock::Linearised for StiffLinear<'_, '_> {
     fn rhs(&mut self, y: &[f64], out: &mut [f64]) {
-        self.sys.derivative(y, out);
+        self.sys.derivative_into(y, out, &mut self.scratch);
     }
     fn add_jacobian_times(&self, x: &[f64], scale: f64, out: &mut [f64]) {
         let z: Vec<f64> = self.columns.iter().map(|s| self.sys.read(x, s)).collect();
