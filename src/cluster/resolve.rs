@@ -479,11 +479,12 @@ struct Active {
     id: u64,
 }
 
-/// The stick solve's last factorization for two or more stuck contacts. Its matrix depends
-/// only on which contacts are stuck (their normals and tangent bases are frozen at the
-/// closing, the balls' masses and inertias fixed), so it is built and factorized again only
-/// when that set changes: in the 16-ball break, building and factorizing it at every
-/// evaluation took a tenth of the run.
+/// The stick solve's last factorization (the forces' for two or more stuck contacts, one
+/// alone solving its 2 x 2 system on the stack; ROS34PW2's columns' for any number). Its
+/// matrix depends only on which contacts are stuck (their normals and tangent bases are
+/// frozen at the closing, the balls' masses and inertias fixed), so it is built and
+/// factorized again only when that set changes: in the 16-ball break, building and
+/// factorizing it at every evaluation took a tenth of the run.
 #[derive(Default)]
 struct StickLu {
     /// The stuck contacts' ids ([`Active::id`]), in the set's order.
@@ -941,7 +942,7 @@ impl System<'_> {
         self.stick_matrix(stuck, a);
     }
 
-    /// Solves the stick solve's system for the contacts `stuck` (two or more) in place: `b`
+    /// Solves the stick solve's system for the contacts `stuck` in place: `b`
     /// its right-hand side ([`System::stick_rhs`]) becomes the tangential forces. The LU of
     /// the matrix is kept for the next solve of the same contacts ([`StickLu`]). False if
     /// the matrix is singular.
